@@ -1,0 +1,14 @@
+//! Rigid bodies: shapes, mass properties, driven degrees of freedom and the body set.
+//!
+//! Bodies live in a [`BodySet`] stored as a structure of arrays indexed by [`BodyHandle`], so
+//! that the contact solver streams only what it needs (velocities and inverse masses).
+//! Each body carries a global `id` and an [`Ownership`] so that a domain-decomposed run can
+//! hold shadow copies of bodies owned by another process without changing this layout.
+
+mod drive;
+mod set;
+mod shape;
+
+pub use drive::{Drive, TimeFunction};
+pub use set::{Body, BodyHandle, BodySet, Ownership};
+pub use shape::{ConvexPolygon, Shape};

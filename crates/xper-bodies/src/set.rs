@@ -1,0 +1,226 @@
+//! The body set: every rigid body of a run, stored as a structure of arrays.
+
+use crate::{Drive, Shape};
+use serde::{Deserialize, Serialize};
+use xper_math::{Real, Vector, DOFS};
+
+/// Index of a body in its [`BodySet`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+pub struct BodyHandle(pub u32);
+
+impl BodyHandle {
+    /// The index as `usize`.
+    #[inline(always)]
+    pub fn index(self) -> usize {
+        self.0 as usize
+    }
+}
+
+/// Which process owns a body in a domain-decomposed run.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Ownership {
+    /// Integrated by this process.
+    #[default]
+    Owned,
+    /// A copy of a body owned by process `owner`, kept for contacts near a subdomain boundary.
+    Shadow {
+        /// Rank of the owning process.
+        owner: u32,
+    },
+}
+
+/// Everything needed to add one body to a [`BodySet`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Body {
+    /// Geometry.
+    pub shape: Shape,
+    /// Centre of mass (m).
+    pub position: Vector,
+    /// Rotation (rad).
+    pub angle: Real,
+    /// Velocity of the centre of mass (m/s).
+    pub velocity: Vector,
+    /// Angular velocity (rad/s).
+    pub angular_velocity: Real,
+    /// Mass (kg per m of thickness); `INFINITY` for walls.
+    pub mass: Real,
+    /// Moment of inertia about the centre of mass (kg m^2 per m); `INFINITY` for walls.
+    pub inertia: Real,
+    /// Index of the body's group in the law table.
+    pub group: u16,
+    /// Drives of the x, y and rotation degrees of freedom.
+    pub drives: [Drive; DOFS],
+}
+
+/// All bodies of a run. Field `k` of every array belongs to body `k`.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct BodySet {
+    /// Centres of mass (m).
+    pub position: Vec<Vector>,
+    /// Rotations (rad).
+    pub angle: Vec<Real>,
+    /// Velocities (m/s).
+    pub velocity: Vec<Vector>,
+    /// Angular velocities (rad/s).
+    pub angular_velocity: Vec<Real>,
+    /// Masses (kg per m).
+    pub mass: Vec<Real>,
+    /// Moments of inertia (kg m^2 per m).
+    pub inertia: Vec<Real>,
+    /// Inverse mass per degree of freedom (x, y, rotation); 0 where the velocity is imposed
+    /// or the mass infinite, so contact impulses cannot change it.
+    pub inv_mass: Vec<[Real; DOFS]>,
+    /// Shapes.
+    pub shape: Vec<Shape>,
+    /// Group index of each body.
+    pub group: Vec<u16>,
+    /// Global identifier (stable across processes and restarts).
+    pub id: Vec<u64>,
+    /// Owner process of each body.
+    pub ownership: Vec<Ownership>,
+    /// Bodies with at least one driven degree of freedom, with their drives.
+    pub driven: Vec<(BodyHandle, [Drive; DOFS])>,
+}
+
+impl BodySet {
+    /// An empty set.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Number of bodies.
+    pub fn len(&self) -> usize {
+        self.position.len()
+    }
+
+    /// Whether the set is empty.
+    pub fn is_empty(&self) -> bool {
+        self.position.is_empty()
+    }
+
+    /// Adds a body and returns its handle.
+    pub fn insert(&mut self, body: Body) -> BodyHandle {
+        let handle = BodyHandle(self.len() as u32);
+        let inv = |m: Real| if m.is_finite() && m > 0.0 { 1.0 / m } else { 0.0 };
+        let mut inv_mass = [inv(body.mass), inv(body.mass), inv(body.inertia)];
+        for (k, d) in body.drives.iter().enumerate() {
+            if d.is_imposed_velocity() {
+                inv_mass[k] = 0.0;
+            }
+        }
+        self.position.push(body.position);
+        self.angle.push(body.angle);
+        self.velocity.push(body.velocity);
+        self.angular_velocity.push(body.angular_velocity);
+        self.mass.push(body.mass);
+        self.inertia.push(body.inertia);
+        self.inv_mass.push(inv_mass);
+        self.shape.push(body.shape);
+        self.group.push(body.group);
+        self.id.push(handle.0 as u64);
+        self.ownership.push(Ownership::Owned);
+        if body.drives.iter().any(|d| *d != Drive::Free) {
+            self.driven.push((handle, body.drives));
+        }
+        handle
+    }
+
+    /// Generalised velocity (vx, vy, w) of a body.
+    #[inline(always)]
+    pub fn generalized_velocity(&self, b: usize) -> [Real; DOFS] {
+        [self.velocity[b].x, self.velocity[b].y, self.angular_velocity[b]]
+    }
+
+    /// Sets the generalised velocity of a body.
+    #[inline(always)]
+    pub fn set_generalized_velocity(&mut self, b: usize, v: [Real; DOFS]) {
+        self.velocity[b] = Vector::new(v[0], v[1]);
+        self.angular_velocity[b] = v[2];
+    }
+
+    /// Whether a body has a finite mass (walls do not).
+    #[inline(always)]
+    pub fn is_dynamic(&self, b: usize) -> bool {
+        self.mass[b].is_finite()
+    }
+
+    /// Kinetic energy of the finite-mass bodies (J per m).
+    pub fn kinetic_energy(&self) -> Real {
+        (0..self.len())
+            .filter(|&b| self.is_dynamic(b))
+            .map(|b| {
+                0.5 * self.mass[b] * self.velocity[b].norm_squared()
+                    + 0.5 * self.inertia[b] * self.angular_velocity[b].powi(2)
+            })
+            .sum()
+    }
+
+    /// Gravitational potential energy of the finite-mass bodies (J per m), zero at the origin.
+    pub fn potential_energy(&self, gravity: &Vector) -> Real {
+        (0..self.len())
+            .filter(|&b| self.is_dynamic(b))
+            .map(|b| -self.mass[b] * gravity.dot(&self.position[b]))
+            .sum()
+    }
+}
+
+impl Body {
+    /// A free disk of `radius` (m) and `density` (kg/m^3) centred at `position`, at rest.
+    pub fn disk(radius: Real, density: Real, position: Vector) -> Self {
+        let shape = Shape::Disk { radius };
+        let (mass, inertia) = shape.mass_properties(density);
+        Self::free(shape, mass, inertia, position)
+    }
+
+    /// A free convex polygon with body-frame `vertices` (counter-clockwise, centred on their
+    /// centroid) of `density` (kg/m^3), centroid at `position`.
+    pub fn polygon(vertices: Vec<Vector>, density: Real, position: Vector) -> Self {
+        let shape = Shape::Polygon(crate::ConvexPolygon::new(vertices));
+        let (mass, inertia) = shape.mass_properties(density);
+        Self::free(shape, mass, inertia, position)
+    }
+
+    /// A fixed wall segment from `a` to `b`.
+    pub fn wall(a: Vector, b: Vector) -> Self {
+        let d = b - a;
+        let shape = Shape::Segment { half_length: d.norm() / 2.0 };
+        let zero = || Drive::Velocity(crate::TimeFunction::Constant(0.0));
+        Body {
+            angle: d.y.atan2(d.x),
+            drives: [zero(), zero(), zero()],
+            ..Self::free(shape, Real::INFINITY, Real::INFINITY, (a + b) / 2.0)
+        }
+    }
+
+    fn free(shape: Shape, mass: Real, inertia: Real, position: Vector) -> Self {
+        Body {
+            shape,
+            position,
+            angle: 0.0,
+            velocity: Vector::zeros(),
+            angular_velocity: 0.0,
+            mass,
+            inertia,
+            group: 0,
+            drives: [Drive::Free, Drive::Free, Drive::Free],
+        }
+    }
+
+    /// Sets the rotation (rad).
+    pub fn with_angle(mut self, angle: Real) -> Self {
+        self.angle = angle;
+        self
+    }
+
+    /// Sets the initial velocity (m/s).
+    pub fn with_velocity(mut self, velocity: Vector) -> Self {
+        self.velocity = velocity;
+        self
+    }
+
+    /// Puts the body in a group of the law table.
+    pub fn in_group(mut self, group: u16) -> Self {
+        self.group = group;
+        self
+    }
+}

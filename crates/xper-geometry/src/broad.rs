@@ -1,0 +1,169 @@
+//! Broad phase: a uniform cell grid, O(N) per step.
+//!
+//! Bodies that fit in a cell ("small": every disk and polygon; the cell edge is the largest of
+//! their bounding-box extents plus the alert distance) are binned by centre with a counting
+//! sort and tested against their own cell and four neighbour cells (half of the 3x3
+//! neighbourhood, so each pair is met once). Walls ("large") are tested against the small
+//! bodies in the cells their bounding box covers, and against each other by brute force.
+
+use xper_bodies::{BodySet, Shape};
+use xper_math::{Aabb, Real, Vector};
+
+/// The broad phase with its reusable buffers.
+#[derive(Clone, Debug, Default)]
+pub struct BroadPhase {
+    aabbs: Vec<Aabb>,
+    small: Vec<u32>,
+    large: Vec<u32>,
+    cell_of: Vec<u32>,
+    cell_start: Vec<u32>,
+    cell_bodies: Vec<u32>,
+}
+
+struct Grid {
+    origin: Vector,
+    cell: Real,
+    nx: usize,
+    ny: usize,
+}
+
+impl Grid {
+    #[inline(always)]
+    fn coords(&self, p: &Vector) -> (usize, usize) {
+        let cx = ((p.x - self.origin.x) / self.cell).floor().clamp(0.0, (self.nx - 1) as Real) as usize;
+        let cy = ((p.y - self.origin.y) / self.cell).floor().clamp(0.0, (self.ny - 1) as Real) as usize;
+        (cx, cy)
+    }
+}
+
+impl BroadPhase {
+    /// A broad phase with empty buffers.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Appends to `pairs` every pair `(i, j)`, `i < j`, whose bounding boxes grown by `alert`
+    /// overlap. The order is deterministic.
+    pub fn find_pairs(&mut self, bodies: &BodySet, alert: Real, pairs: &mut Vec<(u32, u32)>) {
+        let n = bodies.len();
+        self.aabbs.clear();
+        self.small.clear();
+        self.large.clear();
+        for b in 0..n {
+            let aabb = bodies.shape[b].aabb(&bodies.position[b], bodies.angle[b]).loosened(alert / 2.0);
+            self.aabbs.push(aabb);
+            if matches!(bodies.shape[b], Shape::Segment { .. }) {
+                self.large.push(b as u32);
+            } else {
+                self.small.push(b as u32);
+            }
+        }
+        if let Some(grid) = self.bin_small_bodies() {
+            self.small_pairs(&grid, pairs);
+            self.large_small_pairs(&grid, pairs);
+        }
+        for (k, &a) in self.large.iter().enumerate() {
+            for &b in &self.large[k + 1..] {
+                if self.aabbs[a as usize].intersects(&self.aabbs[b as usize]) {
+                    pairs.push((a.min(b), a.max(b)));
+                }
+            }
+        }
+    }
+
+    fn bin_small_bodies(&mut self) -> Option<Grid> {
+        let first = *self.small.first()?;
+        let mut bounds = self.aabbs[first as usize];
+        let mut cell: Real = 0.0;
+        for &b in &self.small {
+            let bb = &self.aabbs[b as usize];
+            bounds = bounds.merged(bb);
+            cell = cell.max(bb.max_extent());
+        }
+        let extent = bounds.max - bounds.min;
+        // Keep the number of cells within a small multiple of the number of bodies.
+        let max_cells = (4 * self.small.len()).max(16) as Real;
+        if (extent.x / cell).ceil() * (extent.y / cell).ceil() > max_cells {
+            cell = (extent.x * extent.y / max_cells).sqrt().max(cell);
+        }
+        let nx = ((extent.x / cell).ceil() as usize).max(1);
+        let ny = ((extent.y / cell).ceil() as usize).max(1);
+        let grid = Grid { origin: bounds.min, cell, nx, ny };
+        self.cell_start.clear();
+        self.cell_start.resize(nx * ny + 1, 0);
+        self.cell_of.clear();
+        for &b in &self.small {
+            let bb = &self.aabbs[b as usize];
+            let (cx, cy) = grid.coords(&((bb.min + bb.max) / 2.0));
+            let c = (cy * nx + cx) as u32;
+            self.cell_of.push(c);
+            self.cell_start[c as usize + 1] += 1;
+        }
+        for c in 0..nx * ny {
+            self.cell_start[c + 1] += self.cell_start[c];
+        }
+        self.cell_bodies.clear();
+        self.cell_bodies.resize(self.small.len(), 0);
+        let mut fill = self.cell_start.clone();
+        for (k, &b) in self.small.iter().enumerate() {
+            let c = self.cell_of[k] as usize;
+            self.cell_bodies[fill[c] as usize] = b;
+            fill[c] += 1;
+        }
+        Some(grid)
+    }
+
+    fn cell_range(&self, c: usize) -> &[u32] {
+        &self.cell_bodies[self.cell_start[c] as usize..self.cell_start[c + 1] as usize]
+    }
+
+    fn small_pairs(&self, grid: &Grid, pairs: &mut Vec<(u32, u32)>) {
+        let (nx, ny) = (grid.nx as isize, grid.ny as isize);
+        for cy in 0..ny {
+            for cx in 0..nx {
+                let here = self.cell_range((cy * nx + cx) as usize);
+                for (k, &a) in here.iter().enumerate() {
+                    let box_a = &self.aabbs[a as usize];
+                    for &b in &here[k + 1..] {
+                        if box_a.intersects(&self.aabbs[b as usize]) {
+                            pairs.push((a.min(b), a.max(b)));
+                        }
+                    }
+                }
+                for (dx, dy) in [(1, 0), (-1, 1), (0, 1), (1, 1)] {
+                    let (ox, oy) = (cx + dx, cy + dy);
+                    if ox < 0 || ox >= nx || oy >= ny {
+                        continue;
+                    }
+                    let other = self.cell_range((oy * nx + ox) as usize);
+                    for &a in here {
+                        let box_a = &self.aabbs[a as usize];
+                        for &b in other {
+                            if box_a.intersects(&self.aabbs[b as usize]) {
+                                pairs.push((a.min(b), a.max(b)));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    fn large_small_pairs(&self, grid: &Grid, pairs: &mut Vec<(u32, u32)>) {
+        for &l in &self.large {
+            // Small bodies are binned by centre and reach half a cell beyond it.
+            let bb = self.aabbs[l as usize].loosened(grid.cell / 2.0);
+            let (x0, y0) = grid.coords(&bb.min);
+            let (x1, y1) = grid.coords(&bb.max);
+            for cy in y0..=y1 {
+                for cx in x0..=x1 {
+                    for &b in self.cell_range(cy * grid.nx + cx) {
+                        if self.aabbs[l as usize].intersects(&self.aabbs[b as usize]) {
+                            pairs.push((l.min(b), l.max(b)));
+                        }
+                    }
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,14 @@
+//! Contact detection: a cell-grid broad phase, a narrow phase with one file per shape pair,
+//! and a contact set that persists impulses across steps for warm starting.
+//!
+//! Every contact point has a unit normal from the first body to the second, a gap (signed
+//! distance, negative when overlapping) and the point midway between the surfaces. Pairs
+//! farther apart than the alert distance produce no contact.
+
+mod broad;
+mod contacts;
+pub mod narrow;
+
+pub use broad::BroadPhase;
+pub use contacts::{Contact, ContactSet, Detector};
+pub use narrow::{collide, ContactPoint, Manifold};

@@ -1,0 +1,31 @@
+//! Moreau-Jean time stepping for rigid bodies in frictional contact (NSCD).
+//!
+//! Dynamics `M dv = F dt + dr` in the sense of measures, discretised on `[t_i, t_i+1]` by the
+//! theta-method (J.J. Moreau, "Unilateral contact and dry friction in finite freedom
+//! dynamics", 1988; M. Jean, "The non-smooth contact dynamics method", CMAME 177, 1999):
+//!
+//! ```text
+//! v_free  = v_i + h M^-1 F_theta
+//! U       = H^T v,  W = H^T M^-1 H,  U = W R + H^T v_free
+//! active contacts (predicted gap g_i + h theta U_N,i <= 0):
+//!         Signorini-Coulomb on (U_N + e min(U_N,i, 0), U_T) and R          (NLGS)
+//! v_i+1   = v_free + M^-1 H R
+//! q_i+1   = q_i + h ((1 - theta) v_i + theta v_i+1)
+//! ```
+//!
+//! followed, when enabled, by a position projection that removes the overlaps the
+//! velocity-level scheme leaves after impacts (V. Acary, "Projected event-capturing
+//! time-stepping schemes for nonsmooth mechanical systems with unilateral contact and
+//! Coulomb's friction", CMAME 256, 2013): find `P >= 0` with `g_end + W_NN P >= 0 _|_ P`,
+//! `q += M^-1 H_N P`, velocities unchanged.
+//!
+//! The step is a sequence of named stages on a [`World`] the caller owns, run by a
+//! [`MoreauJean`] stepper that keeps its buffers between steps.
+
+mod operator;
+mod step;
+mod world;
+
+pub use operator::RigidContactOperator;
+pub use step::{MoreauJean, StageTimes, StepError, StepReport};
+pub use world::{EnergyBudget, StepParams, World};

@@ -1,0 +1,118 @@
+//! The Delassus operator of rigid bodies in factorised form `W = H^T M^-1 H`.
+//!
+//! The operator keeps one working velocity per body; applying an impulse to a contact updates
+//! the velocities of its two bodies, and a local velocity is read from them, so a contact
+//! update costs O(1) whatever the number of contacts (LMGC90's rigid NLGS). Per contact it
+//! stores what the two updates need and nothing else.
+
+use xper_bodies::BodySet;
+use xper_geometry::Contact;
+use xper_math::{cross, tangent, Real, Vector, DOFS};
+use xper_solver::{Block2, ContactOperator};
+
+/// Working state of one body: generalised velocity and inverse masses per degree of freedom.
+#[derive(Clone, Copy, Debug, Default)]
+#[repr(C, align(16))]
+pub struct SolverBody {
+    /// Generalised velocity (vx, vy, w).
+    pub velocity: [Real; DOFS],
+    /// Inverse mass per degree of freedom (0 where imposed or infinite).
+    pub inv_mass: [Real; DOFS],
+}
+
+/// What one contact needs: its bodies, normal, lever arms and diagonal Delassus block.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ContactRow {
+    /// Bodies `[i, j]`; the normal points from `i` to `j`.
+    pub bodies: [u32; 2],
+    /// Unit normal.
+    pub normal: [Real; 2],
+    /// `[r_i x n, r_i x t, r_j x n, r_j x t]`, lever arms from each centre to the point.
+    pub arms: [Real; 4],
+    /// `W_aa`.
+    pub block: Block2,
+}
+
+/// Rigid-body contact operator: the body working states and the contact rows.
+#[derive(Clone, Debug, Default)]
+pub struct RigidContactOperator {
+    /// Working state per body.
+    pub bodies: Vec<SolverBody>,
+    /// One row per contact of the problem.
+    pub rows: Vec<ContactRow>,
+}
+
+impl RigidContactOperator {
+    /// Loads the inverse masses of `set` and the given velocities.
+    pub fn load_bodies(&mut self, set: &BodySet, velocity: impl Fn(usize) -> [Real; DOFS]) {
+        self.bodies.clear();
+        self.bodies.extend((0..set.len()).map(|b| SolverBody { velocity: velocity(b), inv_mass: set.inv_mass[b] }));
+    }
+
+    /// Builds the row of a contact from its geometry and the body positions.
+    pub fn row(set: &BodySet, inv_mass: &[SolverBody], c: &Contact) -> ContactRow {
+        let [i, j] = [c.bodies[0] as usize, c.bodies[1] as usize];
+        let n = c.normal;
+        let t = tangent(&n);
+        let (ri, rj) = (c.point - set.position[i], c.point - set.position[j]);
+        let arms = [cross(&ri, &n), cross(&ri, &t), cross(&rj, &n), cross(&rj, &t)];
+        let mut block = [0.0; 4];
+        for (m, an, at) in [(inv_mass[i].inv_mass, arms[0], arms[1]), (inv_mass[j].inv_mass, arms[2], arms[3])] {
+            let nt = m[0] * n.x * t.x + m[1] * n.y * t.y + m[2] * an * at;
+            block[0] += m[0] * n.x * n.x + m[1] * n.y * n.y + m[2] * an * an;
+            block[1] += nt;
+            block[2] += nt;
+            block[3] += m[0] * t.x * t.x + m[1] * t.y * t.y + m[2] * at * at;
+        }
+        ContactRow { bodies: c.bodies, normal: [n.x, n.y], arms, block }
+    }
+
+    /// Generalised impulses `(on body i, on body j)` of a local impulse `r` at a row.
+    #[inline(always)]
+    pub fn generalized_impulses(row: &ContactRow, r: [Real; 2]) -> ([Real; DOFS], [Real; DOFS]) {
+        let n = Vector::new(row.normal[0], row.normal[1]);
+        let p = n * r[0] + tangent(&n) * r[1];
+        let a = &row.arms;
+        ([-p.x, -p.y, -(a[0] * r[0] + a[1] * r[1])], [p.x, p.y, a[2] * r[0] + a[3] * r[1]])
+    }
+}
+
+impl ContactOperator for RigidContactOperator {
+    #[inline(always)]
+    fn contact_count(&self) -> usize {
+        self.rows.len()
+    }
+
+    #[inline(always)]
+    fn diagonal_block(&self, a: usize) -> Block2 {
+        self.rows[a].block
+    }
+
+    #[inline(always)]
+    fn local_velocity(&self, a: usize) -> [Real; 2] {
+        let row = &self.rows[a];
+        let vi = &self.bodies[row.bodies[0] as usize].velocity;
+        let vj = &self.bodies[row.bodies[1] as usize].velocity;
+        let [nx, ny] = row.normal;
+        let (dx, dy) = (vj[0] - vi[0], vj[1] - vi[1]);
+        let a = &row.arms;
+        [nx * dx + ny * dy + vj[2] * a[2] - vi[2] * a[0], -ny * dx + nx * dy + vj[2] * a[3] - vi[2] * a[1]]
+    }
+
+    #[inline(always)]
+    fn apply_impulse(&mut self, a: usize, d: [Real; 2]) {
+        let row = &self.rows[a];
+        let [nx, ny] = row.normal;
+        let (px, py) = (nx * d[0] - ny * d[1], ny * d[0] + nx * d[1]);
+        let a = row.arms;
+        let [i, j] = [row.bodies[0] as usize, row.bodies[1] as usize];
+        let bi = &mut self.bodies[i];
+        bi.velocity[0] -= bi.inv_mass[0] * px;
+        bi.velocity[1] -= bi.inv_mass[1] * py;
+        bi.velocity[2] -= bi.inv_mass[2] * (a[0] * d[0] + a[1] * d[1]);
+        let bj = &mut self.bodies[j];
+        bj.velocity[0] += bj.inv_mass[0] * px;
+        bj.velocity[1] += bj.inv_mass[1] * py;
+        bj.velocity[2] += bj.inv_mass[2] * (a[2] * d[0] + a[3] * d[1]);
+    }
+}

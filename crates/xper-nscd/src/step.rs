@@ -1,0 +1,345 @@
+//! One Moreau-Jean step as a sequence of named stages: detect, free velocity, assemble,
+//! solve, update, energy, project.
+
+use crate::operator::{ContactRow, RigidContactOperator};
+use crate::world::World;
+use std::time::Instant;
+use xper_geometry::Detector;
+use xper_laws::InteractionLaw;
+use xper_math::{Real, DOFS};
+use xper_solver::{nlgs, ContactOperator, ConvergenceNorms, NlgsParams, SolveError};
+
+/// Wall time of the stages of one step (s).
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct StageTimes {
+    /// Broad and narrow phase.
+    pub detect: f64,
+    /// The NLGS solve (velocity problem).
+    pub solve: f64,
+    /// The position projection.
+    pub project: f64,
+    /// The whole step.
+    pub total: f64,
+}
+
+/// What happened during one step.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct StepReport {
+    /// Index of the step just done (1-based).
+    pub step: u64,
+    /// Time at the end of the step (s).
+    pub time: Real,
+    /// Contacts within the alert distance.
+    pub contacts: usize,
+    /// Contacts in the velocity problem (predicted gap closed).
+    pub active: usize,
+    /// NLGS sweeps.
+    pub iterations: u32,
+    /// Final value of the convergence measure.
+    pub residual: Real,
+    /// Whether NLGS reached the tolerance.
+    pub converged: bool,
+    /// LMGC90 norms at the last check.
+    pub norms: ConvergenceNorms,
+    /// NLGS sweeps of the position projection (0 when it did not run).
+    pub projection_iterations: u32,
+    /// Largest overlap before projection (m, >= 0).
+    pub max_overlap: Real,
+    /// Kinetic energy (J/m).
+    pub kinetic: Real,
+    /// Potential energy (J/m).
+    pub potential: Real,
+    /// Dissipated energy since the start (J/m).
+    pub dissipated: Real,
+    /// External work since the start (J/m).
+    pub external_work: Real,
+    /// Potential energy added by position projections since the start (J/m).
+    pub projection_work: Real,
+    /// Energy balance error (J/m).
+    pub energy_error: Real,
+    /// Stage timings.
+    pub times: StageTimes,
+}
+
+/// A step that could not be completed; the world is left as it was after the failing stage.
+#[derive(Clone, Debug, PartialEq)]
+pub enum StepError {
+    /// The solver refused the problem.
+    Solver(SolveError),
+    /// A position or velocity became NaN or infinite.
+    NonFinite {
+        /// Body index.
+        body: usize,
+    },
+    /// The energy balance error exceeded the scale of the energy budget.
+    EnergyBlowUp {
+        /// Balance error (J/m).
+        error: Real,
+        /// Budget scale (J/m).
+        scale: Real,
+    },
+}
+
+impl std::fmt::Display for StepError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            StepError::Solver(e) => write!(f, "contact solver: {e}"),
+            StepError::NonFinite { body } => write!(f, "body {body} has a non-finite position or velocity"),
+            StepError::EnergyBlowUp { error, scale } => write!(
+                f,
+                "energy blow-up: balance error {error:.3e} J/m exceeds the energy scale {scale:.3e} J/m"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for StepError {}
+
+/// The Moreau-Jean stepper with its reusable buffers.
+#[derive(Default)]
+pub struct MoreauJean {
+    detector: Detector,
+    op: RigidContactOperator,
+    all_rows: Vec<ContactRow>,
+    active: Vec<u32>,
+    mu: Vec<Real>,
+    shift: Vec<Real>,
+    impulses: Vec<[Real; 2]>,
+    u_begin: Vec<[Real; 2]>,
+    v_begin: Vec<[Real; DOFS]>,
+}
+
+impl MoreauJean {
+    /// A stepper with empty buffers.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Advances `world` by one time step.
+    pub fn step(&mut self, world: &mut World) -> Result<StepReport, StepError> {
+        let start = Instant::now();
+        let mut report = StepReport { step: world.step + 1, ..Default::default() };
+        let (h, theta) = (world.params.dt, world.params.theta);
+        let t_begin = world.step as Real * h;
+        let t_end = (world.step + 1) as Real * h;
+
+        // Stage: detect, on the configuration at the beginning of the step.
+        let laws = &world.laws;
+        self.detector.detect(&world.bodies, world.params.alert_distance, |a, b| laws.between(a, b), &mut world.contacts);
+        report.contacts = world.contacts.len();
+        report.times.detect = start.elapsed().as_secs_f64();
+
+        // Stage: assemble rows and local velocities at the beginning of the step.
+        let bodies = &world.bodies;
+        self.v_begin.clear();
+        self.v_begin.extend((0..bodies.len()).map(|b| bodies.generalized_velocity(b)));
+        let v_begin = &self.v_begin;
+        self.op.load_bodies(bodies, |b| v_begin[b]);
+        self.all_rows.clear();
+        self.all_rows.extend(world.contacts.contacts.iter().map(|c| RigidContactOperator::row(bodies, &self.op.bodies, c)));
+        std::mem::swap(&mut self.op.rows, &mut self.all_rows);
+        self.u_begin.clear();
+        self.u_begin.extend((0..self.op.rows.len()).map(|a| self.op.local_velocity(a)));
+        std::mem::swap(&mut self.op.rows, &mut self.all_rows);
+
+        // Stage: free velocity.
+        self.free_velocity(world, t_begin, t_end);
+
+        // Stage: select the active contacts (predicted gap closed) and their law data.
+        self.op.rows.clear();
+        self.active.clear();
+        self.mu.clear();
+        self.shift.clear();
+        self.impulses.clear();
+        let closed = world.params.projection_tolerance.unwrap_or(0.0);
+        for (a, c) in world.contacts.contacts.iter().enumerate() {
+            let un = self.u_begin[a][0];
+            if c.gap + h * theta * un > closed {
+                continue;
+            }
+            let InteractionLaw::SignoriniCoulomb(law) = *world.laws.law(c.law);
+            self.active.push(a as u32);
+            self.op.rows.push(self.all_rows[a]);
+            self.mu.push(law.friction);
+            self.shift.push(law.restitution * un.min(0.0));
+            self.impulses.push(c.impulse);
+        }
+        report.active = self.active.len();
+
+        // Stage: solve.
+        let t_solve = Instant::now();
+        let info = nlgs(&mut self.op, &self.mu, &self.shift, &mut self.impulses, &world.params.nlgs)
+            .map_err(StepError::Solver)?;
+        report.times.solve = t_solve.elapsed().as_secs_f64();
+        report.iterations = info.iterations;
+        report.residual = info.residual;
+        report.converged = info.converged;
+        report.norms = info.norms;
+
+        // Stage: energy exchanged at contacts, with the same H at both ends of the step.
+        let mut dissipated = 0.0;
+        let mut imposed_work = 0.0;
+        for (k, &a) in self.active.iter().enumerate() {
+            let (r, row) = (self.impulses[k], &self.op.rows[k]);
+            let (u0, u1) = (self.u_begin[a as usize], self.op.local_velocity(k));
+            dissipated -= r[0] * (u0[0] + u1[0]) / 2.0 + r[1] * (u0[1] + u1[1]) / 2.0;
+            let (gi, gj) = RigidContactOperator::generalized_impulses(row, r);
+            for (b, g) in [(row.bodies[0] as usize, gi), (row.bodies[1] as usize, gj)] {
+                for d in 0..DOFS {
+                    if self.op.bodies[b].inv_mass[d] == 0.0 {
+                        imposed_work += g[d] * (self.v_begin[b][d] + self.op.bodies[b].velocity[d]) / 2.0;
+                    }
+                }
+            }
+        }
+        world.energy.dissipated += dissipated;
+        world.energy.external_work += self.driven_work(world, t_begin, t_end) - imposed_work;
+
+        // Stage: update velocities and positions; keep impulses for the warm start.
+        self.update(world)?;
+        for c in &mut world.contacts.contacts {
+            c.impulse = [0.0, 0.0];
+        }
+        for (k, &a) in self.active.iter().enumerate() {
+            world.contacts.contacts[a as usize].impulse = self.impulses[k];
+        }
+
+        // Stage: project positions out of overlaps.
+        let t_project = Instant::now();
+        (report.projection_iterations, report.max_overlap) = self.project(world)?;
+        report.times.project = t_project.elapsed().as_secs_f64();
+
+        world.step += 1;
+        world.time = t_end;
+        report.time = t_end;
+        report.kinetic = world.kinetic_energy();
+        report.potential = world.potential_energy();
+        report.dissipated = world.energy.dissipated;
+        report.external_work = world.energy.external_work;
+        report.projection_work = world.energy.projection_work;
+        report.energy_error = world.energy_error();
+        let e = &mut world.energy;
+        e.scale = e.scale.max((report.kinetic + report.potential - e.initial).abs()).max(e.external_work.abs());
+        report.times.total = start.elapsed().as_secs_f64();
+        let scale = e.scale + e.dissipated + report.kinetic.min(e.initial.abs());
+        if report.energy_error > scale.max(1e-12) {
+            return Err(StepError::EnergyBlowUp { error: report.energy_error, scale });
+        }
+        Ok(report)
+    }
+
+    /// `v_free = v_i + h M^-1 F_theta`; imposed velocities take their value at `t_end`.
+    fn free_velocity(&mut self, world: &World, t_begin: Real, t_end: Real) {
+        let (h, theta, g) = (world.params.dt, world.params.theta, world.params.gravity);
+        for (b, body) in self.op.bodies.iter_mut().enumerate() {
+            if world.bodies.is_dynamic(b) {
+                body.velocity[0] += h * g.x * (body.inv_mass[0] > 0.0) as u8 as Real;
+                body.velocity[1] += h * g.y * (body.inv_mass[1] > 0.0) as u8 as Real;
+            }
+        }
+        for (handle, drives) in &world.bodies.driven {
+            let b = handle.index();
+            for (d, drive) in drives.iter().enumerate() {
+                match drive {
+                    xper_bodies::Drive::Free => {}
+                    xper_bodies::Drive::Velocity(f) => self.op.bodies[b].velocity[d] = f.eval(t_end),
+                    xper_bodies::Drive::Force(f) => {
+                        let force = (1.0 - theta) * f.eval(t_begin) + theta * f.eval(t_end);
+                        self.op.bodies[b].velocity[d] += h * self.op.bodies[b].inv_mass[d] * force;
+                    }
+                }
+            }
+        }
+    }
+
+    /// Work of imposed forces, and of imposed velocities on finite-mass bodies (the change of
+    /// kinetic energy they cause beyond gravity), over the step.
+    fn driven_work(&self, world: &World, t_begin: Real, t_end: Real) -> Real {
+        let (h, theta, g) = (world.params.dt, world.params.theta, world.params.gravity);
+        let mut work = 0.0;
+        for (handle, drives) in &world.bodies.driven {
+            let b = handle.index();
+            let (v0, v1) = (self.v_begin[b], self.op.bodies[b].velocity);
+            let masses = [world.bodies.mass[b], world.bodies.mass[b], world.bodies.inertia[b]];
+            for (d, drive) in drives.iter().enumerate() {
+                let mean = (v0[d] + v1[d]) / 2.0;
+                match drive {
+                    xper_bodies::Drive::Free => {}
+                    xper_bodies::Drive::Force(f) => {
+                        work += h * ((1.0 - theta) * f.eval(t_begin) + theta * f.eval(t_end)) * mean;
+                    }
+                    xper_bodies::Drive::Velocity(_) if masses[d].is_finite() => {
+                        let gravity = if d < 2 { g[d] } else { 0.0 };
+                        work += masses[d] * (v1[d] * v1[d] - v0[d] * v0[d]) / 2.0 - h * masses[d] * gravity * mean;
+                    }
+                    xper_bodies::Drive::Velocity(_) => {}
+                }
+            }
+        }
+        work
+    }
+
+    /// `q_i+1 = q_i + h ((1 - theta) v_i + theta v_i+1)`.
+    fn update(&mut self, world: &mut World) -> Result<(), StepError> {
+        let (h, theta) = (world.params.dt, world.params.theta);
+        let bodies = &mut world.bodies;
+        for b in 0..bodies.len() {
+            let (v0, v1) = (self.v_begin[b], self.op.bodies[b].velocity);
+            let dq: [Real; DOFS] = std::array::from_fn(|d| h * ((1.0 - theta) * v0[d] + theta * v1[d]));
+            bodies.position[b].x += dq[0];
+            bodies.position[b].y += dq[1];
+            bodies.angle[b] += dq[2];
+            bodies.set_generalized_velocity(b, v1);
+            if !(v1.iter().all(|x| x.is_finite()) && bodies.position[b].iter().all(|x| x.is_finite())) {
+                return Err(StepError::NonFinite { body: b });
+            }
+        }
+        Ok(())
+    }
+
+    /// Removes overlaps larger than the projection tolerance: returns the sweeps used and the
+    /// largest overlap before projection.
+    fn project(&mut self, world: &mut World) -> Result<(u32, Real), StepError> {
+        let (h, theta) = (world.params.dt, world.params.theta);
+        // Linearised gaps at the end of the step.
+        std::mem::swap(&mut self.op.rows, &mut self.all_rows);
+        self.shift.clear();
+        let mut deepest: Real = 0.0;
+        for (a, c) in world.contacts.contacts.iter().enumerate() {
+            let u_end = self.op.local_velocity(a)[0];
+            let gap = c.gap + h * ((1.0 - theta) * self.u_begin[a][0] + theta * u_end);
+            deepest = deepest.max(-gap);
+            self.shift.push(gap);
+        }
+        let Some(tolerance) = world.params.projection_tolerance else {
+            std::mem::swap(&mut self.op.rows, &mut self.all_rows);
+            return Ok((0, deepest));
+        };
+        if deepest <= tolerance {
+            std::mem::swap(&mut self.op.rows, &mut self.all_rows);
+            return Ok((0, deepest));
+        }
+        let n = self.op.rows.len();
+        for body in &mut self.op.bodies {
+            body.velocity = [0.0; DOFS];
+        }
+        self.mu.clear();
+        self.mu.resize(n, 0.0);
+        self.impulses.clear();
+        self.impulses.resize(n, [0.0, 0.0]);
+        let params = NlgsParams { ..world.params.nlgs };
+        let info = nlgs(&mut self.op, &self.mu, &self.shift, &mut self.impulses, &params).map_err(StepError::Solver)?;
+        let bodies = &mut world.bodies;
+        let gravity = world.params.gravity;
+        for (b, body) in self.op.bodies.iter().enumerate() {
+            if bodies.is_dynamic(b) {
+                world.energy.projection_work -= bodies.mass[b] * (gravity.x * body.velocity[0] + gravity.y * body.velocity[1]);
+            }
+            bodies.position[b].x += body.velocity[0];
+            bodies.position[b].y += body.velocity[1];
+            bodies.angle[b] += body.velocity[2];
+        }
+        std::mem::swap(&mut self.op.rows, &mut self.all_rows);
+        Ok((info.iterations, deepest))
+    }
+}

@@ -1,0 +1,105 @@
+//! The state of a run: bodies, contacts, laws, parameters, time and energy budget.
+
+use serde::{Deserialize, Serialize};
+use xper_bodies::BodySet;
+use xper_geometry::ContactSet;
+use xper_laws::LawTable;
+use xper_math::{Real, Vector};
+use xper_solver::NlgsParams;
+
+/// Parameters of the time stepping.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct StepParams {
+    /// Time step h (s).
+    pub dt: Real,
+    /// theta of the theta-method, in [1/2, 1].
+    pub theta: Real,
+    /// Gravity (m/s^2).
+    pub gravity: Vector,
+    /// Alert distance (m): pairs closer than this are contacts.
+    pub alert_distance: Real,
+    /// The contact solver's parameters.
+    pub nlgs: NlgsParams,
+    /// Overlap (m) beyond which the position projection runs; `None` disables it. Contacts whose
+    /// predicted gap is below it count as closed when the active set is chosen.
+    pub projection_tolerance: Option<Real>,
+}
+
+/// Energies accumulated over the run (J per m of thickness).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct EnergyBudget {
+    /// Kinetic + potential energy at the start of the run.
+    pub initial: Real,
+    /// Energy dissipated at contacts (friction and inelastic impacts), `-sum R.(U_i + U_i+1)/2`.
+    pub dissipated: Real,
+    /// Work done on the bodies by imposed velocities and imposed forces.
+    pub external_work: Real,
+    /// Potential energy added by position projections (they move bodies, not velocities).
+    pub projection_work: Real,
+    /// Largest |kinetic + potential - initial| seen, and external work: the scale of the budget.
+    pub scale: Real,
+}
+
+/// Everything that evolves during a run; serialisable for checkpoints.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct World {
+    /// The bodies.
+    pub bodies: BodySet,
+    /// Contacts of the last step, with their impulses (the warm start).
+    pub contacts: ContactSet,
+    /// Laws per pair of groups.
+    pub laws: LawTable,
+    /// Time-stepping parameters.
+    pub params: StepParams,
+    /// Current time (s).
+    pub time: Real,
+    /// Steps done.
+    pub step: u64,
+    /// Energy budget.
+    pub energy: EnergyBudget,
+}
+
+impl World {
+    /// A world at time 0.
+    pub fn new(bodies: BodySet, laws: LawTable, params: StepParams) -> Self {
+        let initial = bodies.kinetic_energy() + bodies.potential_energy(&params.gravity);
+        World {
+            bodies,
+            contacts: ContactSet::default(),
+            laws,
+            params,
+            time: 0.0,
+            step: 0,
+            energy: EnergyBudget { initial, ..Default::default() },
+        }
+    }
+
+    /// Kinetic energy (J per m).
+    pub fn kinetic_energy(&self) -> Real {
+        self.bodies.kinetic_energy()
+    }
+
+    /// Gravitational potential energy (J per m).
+    pub fn potential_energy(&self) -> Real {
+        self.bodies.potential_energy(&self.params.gravity)
+    }
+
+    /// `kinetic + potential + dissipated - external work - projection work - initial`: zero up
+    /// to round-off for theta = 1/2.
+    pub fn energy_error(&self) -> Real {
+        self.kinetic_energy() + self.potential_energy() + self.energy.dissipated
+            - self.energy.external_work
+            - self.energy.projection_work
+            - self.energy.initial
+    }
+
+    /// Serialises the world (checkpoint format: bincode of this struct).
+    pub fn to_bytes(&self) -> Vec<u8> {
+        bincode::serialize(self).expect("serialising plain data cannot fail")
+    }
+
+    /// Reads a world written by [`World::to_bytes`].
+    pub fn from_bytes(bytes: &[u8]) -> Result<Self, String> {
+        bincode::deserialize(bytes).map_err(|e| format!("not a valid xper checkpoint: {e}"))
+    }
+}

@@ -1,0 +1,211 @@
+//! The resolved scene: plain data, fully expanded, in SI units.
+
+use serde::Serialize;
+
+/// A fully resolved scene (generators expanded, defaults applied, everything validated).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Scene {
+    /// Scene name (`scene.name`).
+    pub name: String,
+    /// Time step in s.
+    pub dt: f64,
+    /// Number of time steps to run.
+    pub steps: u64,
+    /// Moreau-Jean theta parameter, in [0.5, 1].
+    pub theta: f64,
+    /// Gravity acceleration in m/s^2.
+    pub gravity: [f64; 2],
+    /// Contact detection distance in m (pairs closer than this are candidate contacts).
+    pub alert_distance: f64,
+    /// Contact solver settings.
+    pub solver: SolverSettings,
+    /// Output cadence.
+    pub output: OutputSettings,
+    /// Every group name used by a body, in first-use order (bodies in [`Scene::bodies`] order).
+    pub groups: Vec<String>,
+    /// Interaction laws between pairs of groups; pairs with no law do not interact.
+    pub laws: Vec<LawDesc>,
+    /// All bodies: `[[bodies]]`, then `[[walls]]`, then generated bodies, each in file order.
+    pub bodies: Vec<BodyDesc>,
+}
+
+/// Which contact solver to use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum SolverKind {
+    /// Non-linear Gauss-Seidel.
+    Nlgs,
+}
+
+/// The norm used by the solver's convergence test.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum ConvergenceNorm {
+    /// Quadratic (relative) norm, `quad`.
+    Quad,
+    /// Maximum norm, `maxm`.
+    Maxm,
+    /// Natural-map residual, `natural_map`.
+    NaturalMap,
+}
+
+/// Contact solver settings (`[solver]`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SolverSettings {
+    /// Solver algorithm.
+    pub kind: SolverKind,
+    /// Convergence tolerance, > 0.
+    pub tolerance: f64,
+    /// Maximum number of iterations per step, >= 1.
+    pub max_iterations: u32,
+    /// Convergence is checked every this many iterations, >= 1.
+    pub check_every: u32,
+    /// Relaxation factor, in (0, 2).
+    pub relaxation: f64,
+    /// Convergence norm.
+    pub norm: ConvergenceNorm,
+    /// Whether interpenetrations are corrected by a position projection after each step.
+    pub position_projection: bool,
+}
+
+impl Default for SolverSettings {
+    /// The documented defaults: NLGS, tolerance 1.666e-4, 1000 iterations, check every 10,
+    /// relaxation 1, quad norm, position projection on.
+    fn default() -> Self {
+        Self {
+            kind: SolverKind::Nlgs,
+            tolerance: 1.666e-4,
+            max_iterations: 1000,
+            check_every: 10,
+            relaxation: 1.0,
+            norm: ConvergenceNorm::Quad,
+            position_projection: true,
+        }
+    }
+}
+
+/// Output cadence (`[output]`).
+#[derive(Debug, Clone, PartialEq, Eq, Serialize)]
+pub struct OutputSettings {
+    /// Steps between two VTU frames, >= 1.
+    pub frame_every: u64,
+    /// Steps between two checkpoints, >= 1.
+    pub checkpoint_every: u64,
+}
+
+/// A Signorini-Coulomb law between two groups.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct LawDesc {
+    /// Indices into [`Scene::groups`] (may be equal).
+    pub groups: [usize; 2],
+    /// Coulomb friction coefficient, >= 0.
+    pub friction: f64,
+    /// Newton normal restitution coefficient, in [0, 1].
+    pub restitution: f64,
+}
+
+/// The shape of a body, in its body frame (centred on the centre of mass).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub enum ShapeDesc {
+    /// A disk.
+    Disk {
+        /// Radius in m.
+        radius: f64,
+    },
+    /// A convex polygon.
+    Polygon {
+        /// Vertices in m relative to the centroid, counter-clockwise, at angle 0.
+        vertices: Vec<[f64; 2]>,
+    },
+    /// A wall: the segment from `position - half_length*dir` to `position + half_length*dir`,
+    /// `dir = (cos angle, sin angle)`.
+    Segment {
+        /// Half of the segment length in m.
+        half_length: f64,
+    },
+}
+
+/// One body of the resolved scene.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BodyDesc {
+    /// Shape in the body frame.
+    pub shape: ShapeDesc,
+    /// Centre of mass in m (centroid for polygons, midpoint for segments).
+    pub position: [f64; 2],
+    /// Orientation in rad.
+    pub angle: f64,
+    /// Initial velocity of the centre of mass in m/s.
+    pub velocity: [f64; 2],
+    /// Initial angular velocity in rad/s.
+    pub angular_velocity: f64,
+    /// Mass in kg (per unit thickness); `f64::INFINITY` for walls.
+    pub mass: f64,
+    /// Moment of inertia about the centre of mass in kg m^2 (per unit thickness);
+    /// `f64::INFINITY` for walls.
+    pub inertia: f64,
+    /// Index into [`Scene::groups`].
+    pub group: usize,
+    /// Imposed motion of the x, y and rotation degrees of freedom.
+    pub drives: [Drive; 3],
+}
+
+/// How one degree of freedom is driven.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub enum Drive {
+    /// Not driven: follows the dynamics.
+    Free,
+    /// Velocity imposed (m/s or rad/s) as a function of time.
+    Velocity(TimeFunction),
+    /// External force (N) or torque (N m) applied as a function of time, added to gravity.
+    Force(TimeFunction),
+}
+
+/// A scalar function of time.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub enum TimeFunction {
+    /// A constant value.
+    Constant(f64),
+    /// Points `(t, value)`, times strictly increasing: piecewise linear in between,
+    /// constant beyond the ends.
+    Table(Vec<(f64, f64)>),
+    /// `offset + amplitude * sin(2 pi frequency t + phase)`.
+    Sine {
+        /// Amplitude.
+        amplitude: f64,
+        /// Frequency in Hz.
+        frequency: f64,
+        /// Phase in rad.
+        phase: f64,
+        /// Offset added to the sine.
+        offset: f64,
+    },
+}
+
+impl TimeFunction {
+    /// The value at time `t` (s). An empty table evaluates to 0 (the parser never builds one).
+    pub fn eval(&self, t: f64) -> f64 {
+        match self {
+            TimeFunction::Constant(v) => *v,
+            TimeFunction::Sine {
+                amplitude,
+                frequency,
+                phase,
+                offset,
+            } => offset + amplitude * (2.0 * std::f64::consts::PI * frequency * t + phase).sin(),
+            TimeFunction::Table(points) => {
+                let (Some(first), Some(last)) = (points.first(), points.last()) else {
+                    return 0.0;
+                };
+                if t <= first.0 {
+                    return first.1;
+                }
+                if t >= last.0 {
+                    return last.1;
+                }
+                // First point with time > t; exists and is >= 1 because first.0 < t < last.0.
+                let k = points.partition_point(|p| p.0 <= t);
+                let (t0, v0) = points[k - 1];
+                let (t1, v1) = points[k];
+                v0 + (v1 - v0) * (t - t0) / (t1 - t0)
+            }
+        }
+    }
+}

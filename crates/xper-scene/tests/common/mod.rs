@@ -1,0 +1,63 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use std::path::Path;
+
+use xper_scene::{parse_scene, Scene, SceneError, SceneErrors};
+
+/// A valid header: scene, one material `glass` (2500 kg/m^3).
+pub const HEADER: &str = r#"[scene]
+name = "t"
+dt = 1e-3
+steps = 10
+
+[[materials]]
+name = "glass"
+density = 2500.0
+"#;
+
+/// `HEADER` followed by `rest`.
+pub fn with_header(rest: &str) -> String {
+    format!("{HEADER}\n{rest}")
+}
+
+pub fn parse(text: &str) -> Result<Scene, SceneErrors> {
+    parse_scene(text, Path::new("test.toml"))
+}
+
+pub fn ok(text: &str) -> Scene {
+    parse(text).unwrap_or_else(|e| panic!("unexpected errors:\n{e}\n--- in:\n{text}"))
+}
+
+pub fn errs(text: &str) -> SceneErrors {
+    match parse(text) {
+        Ok(s) => panic!("expected errors, parsed {s:?}\n--- in:\n{text}"),
+        Err(e) => e,
+    }
+}
+
+/// 1-based line of the first line of `text` containing `marker`.
+pub fn line_of(text: &str, marker: &str) -> usize {
+    text.lines()
+        .position(|l| l.contains(marker))
+        .unwrap_or_else(|| panic!("marker {marker:?} not in text"))
+        + 1
+}
+
+/// Asserts that the scene fails with an error on exactly `field`, at the line holding
+/// `marker`, whose message contains `needle`; returns that error.
+pub fn expect_error(text: &str, field: &str, marker: &str, needle: &str) -> SceneError {
+    let e = errs(text);
+    let line = line_of(text, marker);
+    let found =
+        e.0.iter()
+            .find(|x| x.field == field && x.line == line && x.message.contains(needle));
+    match found {
+        Some(x) => {
+            assert_eq!(x.file, Path::new("test.toml"));
+            assert!(x.column >= 1);
+            x.clone()
+        }
+        None => panic!("no error on `{field}` at line {line} containing {needle:?}; got:\n{e}"),
+    }
+}

@@ -1,0 +1,132 @@
+//! Error measures of a contact solution.
+//!
+//! - The natural-map error used to compare solvers across codes (Acary, Bremond, Huber 2018;
+//!   FCLib): `e_a = r_a - P_K(r_a - u_a - mu |u_T,a| e_n)`, `error = |e| / scale`.
+//! - LMGC90's quadratic and max norms, accumulated during a check sweep (see
+//!   `../shared/BRIEF.md`, section 2): for contact a with reactions `r` and `r'` before and
+//!   after its local solve and velocities `u`, `u'`, `du = u - u'`, `rm = (r + r')/2`,
+//!   `WRR = (r.W r + r'.W r')/2`, `WRWR = (|W r|^2 + |W r'|^2)/2`, summed over the `N`
+//!   contacts with a non-zero reaction.
+
+use crate::operator::{block_mul, Block2};
+
+/// Projection of `(n, t)` on the Coulomb cone `|t| <= mu n`.
+#[inline]
+pub fn project_on_cone(x: [f64; 2], mu: f64) -> [f64; 2] {
+    let [n, t] = x;
+    if mu * t.abs() <= -n {
+        [0.0, 0.0]
+    } else if t.abs() <= mu * n {
+        x
+    } else {
+        let np = (mu * t.abs() + n) / (mu * mu + 1.0);
+        [np, mu * np * t.signum()]
+    }
+}
+
+/// Natural-map error `sqrt(sum_a |e_a|^2)` (unscaled) for local velocities `u` and impulses `r`.
+pub fn natural_map_error(u: &[[f64; 2]], r: &[[f64; 2]], mu: &[f64]) -> f64 {
+    u.iter()
+        .zip(r)
+        .zip(mu)
+        .map(|((u, r), &mu)| {
+            let p = project_on_cone([r[0] - u[0] - mu * u[1].abs(), r[1] - u[1]], mu);
+            (r[0] - p[0]).powi(2) + (r[1] - p[1]).powi(2)
+        })
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// LMGC90's convergence norms of one check sweep, relative to the tolerance `tol`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct ConvergenceNorms {
+    /// `sqrt(sum |du|^2 / N) / (QuadWR tol)`.
+    pub quad_dv: f64,
+    /// `sqrt(sum |du|^2 |rm|^2 / N) / (MeanWRR tol)`.
+    pub quad_dvr: f64,
+    /// `sum rm.du / (sum WRR tol)`.
+    pub mean_dvor: f64,
+    /// `sqrt(max |du|^2) / (QuadWR tol)`.
+    pub maxm_dv: f64,
+    /// `sqrt(max |du|^2 |rm|^2) / (MeanWRR tol)`.
+    pub maxm_dvr: f64,
+    /// Contacts with a non-zero reaction.
+    pub active: usize,
+}
+
+/// Sums accumulated over a check sweep.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct NormAccumulator {
+    sum_du2: f64,
+    sum_du2_rm2: f64,
+    max_du2: f64,
+    max_du2_rm2: f64,
+    sum_wrr: f64,
+    sum_wrwr: f64,
+    sum_rm_du: f64,
+    active: usize,
+}
+
+impl NormAccumulator {
+    /// Adds one contact's local update.
+    #[inline(always)]
+    pub(crate) fn add(&mut self, w: &Block2, r: [f64; 2], r_new: [f64; 2], du: [f64; 2]) {
+        if r_new[0] == 0.0 && r_new[1] == 0.0 {
+            return;
+        }
+        let (wr, wr2) = (block_mul(w, r), block_mul(w, r_new));
+        let du2 = du[0] * du[0] + du[1] * du[1];
+        let rm = [(r[0] + r_new[0]) / 2.0, (r[1] + r_new[1]) / 2.0];
+        let rm2 = rm[0] * rm[0] + rm[1] * rm[1];
+        self.sum_du2 += du2;
+        self.max_du2 = self.max_du2.max(du2);
+        self.sum_du2_rm2 += du2 * rm2;
+        self.max_du2_rm2 = self.max_du2_rm2.max(du2 * rm2);
+        self.sum_wrr += (r[0] * wr[0] + r[1] * wr[1] + r_new[0] * wr2[0] + r_new[1] * wr2[1]) / 2.0;
+        self.sum_wrwr += (wr[0] * wr[0] + wr[1] * wr[1] + wr2[0] * wr2[0] + wr2[1] * wr2[1]) / 2.0;
+        self.sum_rm_du += rm[0] * du[0] + rm[1] * du[1];
+        self.active += 1;
+    }
+
+    /// The norms relative to `tol`; all zero when no contact carries a reaction.
+    pub(crate) fn norms(&self, tol: f64) -> ConvergenceNorms {
+        if self.active == 0 || self.sum_wrr <= 0.0 {
+            return ConvergenceNorms { active: self.active, ..Default::default() };
+        }
+        let n = self.active as f64;
+        let quad_wr = (self.sum_wrwr / n).sqrt();
+        let mean_wrr = self.sum_wrr / n;
+        ConvergenceNorms {
+            quad_dv: (self.sum_du2 / n).sqrt() / (quad_wr * tol),
+            quad_dvr: (self.sum_du2_rm2 / n).sqrt() / (mean_wrr * tol),
+            mean_dvor: self.sum_rm_du / (self.sum_wrr * tol),
+            maxm_dv: self.max_du2.sqrt() / (quad_wr * tol),
+            maxm_dvr: self.max_du2_rm2.sqrt() / (mean_wrr * tol),
+            active: self.active,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cone_projection_cases() {
+        assert_eq!(project_on_cone([1.0, 0.2], 0.5), [1.0, 0.2]);
+        assert_eq!(project_on_cone([-1.0, 0.2], 0.5), [0.0, 0.0]);
+        let p = project_on_cone([1.0, 2.0], 0.5);
+        assert!((p[1] - 0.5 * p[0]).abs() < 1e-15);
+        // The projection is orthogonal: (x - p) . p = 0.
+        assert!(((1.0 - p[0]) * p[0] + (2.0 - p[1]) * p[1]).abs() < 1e-14);
+    }
+
+    #[test]
+    fn natural_map_is_zero_at_solutions() {
+        // sliding: r on the cone boundary, u_n = 0, u_t opposite to r_t.
+        let u = [[0.0, -2.0], [3.0, 1.0], [0.0, 0.0]];
+        let r = [[1.0, 0.5], [0.0, 0.0], [2.0, -0.2]];
+        assert!(natural_map_error(&u, &r, &[0.5, 0.3, 0.4]) < 1e-15);
+        assert!(natural_map_error(&[[-1.0, 0.0]], &[[0.0, 0.0]], &[0.3]) > 0.5);
+    }
+}

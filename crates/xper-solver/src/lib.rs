@@ -1,0 +1,24 @@
+//! Frictional contact problems and their solvers, independent of any geometry.
+//!
+//! A contact problem (Siconos' and FCLib's "local" form) is
+//!
+//! ```text
+//! U = W R + q,   for each contact a: (U_a + s_a e_n, R_a) satisfy Signorini-Coulomb with mu_a
+//! ```
+//!
+//! with `U_a = (U_N, U_T)` and `R_a = (R_N, R_T)` in the contact frame (normal first),
+//! `W` the Delassus operator and `s_a` a normal velocity shift (Newton's restitution target
+//! in time stepping; zero for problems read from files). Solvers see `W` only through a
+//! [`ContactOperator`]: an explicit matrix ([`DenseProblem`]) or the factorised form
+//! `W = H^T M^-1 H` of rigid bodies, where applying an impulse updates two body velocities
+//! so one contact update costs O(1).
+
+mod error;
+mod local;
+mod nlgs;
+mod operator;
+
+pub use error::{natural_map_error, project_on_cone, ConvergenceNorms};
+pub use local::solve_one_contact;
+pub use nlgs::{nlgs, ConvergenceNorm, NlgsParams, SolveError, SolveInfo};
+pub use operator::{Block2, ContactOperator, DenseProblem};

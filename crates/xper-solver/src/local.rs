@@ -1,0 +1,88 @@
+//! The exact solution of the 2D one-contact Signorini-Coulomb problem.
+//!
+//! Given `U = u_free + W R` with `W` a 2x2 block (positive diagonal), find `R` with
+//! `U_N >= 0, R_N >= 0, U_N R_N = 0` and Coulomb `|R_T| <= mu R_N`, `R_T = -mu R_N sign(U_T)`
+//! when sliding. The cases are enumerated in closed form as in LMGC90's 2D NLGS
+//! (M. Jean, CMAME 177, 1999, section 5): take-off, stick, slide in either direction.
+
+use crate::operator::Block2;
+
+/// Solves one contact exactly. Returns `[R_N, R_T]`.
+///
+/// When the Coulomb cases have no consistent solution (possible for strongly non-symmetric
+/// coupling `W_nt`), the sliding solution opposing the free tangential velocity is returned.
+#[inline]
+pub fn solve_one_contact(w: &Block2, u_free: [f64; 2], mu: f64) -> [f64; 2] {
+    let [wnn, wnt, wtn, wtt] = *w;
+    let [ufn, uft] = u_free;
+    if ufn >= 0.0 || wnn <= 0.0 {
+        return [0.0, 0.0];
+    }
+    let det = wnn * wtt - wnt * wtn;
+    if det > 0.0 {
+        let rn = (-ufn * wtt + uft * wnt) / det;
+        let rt = (-uft * wnn + ufn * wtn) / det;
+        if rn >= 0.0 && rt.abs() <= mu * rn {
+            return [rn, rt];
+        }
+    }
+    for s in [-1.0, 1.0] {
+        // R_T = s mu R_N, U_N = 0.
+        let denom = wnn + s * mu * wnt;
+        if denom <= 0.0 {
+            continue;
+        }
+        let rn = -ufn / denom;
+        let ut = uft + (wtn + s * mu * wtt) * rn;
+        if rn >= 0.0 && s * ut <= 0.0 {
+            return [rn, s * mu * rn];
+        }
+    }
+    let s = if uft > 0.0 { -1.0 } else { 1.0 };
+    let denom = (wnn + s * mu * wnt).max(wnn);
+    let rn = -ufn / denom;
+    [rn, s * mu * rn]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check_solution(w: &Block2, uf: [f64; 2], mu: f64) {
+        let r = solve_one_contact(w, uf, mu);
+        let u = [uf[0] + w[0] * r[0] + w[1] * r[1], uf[1] + w[2] * r[0] + w[3] * r[1]];
+        let scale = 1e-12 * (1.0 + uf[0].abs() + uf[1].abs());
+        assert!(r[0] >= 0.0 && u[0] >= -scale, "{r:?} {u:?}");
+        assert!((r[0] * u[0]).abs() <= scale * (1.0 + r[0]), "complementarity {r:?} {u:?}");
+        assert!(r[1].abs() <= mu * r[0] * (1.0 + 1e-12) + 1e-300);
+        if u[1].abs() > scale {
+            assert!((r[1] + mu * r[0] * u[1].signum()).abs() <= scale * (1.0 + r[0]));
+        }
+    }
+
+    #[test]
+    fn cases_take_off_stick_slide() {
+        let w = [2.0, 0.3, 0.3, 1.5];
+        assert_eq!(solve_one_contact(&w, [1.0, 5.0], 0.3), [0.0, 0.0]);
+        check_solution(&w, [-1.0, 0.1], 0.5); // stick
+        check_solution(&w, [-1.0, 3.0], 0.2); // slide backward
+        check_solution(&w, [-1.0, -3.0], 0.2); // slide forward
+        check_solution(&w, [-1.0, -3.0], 0.0); // frictionless
+    }
+
+    #[test]
+    fn random_blocks_satisfy_the_law() {
+        let mut s = 7u64;
+        let mut rnd = || {
+            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for _ in 0..10_000 {
+            let (a, b, c) = (rnd() * 2.0, rnd() * 2.0, rnd());
+            // symmetric positive definite: L L^T with L = [[a,0],[c,b]] + diagonal shift
+            let (l11, l21, l22) = (a.abs() + 0.1, c, b.abs() + 0.1);
+            let w = [l11 * l11, l11 * l21, l11 * l21, l21 * l21 + l22 * l22];
+            check_solution(&w, [rnd(), rnd() * 3.0], rnd().abs());
+        }
+    }
+}

@@ -1,0 +1,228 @@
+//! Non-linear Gauss-Seidel (NLGS) over contacts with the exact 2D local solve.
+//!
+//! Each sweep visits the contacts in order; for contact `a` it forms the velocity without its
+//! own impulse, `u_free = U_a - W_aa R_a`, solves the one-contact problem exactly
+//! ([`solve_one_contact`]) and applies the relaxed increment, so that later contacts of
+//! the sweep see it (M. Jean, CMAME 177, 1999; LMGC90's `nlgs`). Convergence is checked
+//! every `check_every` sweeps by LMGC90's norms or by the natural-map error.
+
+use crate::error::{natural_map_error, ConvergenceNorms, NormAccumulator};
+use crate::local::solve_one_contact;
+use crate::operator::{block_mul, ContactOperator};
+
+/// Which measure decides convergence.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum ConvergenceNorm {
+    /// LMGC90 "Quad": `|MeanDVoR|`, `QuadDV` and `QuadDVR` below 1.
+    #[default]
+    Quad,
+    /// LMGC90 "Maxm": `|MeanDVoR|`, `MaxmDV` and `MaxmDVR` below 1.
+    Maxm,
+    /// Natural-map error divided by `max(|q|, |U|, |R|)` below the tolerance.
+    NaturalMap,
+}
+
+/// Tuning of [`nlgs`].
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct NlgsParams {
+    /// Tolerance of the chosen norm (LMGC90's default 1.666e-4).
+    pub tolerance: f64,
+    /// Maximum number of sweeps.
+    pub max_iterations: u32,
+    /// Sweeps between convergence checks.
+    pub check_every: u32,
+    /// Relaxation `omega` in (0, 2): `R <- omega R_local + (1 - omega) R`.
+    pub relaxation: f64,
+    /// Convergence measure.
+    pub norm: ConvergenceNorm,
+}
+
+impl Default for NlgsParams {
+    fn default() -> Self {
+        NlgsParams {
+            tolerance: 1.666e-4,
+            max_iterations: 1000,
+            check_every: 10,
+            relaxation: 1.0,
+            norm: ConvergenceNorm::Quad,
+        }
+    }
+}
+
+/// Outcome of a solve that ran.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct SolveInfo {
+    /// Sweeps performed.
+    pub iterations: u32,
+    /// Value of the chosen measure at the last check, comparable to the tolerance
+    /// (for the LMGC90 norms: the largest of the three, times the tolerance).
+    pub residual: f64,
+    /// Whether the chosen measure went below the tolerance.
+    pub converged: bool,
+    /// LMGC90's norms at the last check.
+    pub norms: ConvergenceNorms,
+}
+
+/// A problem the solver refuses to start on.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SolveError {
+    /// Input sizes differ.
+    SizeMismatch {
+        /// Description.
+        what: String,
+    },
+    /// A non-finite or negative value in the data of a contact.
+    InvalidData {
+        /// Contact index.
+        contact: usize,
+        /// Description.
+        what: String,
+    },
+    /// Invalid parameters.
+    InvalidParams(String),
+}
+
+impl std::fmt::Display for SolveError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SolveError::SizeMismatch { what } => write!(f, "size mismatch: {what}"),
+            SolveError::InvalidData { contact, what } => write!(f, "contact {contact}: {what}"),
+            SolveError::InvalidParams(s) => write!(f, "invalid solver parameters: {s}"),
+        }
+    }
+}
+
+impl std::error::Error for SolveError {}
+
+/// Solves the problem of `op` by NLGS.
+///
+/// `op` must be in the state of zero impulses; `impulses` holds the warm start on entry and the
+/// solution on exit (and `op` is left consistent with it). `normal_shift[a]` is added to the
+/// normal velocity in the Signorini condition.
+pub fn nlgs<O: ContactOperator>(
+    op: &mut O,
+    mu: &[f64],
+    normal_shift: &[f64],
+    impulses: &mut [[f64; 2]],
+    params: &NlgsParams,
+) -> Result<SolveInfo, SolveError> {
+    let n = op.contact_count();
+    if mu.len() != n || normal_shift.len() != n || impulses.len() != n {
+        return Err(SolveError::SizeMismatch {
+            what: format!(
+                "{n} contacts, {} mu, {} shifts, {} impulses",
+                mu.len(),
+                normal_shift.len(),
+                impulses.len()
+            ),
+        });
+    }
+    if !(params.tolerance > 0.0) || params.max_iterations == 0 || params.check_every == 0 {
+        return Err(SolveError::InvalidParams(format!("{params:?}")));
+    }
+    if !(params.relaxation > 0.0 && params.relaxation < 2.0) {
+        return Err(SolveError::InvalidParams(format!("relaxation {} not in (0, 2)", params.relaxation)));
+    }
+    let mut q_norm2 = 0.0;
+    for a in 0..n {
+        let w = op.diagonal_block(a);
+        let u = op.local_velocity(a);
+        if !(mu[a] >= 0.0 && mu[a].is_finite()) {
+            return Err(SolveError::InvalidData { contact: a, what: format!("friction coefficient {}", mu[a]) });
+        }
+        if !w.iter().chain(&u).chain(impulses[a].iter()).all(|x| x.is_finite()) || !normal_shift[a].is_finite() {
+            return Err(SolveError::InvalidData { contact: a, what: "non-finite W, q, shift or warm start".into() });
+        }
+        if w[0] <= 0.0 {
+            return Err(SolveError::InvalidData { contact: a, what: format!("W_nn = {} is not positive", w[0]) });
+        }
+        q_norm2 += (u[0] + normal_shift[a]).powi(2) + u[1] * u[1];
+    }
+    for (a, r) in impulses.iter_mut().enumerate() {
+        *r = crate::error::project_on_cone(*r, mu[a]);
+        if r[0] != 0.0 || r[1] != 0.0 {
+            op.apply_impulse(a, *r);
+        }
+    }
+    let mut info = SolveInfo::default();
+    if n == 0 {
+        info.converged = true;
+        return Ok(info);
+    }
+    let omega = params.relaxation;
+    for sweep in 1..=params.max_iterations {
+        let check = sweep % params.check_every == 0 || sweep == params.max_iterations;
+        let mut acc = NormAccumulator::default();
+        for a in 0..n {
+            let w = op.diagonal_block(a);
+            let mut u = op.local_velocity(a);
+            u[0] += normal_shift[a];
+            let r = impulses[a];
+            let wr = block_mul(&w, r);
+            let u_free = [u[0] - wr[0], u[1] - wr[1]];
+            let local = solve_one_contact(&w, u_free, mu[a]);
+            let r_new = if omega == 1.0 {
+                local
+            } else {
+                [omega * local[0] + (1.0 - omega) * r[0], omega * local[1] + (1.0 - omega) * r[1]]
+            };
+            let delta = [r_new[0] - r[0], r_new[1] - r[1]];
+            if delta[0] != 0.0 || delta[1] != 0.0 {
+                op.apply_impulse(a, delta);
+                impulses[a] = r_new;
+            }
+            if check {
+                let wd = block_mul(&w, delta);
+                acc.add(&w, r, r_new, [-wd[0], -wd[1]]);
+            }
+        }
+        if check {
+            info.iterations = sweep;
+            info.norms = acc.norms(params.tolerance);
+            let (residual, converged) = match params.norm {
+                ConvergenceNorm::Quad => {
+                    let m = info.norms.mean_dvor.abs().max(info.norms.quad_dv).max(info.norms.quad_dvr);
+                    (m * params.tolerance, m < 1.0)
+                }
+                ConvergenceNorm::Maxm => {
+                    let m = info.norms.mean_dvor.abs().max(info.norms.maxm_dv).max(info.norms.maxm_dvr);
+                    (m * params.tolerance, m < 1.0)
+                }
+                ConvergenceNorm::NaturalMap => {
+                    let e = scaled_natural_map_error(op, mu, normal_shift, impulses, q_norm2.sqrt());
+                    (e, e < params.tolerance)
+                }
+            };
+            info.residual = residual;
+            if !residual.is_finite() {
+                return Ok(info);
+            }
+            if converged {
+                info.converged = true;
+                return Ok(info);
+            }
+        }
+    }
+    info.iterations = params.max_iterations;
+    Ok(info)
+}
+
+/// Natural-map error of the current state, divided by `max(|q|, |U|, |R|)`
+/// (Siconos' scaling), or by 1 when all are zero.
+pub(crate) fn scaled_natural_map_error<O: ContactOperator>(
+    op: &O,
+    mu: &[f64],
+    normal_shift: &[f64],
+    impulses: &[[f64; 2]],
+    q_norm: f64,
+) -> f64 {
+    let u: Vec<[f64; 2]> = (0..op.contact_count())
+        .map(|a| {
+            let u = op.local_velocity(a);
+            [u[0] + normal_shift[a], u[1]]
+        })
+        .collect();
+    let norm = |v: &[[f64; 2]]| v.iter().map(|x| x[0] * x[0] + x[1] * x[1]).sum::<f64>().sqrt();
+    let scale = q_norm.max(norm(&u)).max(norm(impulses));
+    natural_map_error(&u, impulses, mu) / if scale > 0.0 { scale } else { 1.0 }
+}
