@@ -7,6 +7,7 @@
 
 // Negated float comparisons (`!(x > 0.0)`) are deliberate: they also reject NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
+#![warn(missing_docs)]
 
 pub mod error;
 pub mod rng;

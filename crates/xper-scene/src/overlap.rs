@@ -90,7 +90,8 @@ fn sat(a: &[V2], b: &[V2]) -> f64 {
             };
             let (a0, a1) = proj(a);
             let (b0, b1) = proj(b);
-            best = best.min(a1.min(b1) - a0.max(b0));
+            // Smallest translation separating the projections (either way).
+            best = best.min((a1 - b0).min(b1 - a0));
         }
     }
     best

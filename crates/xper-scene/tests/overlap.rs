@@ -87,14 +87,19 @@ fn polygon_segment_exact() {
         &(rect(0.0, 0.0, 1.0, 1.0, d, "A") + &wall(-1.0, -0.72, 1.0, -0.72, "W")),
     ));
     // A diagonal wall through an axis-aligned square's corner region.
-    let t = with_header(&(rect(0.0, 0.0, 1.0, 1.0, 0.0, "A") + &wall(0.4, 1.0, 1.0, 0.4, "W")));
-    expect_error(&t, "walls[0]", "# W", "overlaps body 0");
+    // Line x + y = 0.9 cuts the corner (0.5, 0.5) by 0.1 / sqrt(2).
+    let t = with_header(&(rect(0.0, 0.0, 1.0, 1.0, 0.0, "A") + &wall(0.1, 0.8, 0.8, 0.1, "W")));
+    expect_error(&t, "walls[0]", "# W", "by 7.071e-2 m");
+    ok(&with_header(
+        &(rect(0.0, 0.0, 1.0, 1.0, 0.0, "A") + &wall(0.2, 0.9, 0.9, 0.2, "W")),
+    ));
 }
 
 #[test]
 fn generated_overlaps_name_the_generator_and_are_capped() {
-    let hex = "[[generators]]\nkind = \"hex_lattice\"\ncolumns = 30\nrows = 30\npitch = 1.5e-3\nradius = 1e-3\nbox = [1.0, 1.0]\nmaterial = \"glass\"\ngroup = \"g\"\n";
-    let t = with_header(hex);
+    // A block covering a box of 300 generated disks: 300 overlapping pairs.
+    let gen = "[[generators]]\nkind = \"box_of_disks\"\ncount = 300\nradius = [0.001, 0.002]\nbox = [[0.0, 0.0], [0.1, 0.2]]\nmaterial = \"glass\"\ngroup = \"g\"\n";
+    let t = with_header(&(rect(0.05, 0.1, 0.1, 0.2, 0.0, "A") + gen));
     let e = errs(&t);
     let line = line_of(&t, "[[generators]]");
     let overlaps: Vec<_> =
@@ -115,4 +120,43 @@ fn generated_overlaps_name_the_generator_and_are_capped() {
             .any(|x| x.message.contains("more overlapping pairs")),
         "{e}"
     );
+}
+
+mod grid_vs_brute_force {
+    use super::*;
+    use proptest::prelude::*;
+    use std::collections::BTreeSet;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+
+        /// The grid finds exactly the overlapping pairs a brute-force search finds.
+        #[test]
+        fn same_pairs(d in prop::collection::vec((0.0f64..1.0, 0.0f64..1.0, 0.01f64..0.1), 1..40)) {
+            let text: String = d.iter().map(|&(x, y, r)| disk(x, y, r, "D")).collect();
+            let mut expected = BTreeSet::new();
+            for i in 0..d.len() {
+                for j in i + 1..d.len() {
+                    let (xi, yi, ri) = d[i];
+                    let (xj, yj, rj) = d[j];
+                    let depth = ri + rj - (xi - xj).hypot(yi - yj);
+                    let tol = 1e-9 + 1e-6 * (2.0 * ri).min(2.0 * rj);
+                    if depth > tol {
+                        expected.insert((i, j));
+                    }
+                }
+            }
+            let found: BTreeSet<(usize, usize)> = match parse(&with_header(&text)) {
+                Ok(_) => BTreeSet::new(),
+                Err(e) => e.0.iter().map(|x| {
+                    let w: Vec<&str> = x.message.split_whitespace().collect();
+                    let b: usize = w[1].parse().unwrap();
+                    let a: usize = w[5].parse().unwrap();
+                    (a, b)
+                }).collect(),
+            };
+            prop_assume!(expected.len() <= xper_scene::MAX_OVERLAP_REPORTS);
+            prop_assert_eq!(found, expected);
+        }
+    }
 }

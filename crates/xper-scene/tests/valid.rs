@@ -286,3 +286,13 @@ fn time_function_eval() {
     };
     assert!((s.eval(1.0) - 3.0).abs() < 1e-15);
 }
+
+#[test]
+fn format_doc_example_parses() {
+    let doc = include_str!("../FORMAT.md");
+    let start = doc.rfind("```toml\n").expect("example") + "```toml\n".len();
+    let end = start + doc[start..].find("```").expect("end of example");
+    let s = ok(&doc[start..end]);
+    assert_eq!((s.steps, s.bodies.len()), (1000, 1 + 1 + 300 + 4));
+    assert_eq!(s.groups, ["grains", "walls"]);
+}

@@ -1,0 +1,210 @@
+//! `xper bench`: figures of the benchmark scenes (`../shared/bench/box10k.md`), printed,
+//! saved as JSON in the output directory, and gathered into BENCHMARKS.md.
+//!
+//! Each scene runs in a child process of its own so that its peak memory is its own.
+
+use crate::world_from_scene::world_from_scene;
+use crate::CliError;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
+use xper_geometry::{ContactSet, Detector};
+use xper_nscd::MoreauJean;
+
+/// Arguments of `xper bench`.
+#[derive(clap::Args)]
+pub struct BenchArgs {
+    /// Scene files (default: scenes/box10k/scene.toml and scenes/box100k/scene.toml).
+    #[arg(long = "scene")]
+    scenes: Vec<PathBuf>,
+    /// Run at most this many steps of each scene (default: the scene's own count).
+    #[arg(long)]
+    steps: Option<u64>,
+    /// Steps at the end of the run over which the "settled" medians are taken.
+    #[arg(long, default_value_t = 200)]
+    settled: usize,
+    /// Directory of the JSON results.
+    #[arg(long, default_value = "bench-results")]
+    out: PathBuf,
+    /// The Markdown report regenerated from every JSON result in `--out`.
+    #[arg(long, default_value = "BENCHMARKS.md")]
+    report: PathBuf,
+    /// Run exactly one scene in this process (used by the parent process).
+    #[arg(long, hide = true)]
+    single: bool,
+}
+
+/// Figures of one benchmark run.
+#[derive(Serialize, Deserialize)]
+pub struct BenchResult {
+    scene: String,
+    bodies: usize,
+    steps: u64,
+    machine: String,
+    median_step_ms: f64,
+    median_settled_step_ms: f64,
+    median_sweeps: f64,
+    median_settled_sweeps: f64,
+    median_contacts: f64,
+    median_settled_contacts: f64,
+    median_ns_per_contact_update: f64,
+    median_detect_ms: f64,
+    median_detect_ns_per_body: f64,
+    non_converged_steps: usize,
+    peak_memory_bytes: u64,
+    peak_memory_bytes_per_body: f64,
+    overlap_median_m: f64,
+    overlap_p99_m: f64,
+    overlap_max_m: f64,
+    overlapping_contacts: usize,
+    wall_time_s: f64,
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    if v.is_empty() {
+        return f64::NAN;
+    }
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn percentile(sorted: &[f64], p: f64) -> f64 {
+    if sorted.is_empty() {
+        return 0.0;
+    }
+    sorted[((sorted.len() - 1) as f64 * p).round() as usize]
+}
+
+fn machine() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| s.lines().find(|l| l.starts_with("model name")).map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string()))
+        .unwrap_or_else(|| "unknown CPU".into());
+    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
+    format!("{cpu}, {cores} cores, one thread used")
+}
+
+/// Runs one scene in this process.
+fn bench_one(path: &Path, steps: Option<u64>, settled: usize) -> Result<BenchResult, CliError> {
+    let scene = xper_scene::load_scene(path).map_err(|e| CliError::BadInput(e.to_string()))?;
+    let mut world = world_from_scene(&scene);
+    let steps = steps.map_or(scene.steps, |s| s.min(scene.steps));
+    let mut stepper = MoreauJean::new();
+    let (mut total, mut sweeps, mut contacts, mut ns_update, mut detect) = (vec![], vec![], vec![], vec![], vec![]);
+    let mut non_converged = 0;
+    let started = std::time::Instant::now();
+    for _ in 0..steps {
+        let r = stepper.step(&mut world).map_err(|e| CliError::Runtime(format!("{}: {e}", path.display())))?;
+        total.push(r.times.total * 1e3);
+        sweeps.push(r.iterations as f64);
+        contacts.push(r.contacts as f64);
+        detect.push(r.times.detect * 1e3);
+        if r.iterations > 0 && r.active > 0 {
+            ns_update.push(r.times.solve * 1e9 / (r.active as f64 * r.iterations as f64));
+        }
+        non_converged += (!r.converged) as usize;
+    }
+    let wall_time_s = started.elapsed().as_secs_f64();
+    let mut final_contacts = ContactSet::default();
+    Detector::new().detect(&world.bodies, world.params.alert_distance, |a, b| world.laws.between(a, b), &mut final_contacts);
+    let mut overlaps: Vec<f64> = final_contacts.contacts.iter().filter(|c| c.gap < 0.0).map(|c| -c.gap).collect();
+    overlaps.sort_by(f64::total_cmp);
+    let tail = |v: &[f64]| v[v.len().saturating_sub(settled)..].to_vec();
+    let peak = xper_io::peak_memory_bytes().unwrap_or(0);
+    let bodies = world.bodies.len();
+    Ok(BenchResult {
+        scene: scene.name.clone(),
+        bodies,
+        steps,
+        machine: machine(),
+        median_step_ms: median(total.clone()),
+        median_settled_step_ms: median(tail(&total)),
+        median_sweeps: median(sweeps.clone()),
+        median_settled_sweeps: median(tail(&sweeps)),
+        median_contacts: median(contacts.clone()),
+        median_settled_contacts: median(tail(&contacts)),
+        median_ns_per_contact_update: median(ns_update),
+        median_detect_ms: median(detect.clone()),
+        median_detect_ns_per_body: median(detect) * 1e6 / bodies as f64,
+        non_converged_steps: non_converged,
+        peak_memory_bytes: peak,
+        peak_memory_bytes_per_body: peak as f64 / bodies as f64,
+        overlap_median_m: percentile(&overlaps, 0.5),
+        overlap_p99_m: percentile(&overlaps, 0.99),
+        overlap_max_m: overlaps.last().copied().unwrap_or(0.0),
+        overlapping_contacts: overlaps.len(),
+        wall_time_s,
+    })
+}
+
+/// `xper bench`.
+pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
+    let scenes = if args.scenes.is_empty() {
+        vec![PathBuf::from("scenes/box10k/scene.toml"), PathBuf::from("scenes/box100k/scene.toml")]
+    } else {
+        args.scenes.clone()
+    };
+    std::fs::create_dir_all(&args.out).map_err(|e| CliError::BadInput(format!("{}: {e}", args.out.display())))?;
+    if args.single {
+        let result = bench_one(&scenes[0], args.steps, args.settled)?;
+        let file = args.out.join(format!("{}.json", result.scene));
+        xper_io::write_json_atomic(&file, &result).map_err(|e| CliError::Runtime(e.to_string()))?;
+        println!("{}", serde_json::to_string_pretty(&result).unwrap_or_default());
+        return Ok(());
+    }
+    let exe = std::env::current_exe().map_err(|e| CliError::Runtime(e.to_string()))?;
+    for scene in &scenes {
+        let mut cmd = std::process::Command::new(&exe);
+        cmd.args(["bench", "--single", "--settled", &args.settled.to_string(), "--out"]).arg(&args.out).arg("--scene").arg(scene);
+        if let Some(s) = args.steps {
+            cmd.args(["--steps", &s.to_string()]);
+        }
+        let status = cmd.status().map_err(|e| CliError::Runtime(e.to_string()))?;
+        if !status.success() {
+            return Err(CliError::Runtime(format!("benchmark of {} failed ({status})", scene.display())));
+        }
+    }
+    write_report(&args.out, &args.report)
+}
+
+/// Regenerates the Markdown report from every JSON result in `dir`.
+fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
+    let mut results: Vec<BenchResult> = std::fs::read_dir(dir)
+        .map_err(|e| CliError::Runtime(format!("{}: {e}", dir.display())))?
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "json"))
+        .filter_map(|p| std::fs::read_to_string(&p).ok().and_then(|s| serde_json::from_str(&s).ok()))
+        .collect();
+    results.sort_by_key(|r| r.bodies);
+    let mut md = String::from(
+        "# Benchmarks\n\nRegenerated by `cargo run --release -p xper-cli -- bench` (see README). Scenes as specified in\n\
+         `../shared/bench/box10k.md`; one thread; medians over the run and over its last 200 steps (settled).\n\n\
+         | scene | bodies | steps | step (ms) | settled step (ms) | sweeps | settled sweeps | contacts | settled contacts | ns / contact update | detection (ms) | detection ns / body | peak memory (MB) | bytes / body | overlap median / p99 / max (um) | non-converged steps |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for r in &results {
+        md.push_str(&format!(
+            "| {} | {} | {} | {:.2} | {:.2} | {} | {} | {} | {} | {:.1} | {:.2} | {:.0} | {:.0} | {:.0} | {:.3} / {:.3} / {:.3} | {} |\n",
+            r.scene, r.bodies, r.steps, r.median_step_ms, r.median_settled_step_ms, r.median_sweeps, r.median_settled_sweeps,
+            r.median_contacts, r.median_settled_contacts, r.median_ns_per_contact_update, r.median_detect_ms,
+            r.median_detect_ns_per_body, r.peak_memory_bytes as f64 / 1e6, r.peak_memory_bytes_per_body,
+            r.overlap_median_m * 1e6, r.overlap_p99_m * 1e6, r.overlap_max_m * 1e6, r.non_converged_steps
+        ));
+    }
+    if let Some(r) = results.first() {
+        md.push_str(&format!("\nMachine: {}.\n", r.machine));
+    }
+    md.push_str(
+        "\n## Reference figures of other codes on box10k (from `../shared/bench/box10k.md`, same kind of machine)\n\n\
+         | code | step (ms) | settled step (ms) | sweeps settled | contacts settled | ns / contact update | detection (ms) | peak memory (MB) | overlap median / p99 (um) |\n\
+         |---|---|---|---|---|---|---|---|---|\n\
+         | LMGC90 2025.rc1 (NLGS, stored Delassus loops) | 99 | 79 | ~10 | 21,700 | 25 | 20-25 | 260 | 0.04 / 0.43 |\n\
+         | pymunk 7.3 (impulses, not NSCD) | 6.5 | - | 10 | - | - | - | - | 6 / 180 |\n",
+    );
+    if let Some(extra) = std::fs::read_to_string(dir.join("NOTES.md")).ok() {
+        md.push_str("\n");
+        md.push_str(&extra);
+    }
+    xper_io::write_atomic(report, md.as_bytes()).map_err(|e| CliError::Runtime(e.to_string()))?;
+    println!("wrote {}", report.display());
+    Ok(())
+}

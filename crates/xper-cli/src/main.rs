@@ -1,0 +1,106 @@
+//! `xper`: check, run and benchmark scenes of rigid bodies in frictional contact.
+//!
+//! Exit codes: 0 success, 1 the run failed (I/O error, blow-up), 2 bad input (scene, command
+//! line, checkpoint).
+
+mod bench;
+mod frames;
+mod run;
+mod world_from_scene;
+
+use clap::{Parser, Subcommand};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// A failure with the exit code it maps to.
+#[derive(Debug)]
+pub enum CliError {
+    /// Bad scene, command line or checkpoint: exit code 2.
+    BadInput(String),
+    /// The run could not complete: exit code 1.
+    Runtime(String),
+}
+
+#[derive(Parser)]
+#[command(name = "xper", version, about = "Non-smooth contact dynamics of rigid bodies (Moreau-Jean, NLGS)")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Validate a scene file: exit 0, or print every error (file:line:column: field: reason) and exit 2.
+    Check {
+        /// Scene file (TOML).
+        scene: PathBuf,
+    },
+    /// Run a scene and write result.pvd, frames/, series.csv, series.png, summary.json, checkpoint.bin.
+    Run {
+        /// Scene file (TOML).
+        scene: PathBuf,
+        /// Output directory (created if needed).
+        #[arg(long)]
+        out: PathBuf,
+        /// Continue from the last checkpoint in the output directory.
+        #[arg(long)]
+        resume: bool,
+        /// Stop after this step (writing a checkpoint), as if the run had been interrupted.
+        #[arg(long)]
+        stop_at_step: Option<u64>,
+        /// No progress bar or final message (also implied when stderr is not a terminal).
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Run benchmark scenes without outputs; print figures, save JSON and regenerate BENCHMARKS.md.
+    Bench(bench::BenchArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Check { scene } => check(&scene),
+        Command::Run { scene, out, resume, stop_at_step, quiet } => {
+            let quiet = quiet || !std::io::stderr().is_terminal();
+            run::run(&run::RunOptions { scene, out, resume, stop_at_step }, quiet)
+        }
+        Command::Bench(args) => bench::bench(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(CliError::BadInput(message)) => {
+            eprintln!("{message}");
+            ExitCode::from(2)
+        }
+        Err(CliError::Runtime(message)) => {
+            eprintln!("error: {message}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+fn check(path: &std::path::Path) -> Result<(), CliError> {
+    let scene = xper_scene::load_scene(path).map_err(|e| CliError::BadInput(e.to_string()))?;
+    let walls = scene.bodies.iter().filter(|b| matches!(b.shape, xper_scene::ShapeDesc::Segment { .. })).count();
+    println!(
+        "{}: scene `{}` is valid: {} bodies ({} walls), {} groups, {} laws, {} steps of {} s",
+        path.display(),
+        scene.name,
+        scene.bodies.len(),
+        walls,
+        scene.groups.len(),
+        scene.laws.len(),
+        scene.steps,
+        scene.dt
+    );
+    let n = scene.groups.len();
+    for a in 0..n {
+        for b in a..n {
+            if !scene.laws.iter().any(|l| (l.groups == [a, b]) || (l.groups == [b, a])) {
+                println!("note: groups `{}` and `{}` have no law: they do not interact", scene.groups[a], scene.groups[b]);
+            }
+        }
+    }
+    Ok(())
+}

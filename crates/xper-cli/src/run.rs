@@ -1,0 +1,298 @@
+//! `xper run`: the time loop with its outputs (frames, series, checkpoints, summary, plot).
+
+use crate::frames::{bodies_grid, contacts_grid};
+use crate::world_from_scene::world_from_scene;
+use crate::CliError;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+use xper_io::{plot_panels, write_atomic, write_json_atomic, write_vtu, Curve, Panel, PvdCollection, SeriesTable};
+use xper_nscd::{MoreauJean, StepReport, World};
+
+/// Columns of `series.csv`, one row per step.
+pub const SERIES_COLUMNS: [&str; 18] = [
+    "step",
+    "time",
+    "kinetic_energy",
+    "potential_energy",
+    "dissipated_energy",
+    "external_work",
+    "projection_work",
+    "energy_error",
+    "contacts",
+    "active_contacts",
+    "iterations",
+    "residual",
+    "converged",
+    "projection_iterations",
+    "max_overlap",
+    "wall_time",
+    "detect_time",
+    "solve_time",
+];
+
+/// Options of `xper run`.
+pub struct RunOptions {
+    /// Scene file.
+    pub scene: PathBuf,
+    /// Output directory.
+    pub out: PathBuf,
+    /// Continue from the checkpoint in `out`.
+    pub resume: bool,
+    /// Stop (with a checkpoint) after this step, as if interrupted.
+    pub stop_at_step: Option<u64>,
+}
+
+/// Summary of a run (`summary.json`).
+#[derive(Serialize)]
+struct Summary {
+    scene: String,
+    scene_file: String,
+    status: &'static str,
+    message: String,
+    bodies: usize,
+    dt: f64,
+    steps: u64,
+    simulated_time: f64,
+    wall_time_s: f64,
+    average_iterations: f64,
+    max_iterations: f64,
+    non_converged_steps: usize,
+    average_contacts: f64,
+    max_contacts: f64,
+    peak_memory_bytes: Option<u64>,
+    xper_version: &'static str,
+}
+
+/// FNV-1a hash of the scene text: a checkpoint resumes only the scene it was written for.
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf29ce484222325u64, |h, &b| (h ^ b as u64).wrapping_mul(0x100000001b3))
+}
+
+fn io_err(e: std::io::Error) -> CliError {
+    CliError::Runtime(e.to_string())
+}
+
+struct Outputs {
+    dir: PathBuf,
+    series: SeriesTable,
+    pvd: PvdCollection,
+    scene_hash: u64,
+}
+
+impl Outputs {
+    fn write_frame(&mut self, world: &World) -> Result<(), CliError> {
+        let frames = self.dir.join("frames");
+        let parts = [
+            ("bodies", bodies_grid(world)),
+            ("contacts", contacts_grid(world, false)),
+            ("force_chains", contacts_grid(world, true)),
+        ];
+        self.pvd.truncate_after(world.time - 0.5 * world.params.dt);
+        for (part, (name, grid)) in parts.iter().enumerate() {
+            let file = format!("frames/{name}_{:08}.vtu", world.step);
+            write_vtu(&frames.join(format!("{name}_{:08}.vtu", world.step)), grid).map_err(io_err)?;
+            self.pvd.push(world.time, part as u32, file);
+        }
+        self.pvd.write(&self.dir.join("result.pvd")).map_err(io_err)
+    }
+
+    fn write_checkpoint(&self, world: &World) -> Result<(), CliError> {
+        let bytes = bincode::serialize(&(self.scene_hash, world.to_bytes())).map_err(|e| CliError::Runtime(e.to_string()))?;
+        write_atomic(&self.dir.join("checkpoint.bin"), &bytes).map_err(io_err)?;
+        self.series.write_csv(&self.dir.join("series.csv")).map_err(io_err)
+    }
+
+    fn push(&mut self, r: &StepReport) {
+        self.series.push(vec![
+            r.step as f64,
+            r.time,
+            r.kinetic,
+            r.potential,
+            r.dissipated,
+            r.external_work,
+            r.projection_work,
+            r.energy_error,
+            r.contacts as f64,
+            r.active as f64,
+            r.iterations as f64,
+            r.residual,
+            r.converged as u8 as f64,
+            r.projection_iterations as f64,
+            r.max_overlap,
+            r.times.total,
+            r.times.detect,
+            r.times.solve,
+        ]);
+    }
+}
+
+fn read_checkpoint(dir: &Path, scene_hash: u64) -> Result<World, CliError> {
+    let path = dir.join("checkpoint.bin");
+    let bytes = std::fs::read(&path)
+        .map_err(|e| CliError::BadInput(format!("{}: cannot resume: {e}", path.display())))?;
+    let (hash, world): (u64, Vec<u8>) = bincode::deserialize(&bytes)
+        .map_err(|e| CliError::BadInput(format!("{}: not an xper checkpoint: {e}", path.display())))?;
+    if hash != scene_hash {
+        return Err(CliError::BadInput(format!(
+            "{}: the checkpoint was written for a different scene file (the scene changed since)",
+            path.display()
+        )));
+    }
+    World::from_bytes(&world).map_err(|e| CliError::BadInput(format!("{}: {e}", path.display())))
+}
+
+/// Runs a scene; see [`RunOptions`].
+pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
+    let text = std::fs::read(&opts.scene)
+        .map_err(|e| CliError::BadInput(format!("{}: cannot read scene: {e}", opts.scene.display())))?;
+    let scene = xper_scene::load_scene(&opts.scene).map_err(|e| CliError::BadInput(e.to_string()))?;
+    std::fs::create_dir_all(opts.out.join("frames"))
+        .map_err(|e| CliError::BadInput(format!("{}: cannot create output directory: {e}", opts.out.display())))?;
+    let mut out = Outputs {
+        dir: opts.out.clone(),
+        series: SeriesTable::new(&SERIES_COLUMNS),
+        pvd: PvdCollection::default(),
+        scene_hash: fnv1a(&text),
+    };
+    let mut world = if opts.resume {
+        let world = read_checkpoint(&opts.out, out.scene_hash)?;
+        let series_path = opts.out.join("series.csv");
+        out.series = SeriesTable::read_csv(&series_path).map_err(|e| CliError::BadInput(e.to_string()))?;
+        out.series.truncate_rows_where_first_column_greater_than(world.step as f64);
+        out.pvd = PvdCollection::read(&opts.out.join("result.pvd")).map_err(|e| CliError::BadInput(e.to_string()))?;
+        world
+    } else {
+        let world = world_from_scene(&scene);
+        out.write_frame(&world)?;
+        world
+    };
+    let last = opts.stop_at_step.map_or(scene.steps, |s| s.min(scene.steps));
+    let bar = progress_bar(quiet, scene.steps, world.step);
+    let mut stepper = MoreauJean::new();
+    let started = Instant::now();
+    let mut failure = None;
+    while world.step < last {
+        match stepper.step(&mut world) {
+            Ok(report) => {
+                out.push(&report);
+                if world.step % scene.output.frame_every == 0 || world.step == scene.steps {
+                    out.write_frame(&world)?;
+                }
+                if world.step % scene.output.checkpoint_every == 0 {
+                    out.write_checkpoint(&world)?;
+                }
+                if world.step % 10 == 0 || world.step == last {
+                    bar.set_position(world.step);
+                    bar.set_message(format!(
+                        "t = {:.4e} s, {} contacts, {} sweeps",
+                        world.time, report.contacts, report.iterations
+                    ));
+                }
+            }
+            Err(e) => {
+                failure = Some(format!(
+                    "step {} (t = {:.6e} s): {e}; the last checkpoint is kept in {}",
+                    world.step + 1,
+                    world.time,
+                    opts.out.join("checkpoint.bin").display()
+                ));
+                break;
+            }
+        }
+    }
+    bar.finish_and_clear();
+    if failure.is_none() {
+        out.write_checkpoint(&world)?;
+    } else {
+        out.series.write_csv(&opts.out.join("series.csv")).map_err(io_err)?;
+    }
+    let status = match (&failure, world.step == scene.steps) {
+        (Some(_), _) => "failed",
+        (None, true) => "completed",
+        (None, false) => "stopped",
+    };
+    write_summary(&out, &scene, &world, status, failure.clone().unwrap_or_default(), &opts.scene)?;
+    write_plot(&out.series, &opts.out.join("series.png"), &scene.name)?;
+    if !quiet {
+        eprintln!("{}: {} of {} steps in {:.2} s, outputs in {}", status, world.step, scene.steps, started.elapsed().as_secs_f64(), opts.out.display());
+    }
+    match failure {
+        Some(message) => Err(CliError::Runtime(message)),
+        None => Ok(()),
+    }
+}
+
+fn progress_bar(quiet: bool, steps: u64, position: u64) -> ProgressBar {
+    let target = if quiet { ProgressDrawTarget::hidden() } else { ProgressDrawTarget::stderr() };
+    let bar = ProgressBar::with_draw_target(Some(steps), target);
+    let style = ProgressStyle::with_template("{bar:30} {pos}/{len} steps, {per_sec}, ETA {eta}, {msg}")
+        .unwrap_or_else(|_| ProgressStyle::default_bar());
+    bar.set_style(style);
+    bar.set_position(position);
+    bar
+}
+
+fn write_summary(out: &Outputs, scene: &xper_scene::Scene, world: &World, status: &'static str, message: String, file: &Path) -> Result<(), CliError> {
+    let col = |name: &str| out.series.column(name).unwrap_or_default();
+    let mean = |v: &[f64]| if v.is_empty() { 0.0 } else { v.iter().sum::<f64>() / v.len() as f64 };
+    let max = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
+    let (iterations, contacts) = (col("iterations"), col("contacts"));
+    let summary = Summary {
+        scene: scene.name.clone(),
+        scene_file: file.display().to_string(),
+        status,
+        message,
+        bodies: world.bodies.len(),
+        dt: scene.dt,
+        steps: world.step,
+        simulated_time: world.time,
+        wall_time_s: col("wall_time").iter().sum(),
+        average_iterations: mean(&iterations),
+        max_iterations: max(&iterations),
+        non_converged_steps: col("converged").iter().filter(|&&c| c == 0.0).count(),
+        average_contacts: mean(&contacts),
+        max_contacts: max(&contacts),
+        peak_memory_bytes: xper_io::peak_memory_bytes(),
+        xper_version: env!("CARGO_PKG_VERSION"),
+    };
+    write_json_atomic(&out.dir.join("summary.json"), &summary).map_err(io_err)
+}
+
+/// `series.png`: energies, solver sweeps, residual and contacts against time.
+pub fn write_plot(series: &SeriesTable, path: &Path, title: &str) -> Result<(), CliError> {
+    let time = series.column("time").unwrap_or_default();
+    let curve = |name: &str, label: &str| Curve {
+        label: label.into(),
+        points: time.iter().copied().zip(series.column(name).unwrap_or_default()).collect(),
+    };
+    let potential0 = series.column("potential_energy").and_then(|p| p.first().copied()).unwrap_or(0.0);
+    let mut potential = curve("potential_energy", "potential - initial potential");
+    potential.points.iter_mut().for_each(|p| p.1 -= potential0);
+    let panel = |title: &str, y: &str, curves: Vec<Curve>, log_y: bool| Panel {
+        title: title.into(),
+        x_label: "time (s)".into(),
+        y_label: y.into(),
+        curves,
+        log_y,
+    };
+    let panels = [
+        panel(
+            "Energy budget",
+            "energy (J/m)",
+            vec![
+                curve("kinetic_energy", "kinetic"),
+                potential,
+                curve("dissipated_energy", "dissipated"),
+                curve("external_work", "external work"),
+                curve("energy_error", "balance error"),
+            ],
+            false,
+        ),
+        panel("Contact solver", "NLGS sweeps", vec![curve("iterations", "sweeps per step")], false),
+        panel("Solver residual", "residual", vec![curve("residual", "final residual")], true),
+        panel("Contacts", "count", vec![curve("contacts", "within alert distance"), curve("active_contacts", "active")], false),
+    ];
+    plot_panels(path, title, &panels, 1000, 300).map_err(io_err)
+}

@@ -1,0 +1,90 @@
+//! Conversion of a validated scene description into an engine [`World`].
+
+use xper_bodies::{Body, BodySet, ConvexPolygon, Drive, Shape, TimeFunction};
+use xper_laws::{InteractionLaw, LawTable, SignoriniCoulomb};
+use xper_math::{Real, Vector};
+use xper_nscd::{StepParams, World};
+use xper_scene::{Scene, ShapeDesc};
+use xper_solver::{ConvergenceNorm, NlgsParams};
+
+/// Overlap allowed before the position projection runs, relative to the smallest body size.
+pub const PROJECTION_TOLERANCE_RELATIVE: Real = 1e-4;
+
+fn time_function(f: &xper_scene::TimeFunction) -> TimeFunction {
+    match f {
+        xper_scene::TimeFunction::Constant(v) => TimeFunction::Constant(*v),
+        xper_scene::TimeFunction::Table(t) => TimeFunction::Table(t.clone()),
+        xper_scene::TimeFunction::Sine { amplitude, frequency, phase, offset } => TimeFunction::Sine {
+            amplitude: *amplitude,
+            frequency: *frequency,
+            phase: *phase,
+            offset: *offset,
+        },
+    }
+}
+
+fn drive(d: &xper_scene::Drive) -> Drive {
+    match d {
+        xper_scene::Drive::Free => Drive::Free,
+        xper_scene::Drive::Velocity(f) => Drive::Velocity(time_function(f)),
+        xper_scene::Drive::Force(f) => Drive::Force(time_function(f)),
+    }
+}
+
+/// Builds the world of a scene at time 0.
+pub fn world_from_scene(scene: &Scene) -> World {
+    let mut bodies = BodySet::new();
+    let mut smallest = Real::INFINITY;
+    for b in &scene.bodies {
+        let shape = match &b.shape {
+            ShapeDesc::Disk { radius } => Shape::Disk { radius: *radius },
+            ShapeDesc::Polygon { vertices } => {
+                Shape::Polygon(ConvexPolygon::new(vertices.iter().map(|v| Vector::new(v[0], v[1])).collect()))
+            }
+            ShapeDesc::Segment { half_length } => Shape::Segment { half_length: *half_length },
+        };
+        if !matches!(shape, Shape::Segment { .. }) {
+            smallest = smallest.min(shape.size());
+        }
+        bodies.insert(Body {
+            shape,
+            position: Vector::new(b.position[0], b.position[1]),
+            angle: b.angle,
+            velocity: Vector::new(b.velocity[0], b.velocity[1]),
+            angular_velocity: b.angular_velocity,
+            mass: b.mass,
+            inertia: b.inertia,
+            group: b.group as u16,
+            drives: [drive(&b.drives[0]), drive(&b.drives[1]), drive(&b.drives[2])],
+        });
+    }
+    let mut laws = LawTable::new(scene.groups.len());
+    for law in &scene.laws {
+        laws.set(
+            law.groups[0],
+            law.groups[1],
+            InteractionLaw::SignoriniCoulomb(SignoriniCoulomb { friction: law.friction, restitution: law.restitution }),
+        );
+    }
+    let s = &scene.solver;
+    let params = StepParams {
+        dt: scene.dt,
+        theta: scene.theta,
+        gravity: Vector::new(scene.gravity[0], scene.gravity[1]),
+        alert_distance: scene.alert_distance,
+        nlgs: NlgsParams {
+            tolerance: s.tolerance,
+            max_iterations: s.max_iterations,
+            check_every: s.check_every,
+            relaxation: s.relaxation,
+            norm: match s.norm {
+                xper_scene::ConvergenceNorm::Quad => ConvergenceNorm::Quad,
+                xper_scene::ConvergenceNorm::Maxm => ConvergenceNorm::Maxm,
+                xper_scene::ConvergenceNorm::NaturalMap => ConvergenceNorm::NaturalMap,
+            },
+        },
+        projection_tolerance: (s.position_projection && smallest.is_finite())
+            .then_some(PROJECTION_TOLERANCE_RELATIVE * smallest),
+    };
+    World::new(bodies, laws, params)
+}

@@ -1,0 +1,57 @@
+//! `--resume` after a stop ends in exactly the state of an uninterrupted run.
+
+mod common;
+use common::{deposit_scene, temp_dir, xper};
+use xper_io::SeriesTable;
+
+#[test]
+fn resume_after_stop_matches_uninterrupted_run() {
+    let dir = temp_dir("resume");
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, deposit_scene(120, 150)).unwrap();
+    let (straight, split) = (dir.join("straight"), dir.join("split"));
+    let s = scene.to_str().unwrap();
+    let out = xper(&["run", s, "--out", straight.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    // Stop between two checkpoints (every 40 steps): the resume restarts from step 80.
+    let out = xper(&["run", s, "--out", split.to_str().unwrap(), "--stop-at-step", "97"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let summary = std::fs::read_to_string(split.join("summary.json")).unwrap();
+    assert!(summary.contains("\"status\": \"stopped\""), "{summary}");
+    let out = xper(&["run", s, "--out", split.to_str().unwrap(), "--resume"]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+
+    let a = std::fs::read(straight.join("checkpoint.bin")).unwrap();
+    let b = std::fs::read(split.join("checkpoint.bin")).unwrap();
+    assert!(a == b, "final states differ");
+    let sa = SeriesTable::read_csv(&straight.join("series.csv")).unwrap();
+    let sb = SeriesTable::read_csv(&split.join("series.csv")).unwrap();
+    assert_eq!(sa.rows.len(), 150);
+    assert_eq!(sa.rows.len(), sb.rows.len());
+    let timing = ["wall_time", "detect_time", "solve_time"];
+    for (ra, rb) in sa.rows.iter().zip(&sb.rows) {
+        for (k, name) in sa.columns.iter().enumerate() {
+            if !timing.contains(&name.as_str()) {
+                assert_eq!(ra[k].to_bits(), rb[k].to_bits(), "column {name} at step {}", ra[0]);
+            }
+        }
+    }
+    let pvd = std::fs::read_to_string(split.join("result.pvd")).unwrap();
+    assert_eq!(pvd, std::fs::read_to_string(straight.join("result.pvd")).unwrap());
+}
+
+#[test]
+fn resume_refuses_a_changed_scene_and_a_missing_checkpoint() {
+    let dir = temp_dir("resume-refuse");
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, deposit_scene(20, 10)).unwrap();
+    let out = xper(&["run", scene.to_str().unwrap(), "--out", dir.join("none").to_str().unwrap(), "--resume"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("checkpoint.bin"));
+    let run = dir.join("run");
+    assert!(xper(&["run", scene.to_str().unwrap(), "--out", run.to_str().unwrap(), "--stop-at-step", "5"]).status.success());
+    std::fs::write(&scene, deposit_scene(21, 10)).unwrap();
+    let out = xper(&["run", scene.to_str().unwrap(), "--out", run.to_str().unwrap(), "--resume"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("different scene"));
+}
