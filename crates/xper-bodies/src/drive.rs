@@ -30,7 +30,9 @@ impl TimeFunction {
         match self {
             TimeFunction::Constant(v) => *v,
             TimeFunction::Table(points) => {
-                let Some(first) = points.first() else { return 0.0 };
+                let Some(first) = points.first() else {
+                    return 0.0;
+                };
                 if t <= first.0 {
                     return first.1;
                 }
@@ -42,9 +44,12 @@ impl TimeFunction {
                 }
                 points[points.len() - 1].1
             }
-            TimeFunction::Sine { amplitude, frequency, phase, offset } => {
-                offset + amplitude * (2.0 * std::f64::consts::PI * frequency * t + phase).sin()
-            }
+            TimeFunction::Sine {
+                amplitude,
+                frequency,
+                phase,
+                offset,
+            } => offset + amplitude * (2.0 * std::f64::consts::PI * frequency * t + phase).sin(),
         }
     }
 }
@@ -83,7 +88,12 @@ mod tests {
 
     #[test]
     fn sine_matches_formula() {
-        let f = TimeFunction::Sine { amplitude: 2.0, frequency: 0.25, phase: 0.0, offset: 1.0 };
+        let f = TimeFunction::Sine {
+            amplitude: 2.0,
+            frequency: 0.25,
+            phase: 0.0,
+            offset: 1.0,
+        };
         assert!((f.eval(1.0) - 3.0).abs() < 1e-15);
     }
 }

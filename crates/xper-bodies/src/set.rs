@@ -101,7 +101,13 @@ impl BodySet {
     /// Adds a body and returns its handle.
     pub fn insert(&mut self, body: Body) -> BodyHandle {
         let handle = BodyHandle(self.len() as u32);
-        let inv = |m: Real| if m.is_finite() && m > 0.0 { 1.0 / m } else { 0.0 };
+        let inv = |m: Real| {
+            if m.is_finite() && m > 0.0 {
+                1.0 / m
+            } else {
+                0.0
+            }
+        };
         let mut inv_mass = [inv(body.mass), inv(body.mass), inv(body.inertia)];
         for (k, d) in body.drives.iter().enumerate() {
             if d.is_imposed_velocity() {
@@ -128,7 +134,11 @@ impl BodySet {
     /// Generalised velocity (vx, vy, w) of a body.
     #[inline(always)]
     pub fn generalized_velocity(&self, b: usize) -> [Real; DOFS] {
-        [self.velocity[b].x, self.velocity[b].y, self.angular_velocity[b]]
+        [
+            self.velocity[b].x,
+            self.velocity[b].y,
+            self.angular_velocity[b],
+        ]
     }
 
     /// Sets the generalised velocity of a body.
@@ -183,7 +193,9 @@ impl Body {
     /// A fixed wall segment from `a` to `b`.
     pub fn wall(a: Vector, b: Vector) -> Self {
         let d = b - a;
-        let shape = Shape::Segment { half_length: d.norm() / 2.0 };
+        let shape = Shape::Segment {
+            half_length: d.norm() / 2.0,
+        };
         let zero = || Drive::Velocity(crate::TimeFunction::Constant(0.0));
         Body {
             angle: d.y.atan2(d.x),

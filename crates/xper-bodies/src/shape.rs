@@ -25,7 +25,11 @@ impl ConvexPolygon {
             })
             .collect();
         let bounding_radius = vertices.iter().map(|v| v.norm()).fold(0.0, Real::max);
-        ConvexPolygon { vertices, normals, bounding_radius }
+        ConvexPolygon {
+            vertices,
+            normals,
+            bounding_radius,
+        }
     }
 
     /// Area (m^2) and polar second moment of area about the centroid (m^4).
@@ -65,7 +69,10 @@ impl Shape {
         match self {
             Shape::Disk { radius } => Aabb::from_center(*position, Vector::repeat(*radius)),
             Shape::Polygon(p) => {
-                let mut b = Aabb { min: *position, max: *position };
+                let mut b = Aabb {
+                    min: *position,
+                    max: *position,
+                };
                 for v in &p.vertices {
                     let w = position + rotate(v, angle);
                     b.min = b.min.inf(&w);
@@ -76,7 +83,10 @@ impl Shape {
             Shape::Segment { half_length } => {
                 let d = rotate(&Vector::new(*half_length, 0.0), angle);
                 let (a, b) = (position - d, position + d);
-                Aabb { min: a.inf(&b), max: a.sup(&b) }
+                Aabb {
+                    min: a.inf(&b),
+                    max: a.sup(&b),
+                }
             }
         }
     }

@@ -77,7 +77,11 @@ fn percentile(sorted: &[f64], p: f64) -> f64 {
 fn machine() -> String {
     let cpu = std::fs::read_to_string("/proc/cpuinfo")
         .ok()
-        .and_then(|s| s.lines().find(|l| l.starts_with("model name")).map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string()))
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string())
+        })
         .unwrap_or_else(|| "unknown CPU".into());
     let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
     format!("{cpu}, {cores} cores, one thread used")
@@ -89,11 +93,14 @@ fn bench_one(path: &Path, steps: Option<u64>, settled: usize) -> Result<BenchRes
     let mut world = world_from_scene(&scene);
     let steps = steps.map_or(scene.steps, |s| s.min(scene.steps));
     let mut stepper = MoreauJean::new();
-    let (mut total, mut sweeps, mut contacts, mut ns_update, mut detect) = (vec![], vec![], vec![], vec![], vec![]);
+    let (mut total, mut sweeps, mut contacts, mut ns_update, mut detect) =
+        (vec![], vec![], vec![], vec![], vec![]);
     let mut non_converged = 0;
     let started = std::time::Instant::now();
     for _ in 0..steps {
-        let r = stepper.step(&mut world).map_err(|e| CliError::Runtime(format!("{}: {e}", path.display())))?;
+        let r = stepper
+            .step(&mut world)
+            .map_err(|e| CliError::Runtime(format!("{}: {e}", path.display())))?;
         total.push(r.times.total * 1e3);
         sweeps.push(r.iterations as f64);
         contacts.push(r.contacts as f64);
@@ -105,8 +112,18 @@ fn bench_one(path: &Path, steps: Option<u64>, settled: usize) -> Result<BenchRes
     }
     let wall_time_s = started.elapsed().as_secs_f64();
     let mut final_contacts = ContactSet::default();
-    Detector::new().detect(&world.bodies, world.params.alert_distance, |a, b| world.laws.between(a, b), &mut final_contacts);
-    let mut overlaps: Vec<f64> = final_contacts.contacts.iter().filter(|c| c.gap < 0.0).map(|c| -c.gap).collect();
+    Detector::new().detect(
+        &world.bodies,
+        world.params.alert_distance,
+        |a, b| world.laws.between(a, b),
+        &mut final_contacts,
+    );
+    let mut overlaps: Vec<f64> = final_contacts
+        .contacts
+        .iter()
+        .filter(|c| c.gap < 0.0)
+        .map(|c| -c.gap)
+        .collect();
     overlaps.sort_by(f64::total_cmp);
     let tail = |v: &[f64]| v[v.len().saturating_sub(settled)..].to_vec();
     let peak = xper_io::peak_memory_bytes().unwrap_or(0);
@@ -139,28 +156,47 @@ fn bench_one(path: &Path, steps: Option<u64>, settled: usize) -> Result<BenchRes
 /// `xper bench`.
 pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
     let scenes = if args.scenes.is_empty() {
-        vec![PathBuf::from("scenes/box10k/scene.toml"), PathBuf::from("scenes/box100k/scene.toml")]
+        vec![
+            PathBuf::from("scenes/box10k/scene.toml"),
+            PathBuf::from("scenes/box100k/scene.toml"),
+        ]
     } else {
         args.scenes.clone()
     };
-    std::fs::create_dir_all(&args.out).map_err(|e| CliError::BadInput(format!("{}: {e}", args.out.display())))?;
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| CliError::BadInput(format!("{}: {e}", args.out.display())))?;
     if args.single {
         let result = bench_one(&scenes[0], args.steps, args.settled)?;
         let file = args.out.join(format!("{}.json", result.scene));
         xper_io::write_json_atomic(&file, &result).map_err(|e| CliError::Runtime(e.to_string()))?;
-        println!("{}", serde_json::to_string_pretty(&result).unwrap_or_default());
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&result).unwrap_or_default()
+        );
         return Ok(());
     }
     let exe = std::env::current_exe().map_err(|e| CliError::Runtime(e.to_string()))?;
     for scene in &scenes {
         let mut cmd = std::process::Command::new(&exe);
-        cmd.args(["bench", "--single", "--settled", &args.settled.to_string(), "--out"]).arg(&args.out).arg("--scene").arg(scene);
+        cmd.args([
+            "bench",
+            "--single",
+            "--settled",
+            &args.settled.to_string(),
+            "--out",
+        ])
+        .arg(&args.out)
+        .arg("--scene")
+        .arg(scene);
         if let Some(s) = args.steps {
             cmd.args(["--steps", &s.to_string()]);
         }
         let status = cmd.status().map_err(|e| CliError::Runtime(e.to_string()))?;
         if !status.success() {
-            return Err(CliError::Runtime(format!("benchmark of {} failed ({status})", scene.display())));
+            return Err(CliError::Runtime(format!(
+                "benchmark of {} failed ({status})",
+                scene.display()
+            )));
         }
     }
     write_report(&args.out, &args.report)
@@ -172,7 +208,11 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
         .map_err(|e| CliError::Runtime(format!("{}: {e}", dir.display())))?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "json"))
-        .filter_map(|p| std::fs::read_to_string(&p).ok().and_then(|s| serde_json::from_str(&s).ok()))
+        .filter_map(|p| {
+            std::fs::read_to_string(&p)
+                .ok()
+                .and_then(|s| serde_json::from_str(&s).ok())
+        })
         .collect();
     results.sort_by_key(|r| r.bodies);
     let mut md = String::from(
@@ -200,8 +240,8 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
          | LMGC90 2025.rc1 (NLGS, stored Delassus loops) | 99 | 79 | ~10 | 21,700 | 25 | 20-25 | 260 | 0.04 / 0.43 |\n\
          | pymunk 7.3 (impulses, not NSCD) | 6.5 | - | 10 | - | - | - | - | 6 / 180 |\n",
     );
-    if let Some(extra) = std::fs::read_to_string(dir.join("NOTES.md")).ok() {
-        md.push_str("\n");
+    if let Ok(extra) = std::fs::read_to_string(dir.join("NOTES.md")) {
+        md.push('\n');
         md.push_str(&extra);
     }
     xper_io::write_atomic(report, md.as_bytes()).map_err(|e| CliError::Runtime(e.to_string()))?;

@@ -11,11 +11,19 @@ use xper_nscd::World;
 const DISK_SIDES: usize = 16;
 
 fn f64_array(name: &str, components: usize, values: Vec<f64>) -> DataArray {
-    DataArray { name: name.into(), components, values: DataValues::F64(values) }
+    DataArray {
+        name: name.into(),
+        components,
+        values: DataValues::F64(values),
+    }
 }
 
 fn i32_array(name: &str, values: Vec<i32>) -> DataArray {
-    DataArray { name: name.into(), components: 1, values: DataValues::I32(values) }
+    DataArray {
+        name: name.into(),
+        components: 1,
+        values: DataValues::I32(values),
+    }
 }
 
 /// Bodies: disks as 16-sided polygons, polygons as polygons, walls as lines; cell data
@@ -31,7 +39,8 @@ pub fn bodies_grid(world: &World) -> UnstructuredGrid {
             Shape::Disk { radius } => {
                 for s in 0..DISK_SIDES {
                     let phi = angle + 2.0 * std::f64::consts::PI * s as f64 / DISK_SIDES as f64;
-                    g.points.push([p.x + radius * phi.cos(), p.y + radius * phi.sin(), 0.0]);
+                    g.points
+                        .push([p.x + radius * phi.cos(), p.y + radius * phi.sin(), 0.0]);
                 }
                 (VTK_POLYGON, DISK_SIDES, 0)
             }
@@ -59,7 +68,13 @@ pub fn bodies_grid(world: &World) -> UnstructuredGrid {
         i32_array("id", b.id.iter().map(|&i| i as i32).collect()),
         i32_array("group", b.group.iter().map(|&i| i as i32).collect()),
         i32_array("shape", kind),
-        f64_array("velocity", 3, (0..n).flat_map(|k| [b.velocity[k].x, b.velocity[k].y, 0.0]).collect()),
+        f64_array(
+            "velocity",
+            3,
+            (0..n)
+                .flat_map(|k| [b.velocity[k].x, b.velocity[k].y, 0.0])
+                .collect(),
+        ),
         f64_array("angular_velocity", 1, b.angular_velocity.clone()),
         f64_array("angle", 1, b.angle.clone()),
     ];
@@ -90,7 +105,11 @@ pub fn contacts_grid(world: &World, chains: bool) -> UnstructuredGrid {
         if chains {
             for &body in &c.bodies {
                 let b = body as usize;
-                let end = if world.bodies.is_dynamic(b) { world.bodies.position[b] } else { c.point };
+                let end = if world.bodies.is_dynamic(b) {
+                    world.bodies.position[b]
+                } else {
+                    c.point
+                };
                 g.points.push([end.x, end.y, 0.0]);
             }
             g.add_cell(VTK_LINE, &[first, first + 1]);
@@ -100,10 +119,28 @@ pub fn contacts_grid(world: &World, chains: bool) -> UnstructuredGrid {
         }
     }
     g.cell_data = vec![
-        f64_array("normal", 3, contacts.iter().flat_map(|c| [c.normal.x, c.normal.y, 0.0]).collect()),
-        f64_array("normal_impulse", 1, contacts.iter().map(|c| c.impulse[0]).collect()),
-        f64_array("tangential_impulse", 1, contacts.iter().map(|c| c.impulse[1]).collect()),
-        i32_array("status", contacts.iter().map(|c| status(world, c)).collect()),
+        f64_array(
+            "normal",
+            3,
+            contacts
+                .iter()
+                .flat_map(|c| [c.normal.x, c.normal.y, 0.0])
+                .collect(),
+        ),
+        f64_array(
+            "normal_impulse",
+            1,
+            contacts.iter().map(|c| c.impulse[0]).collect(),
+        ),
+        f64_array(
+            "tangential_impulse",
+            1,
+            contacts.iter().map(|c| c.impulse[1]).collect(),
+        ),
+        i32_array(
+            "status",
+            contacts.iter().map(|c| status(world, c)).collect(),
+        ),
         f64_array("gap", 1, contacts.iter().map(|c| c.gap).collect()),
     ];
     g

@@ -3,27 +3,19 @@
 //! Exit codes: 0 success, 1 the run failed (I/O error, blow-up), 2 bad input (scene, command
 //! line, checkpoint).
 
-mod bench;
-mod frames;
-mod run;
-mod world_from_scene;
-
 use clap::{Parser, Subcommand};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-/// A failure with the exit code it maps to.
-#[derive(Debug)]
-pub enum CliError {
-    /// Bad scene, command line or checkpoint: exit code 2.
-    BadInput(String),
-    /// The run could not complete: exit code 1.
-    Runtime(String),
-}
+use xper_cli::{bench, run, validation, CliError};
 
 #[derive(Parser)]
-#[command(name = "xper", version, about = "Non-smooth contact dynamics of rigid bodies (Moreau-Jean, NLGS)")]
+#[command(
+    name = "xper",
+    version,
+    about = "Non-smooth contact dynamics of rigid bodies (Moreau-Jean, NLGS)"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -55,17 +47,38 @@ enum Command {
     },
     /// Run benchmark scenes without outputs; print figures, save JSON and regenerate BENCHMARKS.md.
     Bench(bench::BenchArgs),
+    /// Run the validation cases against their exact answers and regenerate VALIDATION.md.
+    Validate {
+        /// The report to write.
+        #[arg(long, default_value = "VALIDATION.md")]
+        report: PathBuf,
+    },
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Check { scene } => check(&scene),
-        Command::Run { scene, out, resume, stop_at_step, quiet } => {
+        Command::Run {
+            scene,
+            out,
+            resume,
+            stop_at_step,
+            quiet,
+        } => {
             let quiet = quiet || !std::io::stderr().is_terminal();
-            run::run(&run::RunOptions { scene, out, resume, stop_at_step }, quiet)
+            run::run(
+                &run::RunOptions {
+                    scene,
+                    out,
+                    resume,
+                    stop_at_step,
+                },
+                quiet,
+            )
         }
         Command::Bench(args) => bench::bench(&args),
+        Command::Validate { report } => validation::write_report(&report),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -82,7 +95,11 @@ fn main() -> ExitCode {
 
 fn check(path: &std::path::Path) -> Result<(), CliError> {
     let scene = xper_scene::load_scene(path).map_err(|e| CliError::BadInput(e.to_string()))?;
-    let walls = scene.bodies.iter().filter(|b| matches!(b.shape, xper_scene::ShapeDesc::Segment { .. })).count();
+    let walls = scene
+        .bodies
+        .iter()
+        .filter(|b| matches!(b.shape, xper_scene::ShapeDesc::Segment { .. }))
+        .count();
     println!(
         "{}: scene `{}` is valid: {} bodies ({} walls), {} groups, {} laws, {} steps of {} s",
         path.display(),
@@ -97,8 +114,15 @@ fn check(path: &std::path::Path) -> Result<(), CliError> {
     let n = scene.groups.len();
     for a in 0..n {
         for b in a..n {
-            if !scene.laws.iter().any(|l| (l.groups == [a, b]) || (l.groups == [b, a])) {
-                println!("note: groups `{}` and `{}` have no law: they do not interact", scene.groups[a], scene.groups[b]);
+            if !scene
+                .laws
+                .iter()
+                .any(|l| (l.groups == [a, b]) || (l.groups == [b, a]))
+            {
+                println!(
+                    "note: groups `{}` and `{}` have no law: they do not interact",
+                    scene.groups[a], scene.groups[b]
+                );
             }
         }
     }

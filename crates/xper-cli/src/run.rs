@@ -7,7 +7,10 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use xper_io::{plot_panels, write_atomic, write_json_atomic, write_vtu, Curve, Panel, PvdCollection, SeriesTable};
+use xper_io::{
+    plot_panels, write_atomic, write_json_atomic, write_vtu, Curve, Panel, PvdCollection,
+    SeriesTable,
+};
 use xper_nscd::{MoreauJean, StepReport, World};
 
 /// Columns of `series.csv`, one row per step.
@@ -67,7 +70,9 @@ struct Summary {
 
 /// FNV-1a hash of the scene text: a checkpoint resumes only the scene it was written for.
 fn fnv1a(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf29ce484222325u64, |h, &b| (h ^ b as u64).wrapping_mul(0x100000001b3))
+    bytes.iter().fold(0xcbf29ce484222325u64, |h, &b| {
+        (h ^ b as u64).wrapping_mul(0x100000001b3)
+    })
 }
 
 fn io_err(e: std::io::Error) -> CliError {
@@ -92,16 +97,20 @@ impl Outputs {
         self.pvd.truncate_after(world.time - 0.5 * world.params.dt);
         for (part, (name, grid)) in parts.iter().enumerate() {
             let file = format!("frames/{name}_{:08}.vtu", world.step);
-            write_vtu(&frames.join(format!("{name}_{:08}.vtu", world.step)), grid).map_err(io_err)?;
+            write_vtu(&frames.join(format!("{name}_{:08}.vtu", world.step)), grid)
+                .map_err(io_err)?;
             self.pvd.push(world.time, part as u32, file);
         }
         self.pvd.write(&self.dir.join("result.pvd")).map_err(io_err)
     }
 
     fn write_checkpoint(&self, world: &World) -> Result<(), CliError> {
-        let bytes = bincode::serialize(&(self.scene_hash, world.to_bytes())).map_err(|e| CliError::Runtime(e.to_string()))?;
+        let bytes = bincode::serialize(&(self.scene_hash, world.to_bytes()))
+            .map_err(|e| CliError::Runtime(e.to_string()))?;
         write_atomic(&self.dir.join("checkpoint.bin"), &bytes).map_err(io_err)?;
-        self.series.write_csv(&self.dir.join("series.csv")).map_err(io_err)
+        self.series
+            .write_csv(&self.dir.join("series.csv"))
+            .map_err(io_err)
     }
 
     fn push(&mut self, r: &StepReport) {
@@ -132,8 +141,9 @@ fn read_checkpoint(dir: &Path, scene_hash: u64) -> Result<World, CliError> {
     let path = dir.join("checkpoint.bin");
     let bytes = std::fs::read(&path)
         .map_err(|e| CliError::BadInput(format!("{}: cannot resume: {e}", path.display())))?;
-    let (hash, world): (u64, Vec<u8>) = bincode::deserialize(&bytes)
-        .map_err(|e| CliError::BadInput(format!("{}: not an xper checkpoint: {e}", path.display())))?;
+    let (hash, world): (u64, Vec<u8>) = bincode::deserialize(&bytes).map_err(|e| {
+        CliError::BadInput(format!("{}: not an xper checkpoint: {e}", path.display()))
+    })?;
     if hash != scene_hash {
         return Err(CliError::BadInput(format!(
             "{}: the checkpoint was written for a different scene file (the scene changed since)",
@@ -145,11 +155,17 @@ fn read_checkpoint(dir: &Path, scene_hash: u64) -> Result<World, CliError> {
 
 /// Runs a scene; see [`RunOptions`].
 pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
-    let text = std::fs::read(&opts.scene)
-        .map_err(|e| CliError::BadInput(format!("{}: cannot read scene: {e}", opts.scene.display())))?;
-    let scene = xper_scene::load_scene(&opts.scene).map_err(|e| CliError::BadInput(e.to_string()))?;
-    std::fs::create_dir_all(opts.out.join("frames"))
-        .map_err(|e| CliError::BadInput(format!("{}: cannot create output directory: {e}", opts.out.display())))?;
+    let text = std::fs::read(&opts.scene).map_err(|e| {
+        CliError::BadInput(format!("{}: cannot read scene: {e}", opts.scene.display()))
+    })?;
+    let scene =
+        xper_scene::load_scene(&opts.scene).map_err(|e| CliError::BadInput(e.to_string()))?;
+    std::fs::create_dir_all(opts.out.join("frames")).map_err(|e| {
+        CliError::BadInput(format!(
+            "{}: cannot create output directory: {e}",
+            opts.out.display()
+        ))
+    })?;
     let mut out = Outputs {
         dir: opts.out.clone(),
         series: SeriesTable::new(&SERIES_COLUMNS),
@@ -159,16 +175,21 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
     let mut world = if opts.resume {
         let world = read_checkpoint(&opts.out, out.scene_hash)?;
         let series_path = opts.out.join("series.csv");
-        out.series = SeriesTable::read_csv(&series_path).map_err(|e| CliError::BadInput(e.to_string()))?;
-        out.series.truncate_rows_where_first_column_greater_than(world.step as f64);
-        out.pvd = PvdCollection::read(&opts.out.join("result.pvd")).map_err(|e| CliError::BadInput(e.to_string()))?;
+        out.series =
+            SeriesTable::read_csv(&series_path).map_err(|e| CliError::BadInput(e.to_string()))?;
+        out.series
+            .truncate_rows_where_first_column_greater_than(world.step as f64);
+        out.pvd = PvdCollection::read(&opts.out.join("result.pvd"))
+            .map_err(|e| CliError::BadInput(e.to_string()))?;
         world
     } else {
         let world = world_from_scene(&scene);
         out.write_frame(&world)?;
         world
     };
-    let last = opts.stop_at_step.map_or(scene.steps, |s| s.min(scene.steps));
+    let last = opts
+        .stop_at_step
+        .map_or(scene.steps, |s| s.min(scene.steps));
     let bar = progress_bar(quiet, scene.steps, world.step);
     let mut stepper = MoreauJean::new();
     let started = Instant::now();
@@ -206,17 +227,33 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
     if failure.is_none() {
         out.write_checkpoint(&world)?;
     } else {
-        out.series.write_csv(&opts.out.join("series.csv")).map_err(io_err)?;
+        out.series
+            .write_csv(&opts.out.join("series.csv"))
+            .map_err(io_err)?;
     }
     let status = match (&failure, world.step == scene.steps) {
         (Some(_), _) => "failed",
         (None, true) => "completed",
         (None, false) => "stopped",
     };
-    write_summary(&out, &scene, &world, status, failure.clone().unwrap_or_default(), &opts.scene)?;
+    write_summary(
+        &out,
+        &scene,
+        &world,
+        status,
+        failure.clone().unwrap_or_default(),
+        &opts.scene,
+    )?;
     write_plot(&out.series, &opts.out.join("series.png"), &scene.name)?;
     if !quiet {
-        eprintln!("{}: {} of {} steps in {:.2} s, outputs in {}", status, world.step, scene.steps, started.elapsed().as_secs_f64(), opts.out.display());
+        eprintln!(
+            "{}: {} of {} steps in {:.2} s, outputs in {}",
+            status,
+            world.step,
+            scene.steps,
+            started.elapsed().as_secs_f64(),
+            opts.out.display()
+        );
     }
     match failure {
         Some(message) => Err(CliError::Runtime(message)),
@@ -225,18 +262,36 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
 }
 
 fn progress_bar(quiet: bool, steps: u64, position: u64) -> ProgressBar {
-    let target = if quiet { ProgressDrawTarget::hidden() } else { ProgressDrawTarget::stderr() };
+    let target = if quiet {
+        ProgressDrawTarget::hidden()
+    } else {
+        ProgressDrawTarget::stderr()
+    };
     let bar = ProgressBar::with_draw_target(Some(steps), target);
-    let style = ProgressStyle::with_template("{bar:30} {pos}/{len} steps, {per_sec}, ETA {eta}, {msg}")
-        .unwrap_or_else(|_| ProgressStyle::default_bar());
+    let style =
+        ProgressStyle::with_template("{bar:30} {pos}/{len} steps, {per_sec}, ETA {eta}, {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar());
     bar.set_style(style);
     bar.set_position(position);
     bar
 }
 
-fn write_summary(out: &Outputs, scene: &xper_scene::Scene, world: &World, status: &'static str, message: String, file: &Path) -> Result<(), CliError> {
+fn write_summary(
+    out: &Outputs,
+    scene: &xper_scene::Scene,
+    world: &World,
+    status: &'static str,
+    message: String,
+    file: &Path,
+) -> Result<(), CliError> {
     let col = |name: &str| out.series.column(name).unwrap_or_default();
-    let mean = |v: &[f64]| if v.is_empty() { 0.0 } else { v.iter().sum::<f64>() / v.len() as f64 };
+    let mean = |v: &[f64]| {
+        if v.is_empty() {
+            0.0
+        } else {
+            v.iter().sum::<f64>() / v.len() as f64
+        }
+    };
     let max = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
     let (iterations, contacts) = (col("iterations"), col("contacts"));
     let summary = Summary {
@@ -265,9 +320,16 @@ pub fn write_plot(series: &SeriesTable, path: &Path, title: &str) -> Result<(), 
     let time = series.column("time").unwrap_or_default();
     let curve = |name: &str, label: &str| Curve {
         label: label.into(),
-        points: time.iter().copied().zip(series.column(name).unwrap_or_default()).collect(),
+        points: time
+            .iter()
+            .copied()
+            .zip(series.column(name).unwrap_or_default())
+            .collect(),
     };
-    let potential0 = series.column("potential_energy").and_then(|p| p.first().copied()).unwrap_or(0.0);
+    let potential0 = series
+        .column("potential_energy")
+        .and_then(|p| p.first().copied())
+        .unwrap_or(0.0);
     let mut potential = curve("potential_energy", "potential - initial potential");
     potential.points.iter_mut().for_each(|p| p.1 -= potential0);
     let panel = |title: &str, y: &str, curves: Vec<Curve>, log_y: bool| Panel {
@@ -290,9 +352,27 @@ pub fn write_plot(series: &SeriesTable, path: &Path, title: &str) -> Result<(), 
             ],
             false,
         ),
-        panel("Contact solver", "NLGS sweeps", vec![curve("iterations", "sweeps per step")], false),
-        panel("Solver residual", "residual", vec![curve("residual", "final residual")], true),
-        panel("Contacts", "count", vec![curve("contacts", "within alert distance"), curve("active_contacts", "active")], false),
+        panel(
+            "Contact solver",
+            "NLGS sweeps",
+            vec![curve("iterations", "sweeps per step")],
+            false,
+        ),
+        panel(
+            "Solver residual",
+            "residual",
+            vec![curve("residual", "final residual")],
+            true,
+        ),
+        panel(
+            "Contacts",
+            "count",
+            vec![
+                curve("contacts", "within alert distance"),
+                curve("active_contacts", "active"),
+            ],
+            false,
+        ),
     ];
     plot_panels(path, title, &panels, 1000, 300).map_err(io_err)
 }

@@ -14,7 +14,12 @@ fn time_function(f: &xper_scene::TimeFunction) -> TimeFunction {
     match f {
         xper_scene::TimeFunction::Constant(v) => TimeFunction::Constant(*v),
         xper_scene::TimeFunction::Table(t) => TimeFunction::Table(t.clone()),
-        xper_scene::TimeFunction::Sine { amplitude, frequency, phase, offset } => TimeFunction::Sine {
+        xper_scene::TimeFunction::Sine {
+            amplitude,
+            frequency,
+            phase,
+            offset,
+        } => TimeFunction::Sine {
             amplitude: *amplitude,
             frequency: *frequency,
             phase: *phase,
@@ -38,10 +43,12 @@ pub fn world_from_scene(scene: &Scene) -> World {
     for b in &scene.bodies {
         let shape = match &b.shape {
             ShapeDesc::Disk { radius } => Shape::Disk { radius: *radius },
-            ShapeDesc::Polygon { vertices } => {
-                Shape::Polygon(ConvexPolygon::new(vertices.iter().map(|v| Vector::new(v[0], v[1])).collect()))
-            }
-            ShapeDesc::Segment { half_length } => Shape::Segment { half_length: *half_length },
+            ShapeDesc::Polygon { vertices } => Shape::Polygon(ConvexPolygon::new(
+                vertices.iter().map(|v| Vector::new(v[0], v[1])).collect(),
+            )),
+            ShapeDesc::Segment { half_length } => Shape::Segment {
+                half_length: *half_length,
+            },
         };
         if !matches!(shape, Shape::Segment { .. }) {
             smallest = smallest.min(shape.size());
@@ -55,7 +62,11 @@ pub fn world_from_scene(scene: &Scene) -> World {
             mass: b.mass,
             inertia: b.inertia,
             group: b.group as u16,
-            drives: [drive(&b.drives[0]), drive(&b.drives[1]), drive(&b.drives[2])],
+            drives: [
+                drive(&b.drives[0]),
+                drive(&b.drives[1]),
+                drive(&b.drives[2]),
+            ],
         });
     }
     let mut laws = LawTable::new(scene.groups.len());
@@ -63,7 +74,10 @@ pub fn world_from_scene(scene: &Scene) -> World {
         laws.set(
             law.groups[0],
             law.groups[1],
-            InteractionLaw::SignoriniCoulomb(SignoriniCoulomb { friction: law.friction, restitution: law.restitution }),
+            InteractionLaw::SignoriniCoulomb(SignoriniCoulomb {
+                friction: law.friction,
+                restitution: law.restitution,
+            }),
         );
     }
     let s = &scene.solver;

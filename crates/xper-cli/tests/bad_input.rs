@@ -46,7 +46,10 @@ fn expect_error(name: &str, text: &str, fragments: &[&str]) {
         let out = xper(&args);
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{name}/{cmd}: {stderr}");
-        assert!(stderr.contains(scene.to_str().unwrap()), "{name}: no file name in {stderr}");
+        assert!(
+            stderr.contains(scene.to_str().unwrap()),
+            "{name}: no file name in {stderr}"
+        );
         for f in fragments {
             assert!(stderr.contains(f), "{name}: `{f}` not in {stderr}");
         }
@@ -59,32 +62,56 @@ fn valid_scene_checks() {
     let scene = dir.join("scene.toml");
     std::fs::write(&scene, VALID).unwrap();
     let out = xper(&["check", scene.to_str().unwrap()]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 }
 
 #[test]
 fn negative_density() {
-    expect_error("density", &VALID.replace("density = 7800.0", "density = -1.0"), &[":8:", "materials[0].density"]);
+    expect_error(
+        "density",
+        &VALID.replace("density = 7800.0", "density = -1.0"),
+        &[":8:", "materials[0].density"],
+    );
 }
 
 #[test]
 fn non_positive_time_step() {
-    expect_error("dt", &VALID.replace("dt = 1e-3", "dt = 0.0"), &[":3:", "dt"]);
+    expect_error(
+        "dt",
+        &VALID.replace("dt = 1e-3", "dt = 0.0"),
+        &[":3:", "dt"],
+    );
 }
 
 #[test]
 fn unknown_law() {
-    expect_error("law", &VALID.replace("kind = \"signorini_coulomb\"", "kind = \"glue\""), &[":12:8:", "laws[0].kind", "glue"]);
+    expect_error(
+        "law",
+        &VALID.replace("kind = \"signorini_coulomb\"", "kind = \"glue\""),
+        &[":12:8:", "laws[0].kind", "glue"],
+    );
 }
 
 #[test]
 fn missing_material() {
-    expect_error("material", &VALID.replacen("material = \"steel\"", "material = \"stel\"", 1), &[":19:12:", "bodies[0].material", "stel"]);
+    expect_error(
+        "material",
+        &VALID.replacen("material = \"steel\"", "material = \"stel\"", 1),
+        &[":19:12:", "bodies[0].material", "stel"],
+    );
 }
 
 #[test]
 fn overlapping_bodies() {
-    expect_error("overlap", &VALID.replace("center = [0.5, 0.0]", "center = [0.15, 0.0]"), &["bodies[1]", "overlap"]);
+    expect_error(
+        "overlap",
+        &VALID.replace("center = [0.5, 0.0]", "center = [0.15, 0.0]"),
+        &["bodies[1]", "overlap"],
+    );
 }
 
 #[test]

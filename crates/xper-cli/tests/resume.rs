@@ -12,14 +12,33 @@ fn resume_after_stop_matches_uninterrupted_run() {
     let (straight, split) = (dir.join("straight"), dir.join("split"));
     let s = scene.to_str().unwrap();
     let out = xper(&["run", s, "--out", straight.to_str().unwrap()]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     // Stop between two checkpoints (every 40 steps): the resume restarts from step 80.
-    let out = xper(&["run", s, "--out", split.to_str().unwrap(), "--stop-at-step", "97"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let out = xper(&[
+        "run",
+        s,
+        "--out",
+        split.to_str().unwrap(),
+        "--stop-at-step",
+        "97",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let summary = std::fs::read_to_string(split.join("summary.json")).unwrap();
     assert!(summary.contains("\"status\": \"stopped\""), "{summary}");
     let out = xper(&["run", s, "--out", split.to_str().unwrap(), "--resume"]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
 
     let a = std::fs::read(straight.join("checkpoint.bin")).unwrap();
     let b = std::fs::read(split.join("checkpoint.bin")).unwrap();
@@ -32,12 +51,20 @@ fn resume_after_stop_matches_uninterrupted_run() {
     for (ra, rb) in sa.rows.iter().zip(&sb.rows) {
         for (k, name) in sa.columns.iter().enumerate() {
             if !timing.contains(&name.as_str()) {
-                assert_eq!(ra[k].to_bits(), rb[k].to_bits(), "column {name} at step {}", ra[0]);
+                assert_eq!(
+                    ra[k].to_bits(),
+                    rb[k].to_bits(),
+                    "column {name} at step {}",
+                    ra[0]
+                );
             }
         }
     }
     let pvd = std::fs::read_to_string(split.join("result.pvd")).unwrap();
-    assert_eq!(pvd, std::fs::read_to_string(straight.join("result.pvd")).unwrap());
+    assert_eq!(
+        pvd,
+        std::fs::read_to_string(straight.join("result.pvd")).unwrap()
+    );
 }
 
 #[test]
@@ -45,13 +72,34 @@ fn resume_refuses_a_changed_scene_and_a_missing_checkpoint() {
     let dir = temp_dir("resume-refuse");
     let scene = dir.join("scene.toml");
     std::fs::write(&scene, deposit_scene(20, 10)).unwrap();
-    let out = xper(&["run", scene.to_str().unwrap(), "--out", dir.join("none").to_str().unwrap(), "--resume"]);
+    let out = xper(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        dir.join("none").to_str().unwrap(),
+        "--resume",
+    ]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("checkpoint.bin"));
     let run = dir.join("run");
-    assert!(xper(&["run", scene.to_str().unwrap(), "--out", run.to_str().unwrap(), "--stop-at-step", "5"]).status.success());
+    assert!(xper(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        run.to_str().unwrap(),
+        "--stop-at-step",
+        "5"
+    ])
+    .status
+    .success());
     std::fs::write(&scene, deposit_scene(21, 10)).unwrap();
-    let out = xper(&["run", scene.to_str().unwrap(), "--out", run.to_str().unwrap(), "--resume"]);
+    let out = xper(&[
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        run.to_str().unwrap(),
+        "--resume",
+    ]);
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("different scene"));
 }

@@ -30,8 +30,12 @@ struct Grid {
 impl Grid {
     #[inline(always)]
     fn coords(&self, p: &Vector) -> (usize, usize) {
-        let cx = ((p.x - self.origin.x) / self.cell).floor().clamp(0.0, (self.nx - 1) as Real) as usize;
-        let cy = ((p.y - self.origin.y) / self.cell).floor().clamp(0.0, (self.ny - 1) as Real) as usize;
+        let cx = ((p.x - self.origin.x) / self.cell)
+            .floor()
+            .clamp(0.0, (self.nx - 1) as Real) as usize;
+        let cy = ((p.y - self.origin.y) / self.cell)
+            .floor()
+            .clamp(0.0, (self.ny - 1) as Real) as usize;
         (cx, cy)
     }
 }
@@ -50,7 +54,9 @@ impl BroadPhase {
         self.small.clear();
         self.large.clear();
         for b in 0..n {
-            let aabb = bodies.shape[b].aabb(&bodies.position[b], bodies.angle[b]).loosened(alert / 2.0);
+            let aabb = bodies.shape[b]
+                .aabb(&bodies.position[b], bodies.angle[b])
+                .loosened(alert / 2.0);
             self.aabbs.push(aabb);
             if matches!(bodies.shape[b], Shape::Segment { .. }) {
                 self.large.push(b as u32);
@@ -88,7 +94,12 @@ impl BroadPhase {
         }
         let nx = ((extent.x / cell).ceil() as usize).max(1);
         let ny = ((extent.y / cell).ceil() as usize).max(1);
-        let grid = Grid { origin: bounds.min, cell, nx, ny };
+        let grid = Grid {
+            origin: bounds.min,
+            cell,
+            nx,
+            ny,
+        };
         self.cell_start.clear();
         self.cell_start.resize(nx * ny + 1, 0);
         self.cell_of.clear();

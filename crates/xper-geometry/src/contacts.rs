@@ -80,7 +80,9 @@ impl Detector {
         let immobile = |b: usize| bodies.inv_mass[b].iter().all(|&m| m == 0.0);
         for &(i, j) in &self.pairs {
             let (a, b) = (i as usize, j as usize);
-            let Some(law) = law_of(bodies.group[a], bodies.group[b]) else { continue };
+            let Some(law) = law_of(bodies.group[a], bodies.group[b]) else {
+                continue;
+            };
             if immobile(a) && immobile(b) {
                 continue;
             }
@@ -121,7 +123,8 @@ impl Detector {
             self.previous_start[b + 1] += self.previous_start[b];
         }
         self.previous_sorted.clear();
-        self.previous_sorted.resize(self.previous_start[n_bodies] as usize, 0);
+        self.previous_sorted
+            .resize(self.previous_start[n_bodies] as usize, 0);
         let mut fill = self.previous_start.clone();
         for (k, c) in self.previous.iter().enumerate() {
             let b = c.bodies[0] as usize;
@@ -133,7 +136,10 @@ impl Detector {
     }
 
     fn previous_impulse(&self, i: u32, j: u32, feature: u32) -> [Real; 2] {
-        let (s, e) = (self.previous_start[i as usize] as usize, self.previous_start[i as usize + 1] as usize);
+        let (s, e) = (
+            self.previous_start[i as usize] as usize,
+            self.previous_start[i as usize + 1] as usize,
+        );
         self.previous_sorted[s..e]
             .iter()
             .map(|&k| &self.previous[k as usize])

@@ -30,7 +30,9 @@ fn scene(specs: &[(u8, Real, Real, Real, Real)]) -> BodySet {
                 Vector::new(size, -size / 2.0),
                 Vector::new(0.0, size),
             ])),
-            _ => Shape::Segment { half_length: size * 8.0 },
+            _ => Shape::Segment {
+                half_length: size * 8.0,
+            },
         };
         set.insert(body(shape, x, y, angle));
     }

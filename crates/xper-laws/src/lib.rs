@@ -37,7 +37,11 @@ pub struct LawTable {
 impl LawTable {
     /// A table for `groups` groups with no law yet.
     pub fn new(groups: usize) -> Self {
-        LawTable { groups, entries: vec![None; groups * groups], laws: Vec::new() }
+        LawTable {
+            groups,
+            entries: vec![None; groups * groups],
+            laws: Vec::new(),
+        }
     }
 
     /// Sets the law between groups `a` and `b` (either order); returns its index.
@@ -74,7 +78,10 @@ mod tests {
     #[test]
     fn table_is_symmetric_and_sparse() {
         let mut t = LawTable::new(3);
-        let law = InteractionLaw::SignoriniCoulomb(SignoriniCoulomb { friction: 0.3, restitution: 0.0 });
+        let law = InteractionLaw::SignoriniCoulomb(SignoriniCoulomb {
+            friction: 0.3,
+            restitution: 0.0,
+        });
         let k = t.set(0, 2, law);
         assert_eq!(t.between(2, 0), Some(k));
         assert_eq!(t.between(0, 2), Some(k));

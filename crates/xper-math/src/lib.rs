@@ -66,12 +66,18 @@ pub struct Aabb {
 impl Aabb {
     /// The box `[c - h, c + h]`.
     pub fn from_center(c: Vector, half: Vector) -> Self {
-        Aabb { min: c - half, max: c + half }
+        Aabb {
+            min: c - half,
+            max: c + half,
+        }
     }
     /// Grows the box by `margin` on every side.
     pub fn loosened(&self, margin: Real) -> Self {
         let m = Vector::repeat(margin);
-        Aabb { min: self.min - m, max: self.max + m }
+        Aabb {
+            min: self.min - m,
+            max: self.max + m,
+        }
     }
     /// Whether two boxes overlap (touching counts).
     #[inline]
@@ -84,7 +90,10 @@ impl Aabb {
     }
     /// Union of two boxes.
     pub fn merged(&self, other: &Aabb) -> Self {
-        Aabb { min: self.min.inf(&other.min), max: self.max.sup(&other.max) }
+        Aabb {
+            min: self.min.inf(&other.min),
+            max: self.max.sup(&other.max),
+        }
     }
 }
 

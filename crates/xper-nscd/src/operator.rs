@@ -46,7 +46,10 @@ impl RigidContactOperator {
     /// Loads the inverse masses of `set` and the given velocities.
     pub fn load_bodies(&mut self, set: &BodySet, velocity: impl Fn(usize) -> [Real; DOFS]) {
         self.bodies.clear();
-        self.bodies.extend((0..set.len()).map(|b| SolverBody { velocity: velocity(b), inv_mass: set.inv_mass[b] }));
+        self.bodies.extend((0..set.len()).map(|b| SolverBody {
+            velocity: velocity(b),
+            inv_mass: set.inv_mass[b],
+        }));
     }
 
     /// Builds the row of a contact from its geometry and the body positions.
@@ -55,16 +58,29 @@ impl RigidContactOperator {
         let n = c.normal;
         let t = tangent(&n);
         let (ri, rj) = (c.point - set.position[i], c.point - set.position[j]);
-        let arms = [cross(&ri, &n), cross(&ri, &t), cross(&rj, &n), cross(&rj, &t)];
+        let arms = [
+            cross(&ri, &n),
+            cross(&ri, &t),
+            cross(&rj, &n),
+            cross(&rj, &t),
+        ];
         let mut block = [0.0; 4];
-        for (m, an, at) in [(inv_mass[i].inv_mass, arms[0], arms[1]), (inv_mass[j].inv_mass, arms[2], arms[3])] {
+        for (m, an, at) in [
+            (inv_mass[i].inv_mass, arms[0], arms[1]),
+            (inv_mass[j].inv_mass, arms[2], arms[3]),
+        ] {
             let nt = m[0] * n.x * t.x + m[1] * n.y * t.y + m[2] * an * at;
             block[0] += m[0] * n.x * n.x + m[1] * n.y * n.y + m[2] * an * an;
             block[1] += nt;
             block[2] += nt;
             block[3] += m[0] * t.x * t.x + m[1] * t.y * t.y + m[2] * at * at;
         }
-        ContactRow { bodies: c.bodies, normal: [n.x, n.y], arms, block }
+        ContactRow {
+            bodies: c.bodies,
+            normal: [n.x, n.y],
+            arms,
+            block,
+        }
     }
 
     /// Generalised impulses `(on body i, on body j)` of a local impulse `r` at a row.
@@ -73,7 +89,10 @@ impl RigidContactOperator {
         let n = Vector::new(row.normal[0], row.normal[1]);
         let p = n * r[0] + tangent(&n) * r[1];
         let a = &row.arms;
-        ([-p.x, -p.y, -(a[0] * r[0] + a[1] * r[1])], [p.x, p.y, a[2] * r[0] + a[3] * r[1]])
+        (
+            [-p.x, -p.y, -(a[0] * r[0] + a[1] * r[1])],
+            [p.x, p.y, a[2] * r[0] + a[3] * r[1]],
+        )
     }
 }
 
@@ -96,7 +115,10 @@ impl ContactOperator for RigidContactOperator {
         let [nx, ny] = row.normal;
         let (dx, dy) = (vj[0] - vi[0], vj[1] - vi[1]);
         let a = &row.arms;
-        [nx * dx + ny * dy + vj[2] * a[2] - vi[2] * a[0], -ny * dx + nx * dy + vj[2] * a[3] - vi[2] * a[1]]
+        [
+            nx * dx + ny * dy + vj[2] * a[2] - vi[2] * a[0],
+            -ny * dx + nx * dy + vj[2] * a[3] - vi[2] * a[1],
+        ]
     }
 
     #[inline(always)]

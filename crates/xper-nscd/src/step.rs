@@ -118,28 +118,44 @@ impl MoreauJean {
     /// Advances `world` by one time step.
     pub fn step(&mut self, world: &mut World) -> Result<StepReport, StepError> {
         let start = Instant::now();
-        let mut report = StepReport { step: world.step + 1, ..Default::default() };
+        let mut report = StepReport {
+            step: world.step + 1,
+            ..Default::default()
+        };
         let (h, theta) = (world.params.dt, world.params.theta);
         let t_begin = world.step as Real * h;
         let t_end = (world.step + 1) as Real * h;
 
         // Stage: detect, on the configuration at the beginning of the step.
         let laws = &world.laws;
-        self.detector.detect(&world.bodies, world.params.alert_distance, |a, b| laws.between(a, b), &mut world.contacts);
+        self.detector.detect(
+            &world.bodies,
+            world.params.alert_distance,
+            |a, b| laws.between(a, b),
+            &mut world.contacts,
+        );
         report.contacts = world.contacts.len();
         report.times.detect = start.elapsed().as_secs_f64();
 
         // Stage: assemble rows and local velocities at the beginning of the step.
         let bodies = &world.bodies;
         self.v_begin.clear();
-        self.v_begin.extend((0..bodies.len()).map(|b| bodies.generalized_velocity(b)));
+        self.v_begin
+            .extend((0..bodies.len()).map(|b| bodies.generalized_velocity(b)));
         let v_begin = &self.v_begin;
         self.op.load_bodies(bodies, |b| v_begin[b]);
         self.all_rows.clear();
-        self.all_rows.extend(world.contacts.contacts.iter().map(|c| RigidContactOperator::row(bodies, &self.op.bodies, c)));
+        self.all_rows.extend(
+            world
+                .contacts
+                .contacts
+                .iter()
+                .map(|c| RigidContactOperator::row(bodies, &self.op.bodies, c)),
+        );
         std::mem::swap(&mut self.op.rows, &mut self.all_rows);
         self.u_begin.clear();
-        self.u_begin.extend((0..self.op.rows.len()).map(|a| self.op.local_velocity(a)));
+        self.u_begin
+            .extend((0..self.op.rows.len()).map(|a| self.op.local_velocity(a)));
         std::mem::swap(&mut self.op.rows, &mut self.all_rows);
 
         // Stage: free velocity.
@@ -168,8 +184,14 @@ impl MoreauJean {
 
         // Stage: solve.
         let t_solve = Instant::now();
-        let info = nlgs(&mut self.op, &self.mu, &self.shift, &mut self.impulses, &world.params.nlgs)
-            .map_err(StepError::Solver)?;
+        let info = nlgs(
+            &mut self.op,
+            &self.mu,
+            &self.shift,
+            &mut self.impulses,
+            &world.params.nlgs,
+        )
+        .map_err(StepError::Solver)?;
         report.times.solve = t_solve.elapsed().as_secs_f64();
         report.iterations = info.iterations;
         report.residual = info.residual;
@@ -185,9 +207,10 @@ impl MoreauJean {
             dissipated -= r[0] * (u0[0] + u1[0]) / 2.0 + r[1] * (u0[1] + u1[1]) / 2.0;
             let (gi, gj) = RigidContactOperator::generalized_impulses(row, r);
             for (b, g) in [(row.bodies[0] as usize, gi), (row.bodies[1] as usize, gj)] {
-                for d in 0..DOFS {
-                    if self.op.bodies[b].inv_mass[d] == 0.0 {
-                        imposed_work += g[d] * (self.v_begin[b][d] + self.op.bodies[b].velocity[d]) / 2.0;
+                let body = &self.op.bodies[b];
+                for (d, &gd) in g.iter().enumerate() {
+                    if body.inv_mass[d] == 0.0 {
+                        imposed_work += gd * (self.v_begin[b][d] + body.velocity[d]) / 2.0;
                     }
                 }
             }
@@ -219,11 +242,17 @@ impl MoreauJean {
         report.projection_work = world.energy.projection_work;
         report.energy_error = world.energy_error();
         let e = &mut world.energy;
-        e.scale = e.scale.max((report.kinetic + report.potential - e.initial).abs()).max(e.external_work.abs());
+        e.scale = e
+            .scale
+            .max((report.kinetic + report.potential - e.initial).abs())
+            .max(e.external_work.abs());
         report.times.total = start.elapsed().as_secs_f64();
         let scale = e.scale + e.dissipated + report.kinetic.min(e.initial.abs());
         if report.energy_error > scale.max(1e-12) {
-            return Err(StepError::EnergyBlowUp { error: report.energy_error, scale });
+            return Err(StepError::EnergyBlowUp {
+                error: report.energy_error,
+                scale,
+            });
         }
         Ok(report)
     }
@@ -242,7 +271,9 @@ impl MoreauJean {
             for (d, drive) in drives.iter().enumerate() {
                 match drive {
                     xper_bodies::Drive::Free => {}
-                    xper_bodies::Drive::Velocity(f) => self.op.bodies[b].velocity[d] = f.eval(t_end),
+                    xper_bodies::Drive::Velocity(f) => {
+                        self.op.bodies[b].velocity[d] = f.eval(t_end)
+                    }
                     xper_bodies::Drive::Force(f) => {
                         let force = (1.0 - theta) * f.eval(t_begin) + theta * f.eval(t_end);
                         self.op.bodies[b].velocity[d] += h * self.op.bodies[b].inv_mass[d] * force;
@@ -260,17 +291,23 @@ impl MoreauJean {
         for (handle, drives) in &world.bodies.driven {
             let b = handle.index();
             let (v0, v1) = (self.v_begin[b], self.op.bodies[b].velocity);
-            let masses = [world.bodies.mass[b], world.bodies.mass[b], world.bodies.inertia[b]];
+            let masses = [
+                world.bodies.mass[b],
+                world.bodies.mass[b],
+                world.bodies.inertia[b],
+            ];
             for (d, drive) in drives.iter().enumerate() {
                 let mean = (v0[d] + v1[d]) / 2.0;
                 match drive {
                     xper_bodies::Drive::Free => {}
                     xper_bodies::Drive::Force(f) => {
-                        work += h * ((1.0 - theta) * f.eval(t_begin) + theta * f.eval(t_end)) * mean;
+                        work +=
+                            h * ((1.0 - theta) * f.eval(t_begin) + theta * f.eval(t_end)) * mean;
                     }
                     xper_bodies::Drive::Velocity(_) if masses[d].is_finite() => {
                         let gravity = if d < 2 { g[d] } else { 0.0 };
-                        work += masses[d] * (v1[d] * v1[d] - v0[d] * v0[d]) / 2.0 - h * masses[d] * gravity * mean;
+                        work += masses[d] * (v1[d] * v1[d] - v0[d] * v0[d]) / 2.0
+                            - h * masses[d] * gravity * mean;
                     }
                     xper_bodies::Drive::Velocity(_) => {}
                 }
@@ -285,12 +322,15 @@ impl MoreauJean {
         let bodies = &mut world.bodies;
         for b in 0..bodies.len() {
             let (v0, v1) = (self.v_begin[b], self.op.bodies[b].velocity);
-            let dq: [Real; DOFS] = std::array::from_fn(|d| h * ((1.0 - theta) * v0[d] + theta * v1[d]));
+            let dq: [Real; DOFS] =
+                std::array::from_fn(|d| h * ((1.0 - theta) * v0[d] + theta * v1[d]));
             bodies.position[b].x += dq[0];
             bodies.position[b].y += dq[1];
             bodies.angle[b] += dq[2];
             bodies.set_generalized_velocity(b, v1);
-            if !(v1.iter().all(|x| x.is_finite()) && bodies.position[b].iter().all(|x| x.is_finite())) {
+            if !(v1.iter().all(|x| x.is_finite())
+                && bodies.position[b].iter().all(|x| x.is_finite()))
+            {
                 return Err(StepError::NonFinite { body: b });
             }
         }
@@ -327,13 +367,23 @@ impl MoreauJean {
         self.mu.resize(n, 0.0);
         self.impulses.clear();
         self.impulses.resize(n, [0.0, 0.0]);
-        let params = NlgsParams { ..world.params.nlgs };
-        let info = nlgs(&mut self.op, &self.mu, &self.shift, &mut self.impulses, &params).map_err(StepError::Solver)?;
+        let params = NlgsParams {
+            ..world.params.nlgs
+        };
+        let info = nlgs(
+            &mut self.op,
+            &self.mu,
+            &self.shift,
+            &mut self.impulses,
+            &params,
+        )
+        .map_err(StepError::Solver)?;
         let bodies = &mut world.bodies;
         let gravity = world.params.gravity;
         for (b, body) in self.op.bodies.iter().enumerate() {
             if bodies.is_dynamic(b) {
-                world.energy.projection_work -= bodies.mass[b] * (gravity.x * body.velocity[0] + gravity.y * body.velocity[1]);
+                world.energy.projection_work -=
+                    bodies.mass[b] * (gravity.x * body.velocity[0] + gravity.y * body.velocity[1]);
             }
             bodies.position[b].x += body.velocity[0];
             bodies.position[b].y += body.velocity[1];

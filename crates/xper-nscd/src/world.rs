@@ -70,7 +70,10 @@ impl World {
             params,
             time: 0.0,
             step: 0,
-            energy: EnergyBudget { initial, ..Default::default() },
+            energy: EnergyBudget {
+                initial,
+                ..Default::default()
+            },
         }
     }
 

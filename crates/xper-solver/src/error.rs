@@ -91,7 +91,10 @@ impl NormAccumulator {
     /// The norms relative to `tol`; all zero when no contact carries a reaction.
     pub(crate) fn norms(&self, tol: f64) -> ConvergenceNorms {
         if self.active == 0 || self.sum_wrr <= 0.0 {
-            return ConvergenceNorms { active: self.active, ..Default::default() };
+            return ConvergenceNorms {
+                active: self.active,
+                ..Default::default()
+            };
         }
         let n = self.active as f64;
         let quad_wr = (self.sum_wrwr / n).sqrt();

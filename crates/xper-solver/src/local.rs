@@ -50,10 +50,16 @@ mod tests {
 
     fn check_solution(w: &Block2, uf: [f64; 2], mu: f64) {
         let r = solve_one_contact(w, uf, mu);
-        let u = [uf[0] + w[0] * r[0] + w[1] * r[1], uf[1] + w[2] * r[0] + w[3] * r[1]];
+        let u = [
+            uf[0] + w[0] * r[0] + w[1] * r[1],
+            uf[1] + w[2] * r[0] + w[3] * r[1],
+        ];
         let scale = 1e-12 * (1.0 + uf[0].abs() + uf[1].abs());
         assert!(r[0] >= 0.0 && u[0] >= -scale, "{r:?} {u:?}");
-        assert!((r[0] * u[0]).abs() <= scale * (1.0 + r[0]), "complementarity {r:?} {u:?}");
+        assert!(
+            (r[0] * u[0]).abs() <= scale * (1.0 + r[0]),
+            "complementarity {r:?} {u:?}"
+        );
         assert!(r[1].abs() <= mu * r[0] * (1.0 + 1e-12) + 1e-300);
         if u[1].abs() > scale {
             assert!((r[1] + mu * r[0] * u[1].signum()).abs() <= scale * (1.0 + r[0]));
@@ -74,7 +80,9 @@ mod tests {
     fn random_blocks_satisfy_the_law() {
         let mut s = 7u64;
         let mut rnd = || {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
         };
         for _ in 0..10_000 {

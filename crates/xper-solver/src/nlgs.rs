@@ -117,24 +117,42 @@ pub fn nlgs<O: ContactOperator>(
             ),
         });
     }
-    if !(params.tolerance > 0.0) || params.max_iterations == 0 || params.check_every == 0 {
+    if params.tolerance.is_nan() || params.tolerance <= 0.0 || params.max_iterations == 0 || params.check_every == 0 {
         return Err(SolveError::InvalidParams(format!("{params:?}")));
     }
-    if !(params.relaxation > 0.0 && params.relaxation < 2.0) {
-        return Err(SolveError::InvalidParams(format!("relaxation {} not in (0, 2)", params.relaxation)));
+    if params.relaxation.is_nan() || params.relaxation <= 0.0 || params.relaxation >= 2.0 {
+        return Err(SolveError::InvalidParams(format!(
+            "relaxation {} not in (0, 2)",
+            params.relaxation
+        )));
     }
     let mut q_norm2 = 0.0;
     for a in 0..n {
         let w = op.diagonal_block(a);
         let u = op.local_velocity(a);
         if !(mu[a] >= 0.0 && mu[a].is_finite()) {
-            return Err(SolveError::InvalidData { contact: a, what: format!("friction coefficient {}", mu[a]) });
+            return Err(SolveError::InvalidData {
+                contact: a,
+                what: format!("friction coefficient {}", mu[a]),
+            });
         }
-        if !w.iter().chain(&u).chain(impulses[a].iter()).all(|x| x.is_finite()) || !normal_shift[a].is_finite() {
-            return Err(SolveError::InvalidData { contact: a, what: "non-finite W, q, shift or warm start".into() });
+        if !w
+            .iter()
+            .chain(&u)
+            .chain(impulses[a].iter())
+            .all(|x| x.is_finite())
+            || !normal_shift[a].is_finite()
+        {
+            return Err(SolveError::InvalidData {
+                contact: a,
+                what: "non-finite W, q, shift or warm start".into(),
+            });
         }
         if w[0] <= 0.0 {
-            return Err(SolveError::InvalidData { contact: a, what: format!("W_nn = {} is not positive", w[0]) });
+            return Err(SolveError::InvalidData {
+                contact: a,
+                what: format!("W_nn = {} is not positive", w[0]),
+            });
         }
         q_norm2 += (u[0] + normal_shift[a]).powi(2) + u[1] * u[1];
     }
@@ -164,7 +182,10 @@ pub fn nlgs<O: ContactOperator>(
             let r_new = if omega == 1.0 {
                 local
             } else {
-                [omega * local[0] + (1.0 - omega) * r[0], omega * local[1] + (1.0 - omega) * r[1]]
+                [
+                    omega * local[0] + (1.0 - omega) * r[0],
+                    omega * local[1] + (1.0 - omega) * r[1],
+                ]
             };
             let delta = [r_new[0] - r[0], r_new[1] - r[1]];
             if delta[0] != 0.0 || delta[1] != 0.0 {
@@ -181,15 +202,26 @@ pub fn nlgs<O: ContactOperator>(
             info.norms = acc.norms(params.tolerance);
             let (residual, converged) = match params.norm {
                 ConvergenceNorm::Quad => {
-                    let m = info.norms.mean_dvor.abs().max(info.norms.quad_dv).max(info.norms.quad_dvr);
+                    let m = info
+                        .norms
+                        .mean_dvor
+                        .abs()
+                        .max(info.norms.quad_dv)
+                        .max(info.norms.quad_dvr);
                     (m * params.tolerance, m < 1.0)
                 }
                 ConvergenceNorm::Maxm => {
-                    let m = info.norms.mean_dvor.abs().max(info.norms.maxm_dv).max(info.norms.maxm_dvr);
+                    let m = info
+                        .norms
+                        .mean_dvor
+                        .abs()
+                        .max(info.norms.maxm_dv)
+                        .max(info.norms.maxm_dvr);
                     (m * params.tolerance, m < 1.0)
                 }
                 ConvergenceNorm::NaturalMap => {
-                    let e = scaled_natural_map_error(op, mu, normal_shift, impulses, q_norm2.sqrt());
+                    let e =
+                        scaled_natural_map_error(op, mu, normal_shift, impulses, q_norm2.sqrt());
                     (e, e < params.tolerance)
                 }
             };
@@ -222,7 +254,12 @@ pub(crate) fn scaled_natural_map_error<O: ContactOperator>(
             [u[0] + normal_shift[a], u[1]]
         })
         .collect();
-    let norm = |v: &[[f64; 2]]| v.iter().map(|x| x[0] * x[0] + x[1] * x[1]).sum::<f64>().sqrt();
+    let norm = |v: &[[f64; 2]]| {
+        v.iter()
+            .map(|x| x[0] * x[0] + x[1] * x[1])
+            .sum::<f64>()
+            .sqrt()
+    };
     let scale = q_norm.max(norm(&u)).max(norm(impulses));
     natural_map_error(&u, impulses, mu) / if scale > 0.0 { scale } else { 1.0 }
 }

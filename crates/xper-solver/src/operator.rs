@@ -43,8 +43,16 @@ impl DenseProblem {
     /// If the sizes disagree (a programming error, not bad data).
     pub fn new(w: Vec<f64>, q: Vec<f64>, mu: Vec<f64>) -> Self {
         let n = mu.len();
-        assert!(q.len() == 2 * n && w.len() == 4 * n * n, "DenseProblem: inconsistent sizes");
-        DenseProblem { velocity: q.clone(), w, q, mu }
+        assert!(
+            q.len() == 2 * n && w.len() == 4 * n * n,
+            "DenseProblem: inconsistent sizes"
+        );
+        DenseProblem {
+            velocity: q.clone(),
+            w,
+            q,
+            mu,
+        }
     }
 
     /// Resets the state to zero impulses.
@@ -77,7 +85,12 @@ impl ContactOperator for DenseProblem {
     fn diagonal_block(&self, a: usize) -> Block2 {
         let m = 2 * self.mu.len();
         let (r0, r1) = (2 * a * m, (2 * a + 1) * m);
-        [self.w[r0 + 2 * a], self.w[r0 + 2 * a + 1], self.w[r1 + 2 * a], self.w[r1 + 2 * a + 1]]
+        [
+            self.w[r0 + 2 * a],
+            self.w[r0 + 2 * a + 1],
+            self.w[r1 + 2 * a],
+            self.w[r1 + 2 * a + 1],
+        ]
     }
     fn local_velocity(&self, a: usize) -> [f64; 2] {
         [self.velocity[2 * a], self.velocity[2 * a + 1]]
@@ -85,7 +98,8 @@ impl ContactOperator for DenseProblem {
     fn apply_impulse(&mut self, a: usize, delta: [f64; 2]) {
         let m = 2 * self.mu.len();
         for i in 0..m {
-            self.velocity[i] += self.w[i * m + 2 * a] * delta[0] + self.w[i * m + 2 * a + 1] * delta[1];
+            self.velocity[i] +=
+                self.w[i * m + 2 * a] * delta[0] + self.w[i * m + 2 * a + 1] * delta[1];
         }
     }
 }

@@ -12,9 +12,18 @@ pub fn collide_disk_disk(ca: &Vector, ra: Real, cb: &Vector, rb: Real, alert: Re
         return Manifold::EMPTY;
     }
     let dist = dist2.sqrt();
-    let normal = if dist > 0.0 { d / dist } else { Vector::new(1.0, 0.0) };
+    let normal = if dist > 0.0 {
+        d / dist
+    } else {
+        Vector::new(1.0, 0.0)
+    };
     let gap = dist - ra - rb;
-    Manifold::one(ContactPoint { point: ca + normal * (ra + gap / 2.0), normal, gap, feature: 0 })
+    Manifold::one(ContactPoint {
+        point: ca + normal * (ra + gap / 2.0),
+        normal,
+        gap,
+        feature: 0,
+    })
 }
 
 #[cfg(test)]
@@ -23,12 +32,21 @@ mod tests {
 
     #[test]
     fn gap_normal_and_midpoint() {
-        let m = collide_disk_disk(&Vector::new(0.0, 0.0), 1.0, &Vector::new(3.0, 4.0), 3.5, 1.0);
+        let m = collide_disk_disk(
+            &Vector::new(0.0, 0.0),
+            1.0,
+            &Vector::new(3.0, 4.0),
+            3.5,
+            1.0,
+        );
         assert_eq!(m.len, 1);
         let p = m.points[0];
         assert!((p.gap - 0.5).abs() < 1e-15);
         assert!((p.normal - Vector::new(0.6, 0.8)).norm() < 1e-15);
         assert!((p.point - Vector::new(0.6, 0.8) * 1.25).norm() < 1e-15);
-        assert_eq!(collide_disk_disk(&Vector::zeros(), 1.0, &Vector::new(3.0, 4.0), 3.5, 0.4).len, 0);
+        assert_eq!(
+            collide_disk_disk(&Vector::zeros(), 1.0, &Vector::new(3.0, 4.0), 3.5, 0.4).len,
+            0
+        );
     }
 }

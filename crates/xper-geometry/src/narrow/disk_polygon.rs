@@ -42,7 +42,11 @@ pub fn collide_disk_polygon(
                 best = (p, d, k as u32);
             }
         }
-        let nrm = if best.1 > 0.0 { (local - best.0) / best.1 } else { poly.normals[best.2 as usize] };
+        let nrm = if best.1 > 0.0 {
+            (local - best.0) / best.1
+        } else {
+            poly.normals[best.2 as usize]
+        };
         (best.0, nrm, best.1, best.2)
     };
     let gap = dist - radius;
@@ -51,7 +55,12 @@ pub fn collide_disk_polygon(
     }
     let normal = rotate(&normal_local, angle);
     let point = cp + rotate(&closest, angle) + normal * (gap / 2.0);
-    Manifold::one(ContactPoint { point, normal, gap, feature })
+    Manifold::one(ContactPoint {
+        point,
+        normal,
+        gap,
+        feature,
+    })
 }
 
 #[cfg(test)]
@@ -78,7 +87,14 @@ mod tests {
         assert!((m.points[0].gap + 0.3).abs() < 1e-15);
         assert!((m.points[0].normal - Vector::new(1.0, 0.0)).norm() < 1e-15);
         // Rotated by 90 degrees, the same square.
-        let m = collide_disk_polygon(&Vector::new(0.1, 1.0), 0.4, &sq, &Vector::zeros(), 1.5707963267948966, 1.0);
+        let m = collide_disk_polygon(
+            &Vector::new(0.1, 1.0),
+            0.4,
+            &sq,
+            &Vector::zeros(),
+            std::f64::consts::FRAC_PI_2,
+            1.0,
+        );
         assert!((m.points[0].gap - 0.1).abs() < 1e-12);
     }
 }

@@ -22,8 +22,17 @@ pub fn collide_disk_segment(
     if gap > alert {
         return Manifold::EMPTY;
     }
-    let normal = if dist > 0.0 { d / dist } else { Vector::new(-dir.y, dir.x) };
-    Manifold::one(ContactPoint { point: closest + normal * (gap / 2.0), normal, gap, feature: 0 })
+    let normal = if dist > 0.0 {
+        d / dist
+    } else {
+        Vector::new(-dir.y, dir.x)
+    };
+    Manifold::one(ContactPoint {
+        point: closest + normal * (gap / 2.0),
+        normal,
+        gap,
+        feature: 0,
+    })
 }
 
 #[cfg(test)]

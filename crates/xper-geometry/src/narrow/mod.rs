@@ -31,7 +31,10 @@ pub struct ContactPoint {
 impl ContactPoint {
     /// The same contact seen from the other body.
     pub fn flipped(self) -> Self {
-        ContactPoint { normal: -self.normal, ..self }
+        ContactPoint {
+            normal: -self.normal,
+            ..self
+        }
     }
 }
 
@@ -58,7 +61,10 @@ impl Manifold {
 
     /// A manifold of one point.
     pub fn one(p: ContactPoint) -> Self {
-        Manifold { points: [p, p], len: 1 }
+        Manifold {
+            points: [p, p],
+            len: 1,
+        }
     }
 
     /// Adds a point (at most two are kept).

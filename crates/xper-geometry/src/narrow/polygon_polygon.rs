@@ -19,7 +19,11 @@ impl WorldPolygon {
     /// Places a body-frame polygon.
     pub fn from_polygon(p: &ConvexPolygon, position: &Vector, angle: Real) -> Self {
         WorldPolygon {
-            vertices: p.vertices.iter().map(|v| position + rotate(v, angle)).collect(),
+            vertices: p
+                .vertices
+                .iter()
+                .map(|v| position + rotate(v, angle))
+                .collect(),
             normals: p.normals.iter().map(|n| rotate(n, angle)).collect(),
         }
     }
@@ -28,7 +32,10 @@ impl WorldPolygon {
     pub fn from_segment(a: Vector, b: Vector) -> Self {
         let e = (b - a).normalize();
         let n = Vector::new(e.y, -e.x);
-        WorldPolygon { vertices: vec![a, b], normals: vec![n, -n] }
+        WorldPolygon {
+            vertices: vec![a, b],
+            normals: vec![n, -n],
+        }
     }
 
     fn len(&self) -> usize {
@@ -41,7 +48,11 @@ fn max_separation(a: &WorldPolygon, b: &WorldPolygon) -> (Real, usize) {
     let mut best = (Real::NEG_INFINITY, 0);
     for k in 0..a.len() {
         let (n, v) = (a.normals[k], a.vertices[k]);
-        let s = b.vertices.iter().map(|w| n.dot(&(w - v))).fold(Real::INFINITY, Real::min);
+        let s = b
+            .vertices
+            .iter()
+            .map(|w| n.dot(&(w - v)))
+            .fold(Real::INFINITY, Real::min);
         if s > best.0 {
             best = (s, k);
         }
@@ -59,16 +70,31 @@ pub fn collide_polygons(a: &WorldPolygon, b: &WorldPolygon, alert: Real) -> Mani
     if sep_b > alert {
         return Manifold::EMPTY;
     }
-    let scale = a.vertices.iter().chain(&b.vertices).map(|v| v.norm()).fold(1e-300, Real::max);
+    let scale = a
+        .vertices
+        .iter()
+        .chain(&b.vertices)
+        .map(|v| v.norm())
+        .fold(1e-300, Real::max);
     let flip = sep_b > sep_a + 1e-9 * scale;
     let (reference, incident, ref_edge) = if flip { (b, a, edge_b) } else { (a, b, edge_a) };
     let n_ref = reference.normals[ref_edge];
     let inc_edge = (0..incident.len())
-        .min_by(|&i, &j| incident.normals[i].dot(&n_ref).total_cmp(&incident.normals[j].dot(&n_ref)))
+        .min_by(|&i, &j| {
+            incident.normals[i]
+                .dot(&n_ref)
+                .total_cmp(&incident.normals[j].dot(&n_ref))
+        })
         .unwrap_or(0);
-    let (r1, r2) = (reference.vertices[ref_edge], reference.vertices[(ref_edge + 1) % reference.len()]);
+    let (r1, r2) = (
+        reference.vertices[ref_edge],
+        reference.vertices[(ref_edge + 1) % reference.len()],
+    );
     let tangent = (r2 - r1).normalize();
-    let mut seg = [incident.vertices[inc_edge], incident.vertices[(inc_edge + 1) % incident.len()]];
+    let mut seg = [
+        incident.vertices[inc_edge],
+        incident.vertices[(inc_edge + 1) % incident.len()],
+    ];
     // Clip against the side planes t >= t(r1) and t <= t(r2).
     for (dir, offset) in [(-tangent, -tangent.dot(&r1)), (tangent, tangent.dot(&r2))] {
         let d = [dir.dot(&seg[0]) - offset, dir.dot(&seg[1]) - offset];
@@ -89,8 +115,16 @@ pub fn collide_polygons(a: &WorldPolygon, b: &WorldPolygon, alert: Real) -> Mani
         let gap = n_ref.dot(&(p - r1));
         if gap <= alert {
             let normal = if flip { -n_ref } else { n_ref };
-            let feature = ((flip as u32) << 31) | ((ref_edge as u32) << 16) | ((inc_edge as u32) << 1) | k as u32;
-            m.push(ContactPoint { point: p - n_ref * (gap / 2.0), normal, gap, feature });
+            let feature = ((flip as u32) << 31)
+                | ((ref_edge as u32) << 16)
+                | ((inc_edge as u32) << 1)
+                | k as u32;
+            m.push(ContactPoint {
+                point: p - n_ref * (gap / 2.0),
+                normal,
+                gap,
+                feature,
+            });
         }
     }
     m
@@ -112,20 +146,39 @@ mod tests {
 
     #[test]
     fn stacked_squares_give_two_points() {
-        let m = collide_polygons(&square(Vector::zeros(), 1.0), &square(Vector::new(0.5, 2.1), 1.0), 0.5);
+        let m = collide_polygons(
+            &square(Vector::zeros(), 1.0),
+            &square(Vector::new(0.5, 2.1), 1.0),
+            0.5,
+        );
         assert_eq!(m.len, 2);
         for p in m.as_slice() {
             assert!((p.gap - 0.1).abs() < 1e-12);
             assert!((p.normal - Vector::new(0.0, 1.0)).norm() < 1e-15);
         }
         let xs: Vec<Real> = m.as_slice().iter().map(|p| p.point.x).collect();
-        assert!(xs.iter().any(|x| (x + 0.5).abs() < 1e-12) && xs.iter().any(|x| (x - 1.0).abs() < 1e-12));
-        assert_eq!(collide_polygons(&square(Vector::zeros(), 1.0), &square(Vector::new(0.0, 2.6), 1.0), 0.5).len, 0);
+        assert!(
+            xs.iter().any(|x| (x + 0.5).abs() < 1e-12)
+                && xs.iter().any(|x| (x - 1.0).abs() < 1e-12)
+        );
+        assert_eq!(
+            collide_polygons(
+                &square(Vector::zeros(), 1.0),
+                &square(Vector::new(0.0, 2.6), 1.0),
+                0.5
+            )
+            .len,
+            0
+        );
     }
 
     #[test]
     fn normal_points_from_first_to_second() {
-        let m = collide_polygons(&square(Vector::new(0.0, 2.05), 1.0), &square(Vector::zeros(), 1.0), 0.5);
+        let m = collide_polygons(
+            &square(Vector::new(0.0, 2.05), 1.0),
+            &square(Vector::zeros(), 1.0),
+            0.5,
+        );
         assert_eq!(m.len, 2);
         assert!((m.points[0].normal - Vector::new(0.0, -1.0)).norm() < 1e-15);
         assert!((m.points[0].gap - 0.05).abs() < 1e-12);

@@ -19,7 +19,11 @@ pub fn collide_polygon_segment(
 ) -> Manifold {
     let d = rotate(&Vector::new(half, 0.0), angle_s);
     let segment = WorldPolygon::from_segment(cs - d, cs + d);
-    collide_polygons(&WorldPolygon::from_polygon(poly, cp, angle_p), &segment, alert)
+    collide_polygons(
+        &WorldPolygon::from_polygon(poly, cp, angle_p),
+        &segment,
+        alert,
+    )
 }
 
 #[cfg(test)]
@@ -37,7 +41,8 @@ mod tests {
         ]);
         let up = Vector::new(-slope.sin(), slope.cos());
         let centre = up * 0.25;
-        let m = collide_polygon_segment(&block, &centre, slope, &Vector::zeros(), slope, 10.0, 1e-3);
+        let m =
+            collide_polygon_segment(&block, &centre, slope, &Vector::zeros(), slope, 10.0, 1e-3);
         assert_eq!(m.len, 2);
         for p in m.as_slice() {
             assert!(p.gap.abs() < 1e-12, "{p:?}");
