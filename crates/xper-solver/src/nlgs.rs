@@ -117,7 +117,11 @@ pub fn nlgs<O: ContactOperator>(
             ),
         });
     }
-    if params.tolerance.is_nan() || params.tolerance <= 0.0 || params.max_iterations == 0 || params.check_every == 0 {
+    if params.tolerance.is_nan()
+        || params.tolerance <= 0.0
+        || params.max_iterations == 0
+        || params.check_every == 0
+    {
         return Err(SolveError::InvalidParams(format!("{params:?}")));
     }
     if params.relaxation.is_nan() || params.relaxation <= 0.0 || params.relaxation >= 2.0 {
