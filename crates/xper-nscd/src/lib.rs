@@ -7,8 +7,10 @@
 //! ```text
 //! v_free  = v_i + h M^-1 F_theta
 //! U       = H^T v,  W = H^T M^-1 H,  U = W R + H^T v_free
-//! active contacts (predicted gap g_i + h theta U_N,i <= 0):
-//!         Signorini-Coulomb on (U_N + e min(U_N,i, 0), U_T) and R          (NLGS)
+//! contacts within the alert distance, g_TT = g_i + h (1 - theta) U_N,i:
+//!         Signorini-Coulomb on (U_N + s, U_T) and R                         (NLGS)
+//!         s = max(g_TT, 0) / h             for e = 0 (LMGC90's IQS law: approach by at most the gap)
+//!         s = e min(U_N,i, 0) if g_TT <= 0 for e > 0 (Newton's impact law; otherwise no contact)
 //! v_i+1   = v_free + M^-1 H R
 //! q_i+1   = q_i + h ((1 - theta) v_i + theta v_i+1)
 //! ```
@@ -27,5 +29,5 @@ mod step;
 mod world;
 
 pub use operator::RigidContactOperator;
-pub use step::{MoreauJean, StageTimes, StepError, StepReport};
+pub use step::{normal_shift, MoreauJean, StageTimes, StepError, StepReport};
 pub use world::{EnergyBudget, StepParams, World};

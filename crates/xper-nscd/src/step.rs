@@ -95,6 +95,35 @@ impl std::fmt::Display for StepError {
 
 impl std::error::Error for StepError {}
 
+/// The normal shift `s` of a contact in the Signorini condition `U_N + s >= 0 _|_ R_N >= 0`,
+/// or `None` when the contact stays out of the problem this step.
+///
+/// With `g_TT = g + h (1 - theta) U_N,i` the gap after the explicit part of the motion:
+/// - `e = 0` (LMGC90's inelastic quasi-shock law): every contact within the alert distance is in
+///   the problem with `s = max(g_TT, 0) / h`, so bodies may approach by at most the open gap;
+///   the gap then closes in two steps (to `(1 - theta) g_TT`, then exactly to 0) with neither
+///   an impact nor an overlap, and a resting contact is simply `U_N >= 0`;
+/// - `e > 0` (Newton's impact law): the contact enters the problem when `g_TT` closes (within
+///   `closed`), with `s = e min(U_N,i, 0)`, so an impact restitutes `-e U_N,i` exactly.
+#[inline]
+pub fn normal_shift(
+    gap: Real,
+    un_begin: Real,
+    h: Real,
+    theta: Real,
+    restitution: Real,
+    closed: Real,
+) -> Option<Real> {
+    let g_tt = gap + h * (1.0 - theta) * un_begin;
+    if restitution == 0.0 {
+        Some(g_tt.max(0.0) / h)
+    } else if g_tt <= closed {
+        Some(restitution * un_begin.min(0.0))
+    } else {
+        None
+    }
+}
+
 /// The Moreau-Jean stepper with its reusable buffers.
 #[derive(Default)]
 pub struct MoreauJean {
@@ -170,14 +199,14 @@ impl MoreauJean {
         let closed = world.params.projection_tolerance.unwrap_or(0.0);
         for (a, c) in world.contacts.contacts.iter().enumerate() {
             let un = self.u_begin[a][0];
-            if c.gap + h * theta * un > closed {
-                continue;
-            }
             let InteractionLaw::SignoriniCoulomb(law) = *world.laws.law(c.law);
+            let Some(shift) = normal_shift(c.gap, un, h, theta, law.restitution, closed) else {
+                continue;
+            };
             self.active.push(a as u32);
             self.op.rows.push(self.all_rows[a]);
             self.mu.push(law.friction);
-            self.shift.push(law.restitution * un.min(0.0));
+            self.shift.push(shift);
             self.impulses.push(c.impulse);
         }
         report.active = self.active.len();
