@@ -1,6 +1,6 @@
 //! Conversion of a validated scene description into an engine [`World`].
 
-use xper_bodies::{Body, BodySet, ConvexPolygon, Drive, Shape, TimeFunction};
+use xper_bodies::{Body, BodySet, ConvexPolygon, Drive, Shape};
 use xper_laws::{InteractionLaw, LawTable, SignoriniCoulomb};
 use xper_math::{Real, Vector};
 use xper_nscd::{StepParams, World};
@@ -10,29 +10,11 @@ use xper_solver::{ConvergenceNorm, NlgsParams};
 /// Overlap allowed before the position projection runs, relative to the smallest body size.
 pub const PROJECTION_TOLERANCE_RELATIVE: Real = 1e-4;
 
-fn time_function(f: &xper_scene::TimeFunction) -> TimeFunction {
-    match f {
-        xper_scene::TimeFunction::Constant(v) => TimeFunction::Constant(*v),
-        xper_scene::TimeFunction::Table(t) => TimeFunction::Table(t.clone()),
-        xper_scene::TimeFunction::Sine {
-            amplitude,
-            frequency,
-            phase,
-            offset,
-        } => TimeFunction::Sine {
-            amplitude: *amplitude,
-            frequency: *frequency,
-            phase: *phase,
-            offset: *offset,
-        },
-    }
-}
-
 fn drive(d: &xper_scene::Drive) -> Drive {
     match d {
         xper_scene::Drive::Free => Drive::Free,
-        xper_scene::Drive::Velocity(f) => Drive::Velocity(time_function(f)),
-        xper_scene::Drive::Force(f) => Drive::Force(time_function(f)),
+        xper_scene::Drive::Velocity(f) => Drive::Velocity(f.clone()),
+        xper_scene::Drive::Force(f) => Drive::Force(f.clone()),
     }
 }
 

@@ -158,54 +158,5 @@ pub enum Drive {
     Force(TimeFunction),
 }
 
-/// A scalar function of time.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub enum TimeFunction {
-    /// A constant value.
-    Constant(f64),
-    /// Points `(t, value)`, times strictly increasing: piecewise linear in between,
-    /// constant beyond the ends.
-    Table(Vec<(f64, f64)>),
-    /// `offset + amplitude * sin(2 pi frequency t + phase)`.
-    Sine {
-        /// Amplitude.
-        amplitude: f64,
-        /// Frequency in Hz.
-        frequency: f64,
-        /// Phase in rad.
-        phase: f64,
-        /// Offset added to the sine.
-        offset: f64,
-    },
-}
-
-impl TimeFunction {
-    /// The value at time `t` (s). An empty table evaluates to 0 (the parser never builds one).
-    pub fn eval(&self, t: f64) -> f64 {
-        match self {
-            TimeFunction::Constant(v) => *v,
-            TimeFunction::Sine {
-                amplitude,
-                frequency,
-                phase,
-                offset,
-            } => offset + amplitude * (2.0 * std::f64::consts::PI * frequency * t + phase).sin(),
-            TimeFunction::Table(points) => {
-                let (Some(first), Some(last)) = (points.first(), points.last()) else {
-                    return 0.0;
-                };
-                if t <= first.0 {
-                    return first.1;
-                }
-                if t >= last.0 {
-                    return last.1;
-                }
-                // First point with time > t; exists and is >= 1 because first.0 < t < last.0.
-                let k = points.partition_point(|p| p.0 <= t);
-                let (t0, v0) = points[k - 1];
-                let (t1, v1) = points[k];
-                v0 + (v1 - v0) * (t - t0) / (t1 - t0)
-            }
-        }
-    }
-}
+/// A scalar function of time (the engine's own type: the scene builds it directly).
+pub use xper_bodies::TimeFunction;
