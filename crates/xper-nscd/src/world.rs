@@ -20,8 +20,8 @@ pub struct StepParams {
     pub alert_distance: Real,
     /// The contact solver's parameters.
     pub nlgs: NlgsParams,
-    /// Overlap (m) beyond which the position projection runs; `None` disables it. Contacts whose
-    /// predicted gap is below it count as closed when the active set is chosen.
+    /// Overlap (m) beyond which the position projection runs; `None` disables it. Contacts with
+    /// restitution whose predicted gap is below it count as closed (see `normal_shift`).
     pub projection_tolerance: Option<Real>,
 }
 

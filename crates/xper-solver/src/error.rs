@@ -54,6 +54,19 @@ pub struct ConvergenceNorms {
     pub active: usize,
 }
 
+impl ConvergenceNorms {
+    /// The largest of LMGC90's three criteria (converged below 1): `|MeanDVoR|` with
+    /// `QuadDV` and `QuadDVR`, or with their max forms when `max_forms` is set.
+    pub fn worst(&self, max_forms: bool) -> f64 {
+        let (dv, dvr) = if max_forms {
+            (self.maxm_dv, self.maxm_dvr)
+        } else {
+            (self.quad_dv, self.quad_dvr)
+        };
+        self.mean_dvor.abs().max(dv).max(dvr)
+    }
+}
+
 /// Sums accumulated over a check sweep.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct NormAccumulator {

@@ -205,22 +205,8 @@ pub fn nlgs<O: ContactOperator>(
             info.iterations = sweep;
             info.norms = acc.norms(params.tolerance);
             let (residual, converged) = match params.norm {
-                ConvergenceNorm::Quad => {
-                    let m = info
-                        .norms
-                        .mean_dvor
-                        .abs()
-                        .max(info.norms.quad_dv)
-                        .max(info.norms.quad_dvr);
-                    (m * params.tolerance, m < 1.0)
-                }
-                ConvergenceNorm::Maxm => {
-                    let m = info
-                        .norms
-                        .mean_dvor
-                        .abs()
-                        .max(info.norms.maxm_dv)
-                        .max(info.norms.maxm_dvr);
+                ConvergenceNorm::Quad | ConvergenceNorm::Maxm => {
+                    let m = info.norms.worst(params.norm == ConvergenceNorm::Maxm);
                     (m * params.tolerance, m < 1.0)
                 }
                 ConvergenceNorm::NaturalMap => {
