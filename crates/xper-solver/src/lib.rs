@@ -17,8 +17,13 @@ mod error;
 mod local;
 mod nlgs;
 mod operator;
+mod problem;
 
 pub use error::{natural_map_error, project_on_cone, ConvergenceNorms};
 pub use local::solve_one_contact;
 pub use nlgs::{nlgs, ConvergenceNorm, NlgsParams, SolveError, SolveInfo};
 pub use operator::{Block2, ContactOperator, DenseProblem};
+pub use problem::{
+    error_measure, project_on_cone_nd, CsrMatrix, FrictionProblem, ProblemError,
+    ProblemErrorMeasure,
+};
