@@ -47,6 +47,7 @@ pub enum ErrorKind {
 }
 
 /// A file could not be read or written: the file, the position in it and the reason.
+/// The writers use it too (with [`ErrorKind::Io`] or [`ErrorKind::Unsupported`]).
 ///
 /// Its `Display` reads like `path/to/file.dat: line 12, token 57: expected an integer, found "x"`.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -6,8 +6,8 @@
 //!   "FCLib: a collection of discrete 3D frictional contact problems", JOTA 160(3), 2014;
 //!   <https://github.com/FrictionalContactLibrary/fclib>): `/fclib_local` (W, q, mu) and
 //!   `/fclib_global` (M, H, f, w, mu), behind the `hdf5` cargo feature, which needs the
-//!   system HDF5 library. See [`fclib`] (when built with the feature) for the layout.
-//!   [`write_fclib_local`] and [`write_fclib_global`] write the same layout atomically.
+//!   system HDF5 library. The `fclib` module (present with the feature) documents the
+//!   layout; its `write_fclib_local` and `write_fclib_global` write it atomically.
 //! - **Siconos** numerics text files (`.dat`), local and global, 2D or 3D, with dense,
 //!   sparse-block or CSparse matrices; see [`siconos`] for the layout and for how local and
 //!   global files are told apart.
@@ -20,7 +20,7 @@
 //! [`read_problem`] picks the reader from the file extension. Every reader returns a
 //! [`ReadError`] naming the file, the position (line and token for text, dataset path for
 //! HDF5) and the reason for malformed, truncated or inconsistent files; none panics on
-//! file data.
+//! file data. The writers report their failures with the same type.
 
 #![warn(missing_docs)]
 
@@ -33,7 +33,9 @@ mod sparse;
 
 pub use error::{ErrorKind, Position, ReadError};
 #[cfg(feature = "hdf5")]
-pub use fclib::{read_fclib, write_fclib_global, write_fclib_local};
+pub use fclib::{
+    read_fclib, read_fclib_global, read_fclib_local, write_fclib_global, write_fclib_local,
+};
 pub use global::{Factorization, GlobalFrictionProblem, Reduction};
 pub use siconos::{parse_siconos, read_siconos, read_siconos_as, SiconosKind};
 pub use xper_solver::{CsrMatrix, FrictionProblem, ProblemError};

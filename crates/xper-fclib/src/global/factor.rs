@@ -212,12 +212,15 @@ impl Blocks {
         for (c, idx) in members.iter().enumerate() {
             let block = Mat::from_fn(idx.len(), idx.len(), |a, b| m.get(idx[a], idx[b]));
             let symmetric = (0..idx.len()).all(|a| (0..a).all(|b| block[(a, b)] == block[(b, a)]));
-            let inv = match block.as_ref().llt(Side::Lower) {
-                Ok(llt) if symmetric => llt.inverse(),
-                _ => {
-                    lu = true;
-                    block.as_ref().partial_piv_lu().inverse()
-                }
+            let llt = || block.as_ref().llt(Side::Lower).ok().filter(|_| symmetric);
+            let inv = if idx.len() == 1 {
+                // 1 / m exactly, rather than 1 / (sqrt(m) sqrt(m)).
+                Mat::from_fn(1, 1, |_, _| 1.0 / block[(0, 0)])
+            } else if let Some(llt) = llt() {
+                llt.inverse()
+            } else {
+                lu = true;
+                block.as_ref().partial_piv_lu().inverse()
             };
             // inv * block must be the identity.
             let prod = &inv * &block;

@@ -9,17 +9,19 @@ use xper_solver::CsrMatrix;
 /// Reads one matrix named `name` (for messages).
 pub(crate) fn read_matrix(lx: &mut Lexer<'_>, name: &str) -> Result<CsrMatrix, ReadError> {
     let (code, code_tok) = lx.int(&format!("storage code of {name}"))?;
+    if !(0..=2).contains(&code) {
+        return Err(lx.error_at(
+            &code_tok,
+            ErrorKind::Format,
+            format!("storage code of {name} is {code}; 0 (dense), 1 (sparse-block) or 2 (sparse) expected"),
+        ));
+    }
     let nrows = lx.dimension(&format!("row count of {name}"))?;
     let ncols = lx.dimension(&format!("column count of {name}"))?;
     match code {
         0 => read_dense(lx, name, nrows, ncols),
         1 => read_sparse_block(lx, name, nrows, ncols),
-        2 => read_csparse(lx, name, nrows, ncols),
-        _ => Err(lx.error_at(
-            &code_tok,
-            ErrorKind::Format,
-            format!("storage code of {name} is {code}; 0 (dense), 1 (sparse-block) or 2 (sparse) expected"),
-        )),
+        _ => read_csparse(lx, name, nrows, ncols),
     }
 }
 

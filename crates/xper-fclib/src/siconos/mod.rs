@@ -110,11 +110,13 @@ pub fn parse_siconos(text: &str, path: &Path, kind: SiconosKind) -> Result<Probl
     let d = d as usize;
     let nc = lx.dimension("contact count nc")?;
     let k = d * nc;
+    let first_header = lx.peek(2).get(1).copied();
     let first = read_matrix(&mut lx, "W or M")?;
     let n = first.nrows;
     if first.ncols != n {
-        return Err(lx.error_here(
-            ErrorKind::Invalid,
+        return Err(size_error(
+            &lx,
+            first_header,
             format!(
                 "the first matrix is {} x {}; W and M are square",
                 n, first.ncols
@@ -128,8 +130,9 @@ pub fn parse_siconos(text: &str, path: &Path, kind: SiconosKind) -> Result<Probl
     };
     if !global {
         if n != k {
-            return Err(lx.error_here(
-                ErrorKind::Invalid,
+            return Err(size_error(
+                &lx,
+                first_header,
                 format!("W is {n} x {n} but {nc} contacts in {d}D need {k} x {k} (is this a global problem?)"),
             ));
         }
@@ -149,10 +152,12 @@ pub fn parse_siconos(text: &str, path: &Path, kind: SiconosKind) -> Result<Probl
         String::new()
     };
     let body = |lx: &mut Lexer<'_>| -> Result<Problem, ReadError> {
+        let h_header = lx.peek(2).get(1).copied();
         let h = read_matrix(lx, "H")?;
         if h.nrows != n || h.ncols != k {
-            return Err(lx.error_here(
-                ErrorKind::Invalid,
+            return Err(size_error(
+                lx,
+                h_header,
                 format!(
                     "H is {} x {} but M is {n} x {n} and {nc} contacts in {d}D need {n} x {k}",
                     h.nrows, h.ncols
@@ -171,6 +176,14 @@ pub fn parse_siconos(text: &str, path: &Path, kind: SiconosKind) -> Result<Probl
         e.reason.push_str(&why);
         e
     })
+}
+
+/// A size error, at the row count of the matrix header `header` when known.
+fn size_error(lx: &Lexer<'_>, header: Option<lexer::Tok<'_>>, reason: String) -> ReadError {
+    match header {
+        Some(t) => lx.error_at(&t, ErrorKind::Invalid, reason),
+        None => lx.error_here(ErrorKind::Invalid, reason),
+    }
 }
 
 fn invalid(path: &Path, reason: String) -> ReadError {
