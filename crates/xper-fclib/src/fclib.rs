@@ -70,9 +70,13 @@ pub fn read_fclib_global(path: impl AsRef<Path>) -> Result<GlobalFrictionProblem
     global(&file, &r)
 }
 
-/// Writes `p` as `/fclib_local` of a new FCLib file at `path`, atomically.
+/// Writes `p` as `/fclib_local` of a new FCLib file at `path`, atomically. A problem
+/// whose public fields disagree (sizes, values) is refused, so that what is written can
+/// be read back.
 pub fn write_fclib_local(path: impl AsRef<Path>, p: &FrictionProblem) -> Result<(), ReadError> {
     let path = path.as_ref();
+    FrictionProblem::new(p.dim, p.w.clone(), p.q.clone(), p.mu.clone())
+        .map_err(|e| ReadError::file(path, ErrorKind::Invalid, e.0))?;
     write_atomically(path, |tmp| {
         let w = Writer { path };
         let file = h5::File::create(tmp).map_err(|e| w.err("/", e))?;
@@ -86,12 +90,15 @@ pub fn write_fclib_local(path: impl AsRef<Path>, p: &FrictionProblem) -> Result<
     })
 }
 
-/// Writes `p` as `/fclib_global` of a new FCLib file at `path`, atomically.
+/// Writes `p` as `/fclib_global` of a new FCLib file at `path`, atomically, after
+/// [`GlobalFrictionProblem::validate`].
 pub fn write_fclib_global(
     path: impl AsRef<Path>,
     p: &GlobalFrictionProblem,
 ) -> Result<(), ReadError> {
     let path = path.as_ref();
+    p.validate()
+        .map_err(|e| ReadError::file(path, ErrorKind::Invalid, e.0))?;
     write_atomically(path, |tmp| {
         let w = Writer { path };
         let file = h5::File::create(tmp).map_err(|e| w.err("/", e))?;

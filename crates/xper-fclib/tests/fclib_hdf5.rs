@@ -128,6 +128,12 @@ fn writing_replaces_atomically_and_failures_leave_nothing() {
     let bad = tmp.path("no/such/dir/dump.hdf5");
     let e = write_fclib_local(&bad, &small_local()).unwrap_err();
     assert_eq!((e.kind, e.path.as_path()), (ErrorKind::Io, bad.as_path()));
+    // An inconsistent problem is refused, and the previous file stays.
+    let mut broken = small_local();
+    broken.mu.push(0.1);
+    let e = write_fclib_local(&path, &broken).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::Invalid, "{e}");
+    assert_eq!(read_fclib_local(&path).unwrap(), small_local());
     let left: Vec<_> = std::fs::read_dir(&tmp.0).unwrap().collect();
     assert_eq!(left.len(), 1);
 }

@@ -269,4 +269,11 @@ fn new_rejects_inconsistent_data() {
     for (k, c) in cases.iter().enumerate() {
         assert!(c.is_err(), "case {k} accepted");
     }
+    // Fields set directly are checked again before a reduction.
+    let mut p = ok.unwrap();
+    p.h.col_idx[0] = 7;
+    assert!(p.to_local().unwrap_err().0.contains("consistent CSR"));
+    p.h.col_idx[0] = 0;
+    p.w.push(0.0);
+    assert!(p.to_local().is_err());
 }

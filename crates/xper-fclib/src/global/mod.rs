@@ -80,45 +80,64 @@ impl GlobalFrictionProblem {
         w: Vec<f64>,
         mu: Vec<f64>,
     ) -> Result<Self, ProblemError> {
-        if dim != 2 && dim != 3 {
-            return Err(err(format!("dimension {dim} is not 2 or 3")));
-        }
-        let n = f.len();
-        let k = dim * mu.len();
-        if m.nrows != n || m.ncols != n {
-            return Err(err(format!(
-                "f has {n} entries so M must be {n} x {n}; it is {} x {}",
-                m.nrows, m.ncols
-            )));
-        }
-        if h.nrows != n || h.ncols != k || w.len() != k {
-            return Err(err(format!(
-                "{} contacts in {dim}D over {n} unknowns need H {n} x {k} and w of length {k}; got H {} x {} and w of length {}",
-                mu.len(), h.nrows, h.ncols, w.len()
-            )));
-        }
-        for (name, v) in [("f", &f), ("w", &w)] {
-            if let Some(i) = v.iter().position(|x| !x.is_finite()) {
-                return Err(err(format!("{name}[{i}] = {} is not finite", v[i])));
-            }
-        }
-        if let Some(a) = mu.iter().position(|v| !(v.is_finite() && *v >= 0.0)) {
-            return Err(err(format!(
-                "mu[{a}] = {} is not a finite non-negative number",
-                mu[a]
-            )));
-        }
-        if !m.is_finite() || !h.is_finite() {
-            return Err(err("M or H holds a non-finite value"));
-        }
-        Ok(GlobalFrictionProblem {
+        let p = GlobalFrictionProblem {
             dim,
             m,
             h,
             f,
             w,
             mu,
-        })
+        };
+        p.validate()?;
+        Ok(p)
+    }
+
+    /// The checks of [`Self::new`], for a problem whose public fields were set directly.
+    pub fn validate(&self) -> Result<(), ProblemError> {
+        let (dim, m, h) = (self.dim, &self.m, &self.h);
+        if dim != 2 && dim != 3 {
+            return Err(err(format!("dimension {dim} is not 2 or 3")));
+        }
+        let n = self.f.len();
+        let k = dim * self.mu.len();
+        if m.nrows != n || m.ncols != n {
+            return Err(err(format!(
+                "f has {n} entries so M must be {n} x {n}; it is {} x {}",
+                m.nrows, m.ncols
+            )));
+        }
+        if h.nrows != n || h.ncols != k || self.w.len() != k {
+            return Err(err(format!(
+                "{} contacts in {dim}D over {n} unknowns need H {n} x {k} and w of length {k}; got H {} x {} and w of length {}",
+                self.mu.len(), h.nrows, h.ncols, self.w.len()
+            )));
+        }
+        for a in [m, h] {
+            let shape_ok = a.row_ptr.len() == a.nrows + 1
+                && a.row_ptr.first() == Some(&0)
+                && a.row_ptr.windows(2).all(|p| p[0] <= p[1])
+                && a.row_ptr.last() == Some(&a.values.len())
+                && a.col_idx.len() == a.values.len()
+                && a.col_idx.iter().all(|&j| j < a.ncols);
+            if !shape_ok {
+                return Err(err("M or H is not a consistent CSR matrix"));
+            }
+        }
+        for (name, v) in [("f", &self.f), ("w", &self.w)] {
+            if let Some(i) = v.iter().position(|x| !x.is_finite()) {
+                return Err(err(format!("{name}[{i}] = {} is not finite", v[i])));
+            }
+        }
+        if let Some(a) = self.mu.iter().position(|v| !(v.is_finite() && *v >= 0.0)) {
+            return Err(err(format!(
+                "mu[{a}] = {} is not a finite non-negative number",
+                self.mu[a]
+            )));
+        }
+        if !m.is_finite() || !h.is_finite() {
+            return Err(err("M or H holds a non-finite value"));
+        }
+        Ok(())
     }
 
     /// Number of contacts.
@@ -141,6 +160,7 @@ impl GlobalFrictionProblem {
     /// not one, or (sparse LU only; Cholesky succeeding proves `M` positive definite) a
     /// residual `|M x - b|` above `1e-8 (|M|_F |x| + |b|)`.
     pub fn reduce(&self) -> Result<Reduction, ProblemError> {
+        self.validate()?;
         let k = self.h.ncols;
         if k == 0 {
             let w = CsrMatrix::from_triplets(0, 0, &[]).expect("empty");
