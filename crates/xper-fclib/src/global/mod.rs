@@ -9,9 +9,11 @@
 //! `W = H^T M^-1 H` and `q = H^T M^-1 f + w` (FCLib's convention, Acary et al. 2014).
 //! The reduction factorises `M` once with faer: block by block when `M` is block diagonal
 //! (rigid bodies), otherwise with faer's sparse Cholesky when `M` is symmetric positive
-//! definite and its sparse LU otherwise, then solves for the columns of `H`. `W` is kept sparse: entry `(i, j)` is stored when the supports of
-//! column `i` of `H` and of `M^-1 H e_j` meet, with no threshold dropping, so
-//! block-diagonal mass matrices (rigid bodies) give the same sparsity as the contact graph.
+//! definite and its sparse LU otherwise, then solves for the columns of `H`.
+//!
+//! `W` is kept sparse: entry `(i, j)` is stored when the supports of column `i` of `H`
+//! and of `M^-1 H e_j` meet, with no threshold dropping, so block-diagonal mass matrices
+//! (rigid bodies) give the same sparsity as the contact graph.
 
 mod factor;
 
