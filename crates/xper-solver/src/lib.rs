@@ -13,17 +13,29 @@
 //! `W = H^T M^-1 H` of rigid bodies, where applying an impulse updates two body velocities
 //! so one contact update costs O(1).
 
+pub mod alart_curnier;
 mod error;
+pub mod lemke;
 mod local;
+pub mod newton;
 mod nlgs;
+pub mod nsgs;
 mod operator;
 mod problem;
+pub mod proximal;
+mod solve;
 
+pub use alart_curnier::LocalParams;
 pub use error::{natural_map_error, project_on_cone, ConvergenceNorms};
+pub use lemke::{lemke, LemkeParams};
 pub use local::solve_one_contact;
+pub use newton::{newton, NewtonParams, RhoStrategy};
 pub use nlgs::{nlgs, ConvergenceNorm, NlgsParams, SolveError, SolveInfo};
+pub use nsgs::{nsgs, NsgsParams};
 pub use operator::{Block2, ContactOperator, DenseProblem};
 pub use problem::{
     error_measure, project_on_cone_nd, CsrMatrix, FrictionProblem, ProblemError,
     ProblemErrorMeasure,
 };
+pub use proximal::{proximal_newton, ProximalParams};
+pub use solve::{solve, ErrorScaling, SolveReport, SolverKind, SolverParams};

@@ -80,6 +80,10 @@ pub enum SolveError {
     },
     /// Invalid parameters.
     InvalidParams(String),
+    /// The solver does not handle this kind of problem (e.g. Lemke's method in 3D).
+    Unsupported(String),
+    /// The solver stopped without a usable answer (e.g. Lemke's ray termination).
+    Breakdown(String),
 }
 
 impl std::fmt::Display for SolveError {
@@ -88,6 +92,8 @@ impl std::fmt::Display for SolveError {
             SolveError::SizeMismatch { what } => write!(f, "size mismatch: {what}"),
             SolveError::InvalidData { contact, what } => write!(f, "contact {contact}: {what}"),
             SolveError::InvalidParams(s) => write!(f, "invalid solver parameters: {s}"),
+            SolveError::Unsupported(s) => write!(f, "unsupported problem: {s}"),
+            SolveError::Breakdown(s) => write!(f, "solver breakdown: {s}"),
         }
     }
 }

@@ -1,0 +1,354 @@
+//! Alart-Curnier's function of one contact and the local (one-contact) 3D solver.
+//!
+//! For a contact with impulse `r = (r_N, r_T)` and velocity `u = (u_N, u_T)`, Alart and
+//! Curnier (CMAME 92, 1991; in the form of Christensen, Klarbring, Pang, Strömberg,
+//! IJNME 42, 1998, and of Siconos' `fc3d_AlartCurnier` "standard" variant) write the
+//! Signorini-Coulomb law as the non-smooth equation
+//!
+//! ```text
+//! Phi_N = r_N - max(0, r_N - rho_N u_N)                          = 0
+//! Phi_T = r_T - P_D(mu max(0, r_N - rho_N u_N)) (r_T - rho_T u_T) = 0
+//! ```
+//!
+//! with `P_D(R)` the projection on the disk (2D: interval) of radius `R` and `rho_N, rho_T > 0`.
+//! [`ac_function`] returns `Phi` and an element of its generalized Jacobian as two blocks,
+//! `dPhi = A dr + B du`; with `u = W r + q` the Newton matrix is `A + B W`.
+//!
+//! The local 3D solve (`u = W_aa r + q_a`, one contact) enumerates take-off (`q_N >= 0`) and
+//! stick (`r = -W_aa^-1 q_a` inside the cone) in closed form, then runs a damped Newton on
+//! `Phi` (Armijo backtracking on `|Phi|^2 / 2`); when Newton fails it falls back to the
+//! projection on the cone with local iterations of Siconos (`fc3d_projectionOnConeWithLocalIteration`):
+//! `r <- P_K(r - rho (u + mu |u_T| e_N))` with `rho` halved while
+//! `rho |Δ(u + mu|u_T| e_N)| > 0.9 |Δr|` (a Lipschitz test in the style of Khobotov's
+//! extragradient rule) and enlarged when the test holds with margin.
+
+/// Tuning of the one-contact 3D solver.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct LocalParams {
+    /// Newton iterations before falling back to the projection.
+    pub newton_iterations: u32,
+    /// Iterations of the projection fallback.
+    pub projection_iterations: u32,
+    /// Relative tolerance on `|Phi|` (Newton) and on the step (projection), relative to
+    /// `max(|r|, |q| / W_NN)`.
+    pub tolerance: f64,
+}
+
+impl Default for LocalParams {
+    fn default() -> Self {
+        LocalParams {
+            newton_iterations: 30,
+            projection_iterations: 1000,
+            tolerance: 1e-14,
+        }
+    }
+}
+
+/// `Phi` and the blocks `A = dPhi/dr`, `B = dPhi/du` (row-major `d x d` in `[f64; 9]`).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct AcEval {
+    pub phi: [f64; 3],
+    pub a: [f64; 9],
+    pub b: [f64; 9],
+}
+
+/// Alart-Curnier's function of one contact in dimension `d` (2 or 3), see the module docs.
+#[inline]
+#[allow(clippy::needless_range_loop)] // block indices k * d + l read better than iterators
+pub(crate) fn ac_function(
+    d: usize,
+    r: &[f64],
+    u: &[f64],
+    mu: f64,
+    rho_n: f64,
+    rho_t: f64,
+) -> AcEval {
+    let mut e = AcEval::default();
+    let xn = r[0] - rho_n * u[0];
+    if xn > 0.0 {
+        e.phi[0] = rho_n * u[0];
+        e.b[0] = rho_n;
+    } else {
+        e.phi[0] = r[0];
+        e.a[0] = 1.0;
+    }
+    let radius = mu * xn.max(0.0);
+    let mut xt = [0.0; 2];
+    for (x, (rk, uk)) in xt.iter_mut().zip(r[1..d].iter().zip(&u[1..d])) {
+        *x = rk - rho_t * uk;
+    }
+    let nx = xt.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if nx <= radius {
+        for k in 1..d {
+            e.phi[k] = rho_t * u[k];
+            e.b[k * d + k] = rho_t;
+        }
+    } else {
+        let s = [xt[0] / nx, xt[1] / nx];
+        let c = radius / nx;
+        for k in 1..d {
+            e.phi[k] = r[k] - radius * s[k - 1];
+            if xn > 0.0 {
+                e.a[k * d] = -mu * s[k - 1];
+                e.b[k * d] = mu * rho_n * s[k - 1];
+            }
+            for l in 1..d {
+                // P = I - s s^T on the tangent plane (zero in 2D, where s = ±1).
+                let p = f64::from(u8::from(k == l)) - s[k - 1] * s[l - 1];
+                e.a[k * d + l] = f64::from(u8::from(k == l)) - c * p;
+                e.b[k * d + l] = c * rho_t * p;
+            }
+        }
+    }
+    e
+}
+
+/// Solves the 3x3 system `m x = b` by Gaussian elimination with partial pivoting; `None` when
+/// a pivot is below `1e-14` times the largest entry.
+pub(crate) fn solve3(m: &[f64; 9], b: [f64; 3]) -> Option<[f64; 3]> {
+    let mut a = *m;
+    let mut x = b;
+    let scale = a.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+    if !(scale > 0.0 && scale.is_finite()) {
+        return None;
+    }
+    for c in 0..3 {
+        let p = (c..3)
+            .max_by(|&i, &j| a[i * 3 + c].abs().total_cmp(&a[j * 3 + c].abs()))
+            .unwrap_or(c);
+        if a[p * 3 + c].abs() <= 1e-14 * scale {
+            return None;
+        }
+        if p != c {
+            for k in 0..3 {
+                a.swap(p * 3 + k, c * 3 + k);
+            }
+            x.swap(p, c);
+        }
+        for i in c + 1..3 {
+            let f = a[i * 3 + c] / a[c * 3 + c];
+            for k in c..3 {
+                a[i * 3 + k] -= f * a[c * 3 + k];
+            }
+            x[i] -= f * x[c];
+        }
+    }
+    for c in (0..3).rev() {
+        let s: f64 = (c + 1..3).map(|k| a[c * 3 + k] * x[k]).sum();
+        x[c] = (x[c] - s) / a[c * 3 + c];
+    }
+    x.iter().all(|v| v.is_finite()).then_some(x)
+}
+
+#[inline]
+fn mul3(w: &[f64; 9], r: &[f64; 3], q: &[f64; 3]) -> [f64; 3] {
+    [
+        q[0] + w[0] * r[0] + w[1] * r[1] + w[2] * r[2],
+        q[1] + w[3] * r[0] + w[4] * r[1] + w[5] * r[2],
+        q[2] + w[6] * r[0] + w[7] * r[1] + w[8] * r[2],
+    ]
+}
+
+#[inline]
+fn norm3(x: &[f64; 3]) -> f64 {
+    (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt()
+}
+
+/// Projection on the 3D Coulomb cone.
+#[inline]
+fn project3(x: [f64; 3], mu: f64) -> [f64; 3] {
+    let mut y = x;
+    crate::problem::project_on_cone_nd(&mut y, mu);
+    y
+}
+
+/// Natural-map residual `|r - P_K(r - u - mu |u_T| e_N)|` of one 3D contact.
+#[inline]
+pub(crate) fn local_residual3(r: &[f64; 3], u: &[f64; 3], mu: f64) -> f64 {
+    let ut = (u[1] * u[1] + u[2] * u[2]).sqrt();
+    let p = project3([r[0] - u[0] - mu * ut, r[1] - u[1], r[2] - u[2]], mu);
+    norm3(&[r[0] - p[0], r[1] - p[1], r[2] - p[2]])
+}
+
+/// How a local problem was solved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum LocalPath {
+    /// Closed form: take-off, frictionless, or stick.
+    Closed,
+    /// Alart-Curnier Newton converged.
+    Newton,
+    /// Newton failed; the projection fallback gave the answer.
+    Projection,
+}
+
+/// Solves the one-contact 3D problem `u = w r + q` in place (`r` holds the warm start).
+pub(crate) fn solve_contact_3d(
+    w: &[f64; 9],
+    q: [f64; 3],
+    mu: f64,
+    r: &mut [f64; 3],
+    p: &LocalParams,
+) -> LocalPath {
+    if q[0] >= 0.0 {
+        *r = [0.0; 3];
+        return LocalPath::Closed;
+    }
+    if mu == 0.0 {
+        *r = [-q[0] / w[0], 0.0, 0.0];
+        return LocalPath::Closed;
+    }
+    if let Some(s) = solve3(w, [-q[0], -q[1], -q[2]]) {
+        if s[0] >= 0.0 && (s[1] * s[1] + s[2] * s[2]).sqrt() <= mu * s[0] {
+            *r = s;
+            return LocalPath::Closed;
+        }
+    }
+    let rho_n = 1.0 / w[0];
+    let wt = w[4] + w[8];
+    let rho_t = if wt > 0.0 { 2.0 / wt } else { rho_n };
+    let scale_r = rho_n * norm3(&q);
+    let start = if r[0] > 0.0 && r.iter().all(|x| x.is_finite()) {
+        *r
+    } else {
+        [-q[0] / w[0], 0.0, 0.0]
+    };
+    if let Some(x) = local_newton(w, &q, mu, rho_n, rho_t, start, scale_r, p) {
+        *r = x;
+        return LocalPath::Newton;
+    }
+    *r = local_projection(w, &q, mu, start, scale_r, p);
+    LocalPath::Projection
+}
+
+/// Damped Newton on Alart-Curnier's function of one contact; `None` without convergence.
+#[allow(clippy::too_many_arguments)]
+fn local_newton(
+    w: &[f64; 9],
+    q: &[f64; 3],
+    mu: f64,
+    rho_n: f64,
+    rho_t: f64,
+    mut r: [f64; 3],
+    scale_r: f64,
+    p: &LocalParams,
+) -> Option<[f64; 3]> {
+    let eval = |r: &[f64; 3]| ac_function(3, r, &mul3(w, r, q), mu, rho_n, rho_t);
+    let mut e = eval(&r);
+    let mut f = norm3(&e.phi);
+    for _ in 0..p.newton_iterations {
+        if f <= p.tolerance * scale_r.max(norm3(&r)) {
+            return Some(r);
+        }
+        let mut j = e.a;
+        for i in 0..3 {
+            for k in 0..3 {
+                j[i * 3 + k] += (0..3).map(|l| e.b[i * 3 + l] * w[l * 3 + k]).sum::<f64>();
+            }
+        }
+        let dr = solve3(&j, [-e.phi[0], -e.phi[1], -e.phi[2]])?;
+        let mut t = 1.0;
+        loop {
+            let rt = [r[0] + t * dr[0], r[1] + t * dr[1], r[2] + t * dr[2]];
+            let et = eval(&rt);
+            let ft = norm3(&et.phi);
+            // Armijo on |Phi|^2 / 2: the Newton direction has slope -|Phi|^2.
+            if ft * ft <= (1.0 - 2e-4 * t) * f * f || t < 1e-3 {
+                r = rt;
+                e = et;
+                f = ft;
+                break;
+            }
+            t *= 0.5;
+        }
+        if !f.is_finite() {
+            return None;
+        }
+    }
+    (f <= p.tolerance * scale_r.max(norm3(&r))).then_some(r)
+}
+
+/// Projection on the cone with local iterations and an adaptive `rho` (see the module docs);
+/// returns the best iterate by the local natural-map residual.
+fn local_projection(
+    w: &[f64; 9],
+    q: &[f64; 3],
+    mu: f64,
+    start: [f64; 3],
+    scale_r: f64,
+    p: &LocalParams,
+) -> [f64; 3] {
+    let shifted = |u: [f64; 3]| [u[0] + mu * (u[1] * u[1] + u[2] * u[2]).sqrt(), u[1], u[2]];
+    let mut r = project3(start, mu);
+    let mut u = mul3(w, &r, q);
+    let mut rho = 1.0 / w[0];
+    let mut best = (local_residual3(&r, &u, mu), r);
+    for _ in 0..p.projection_iterations {
+        let v = shifted(u);
+        let (mut r_new, mut u_new, mut dr_norm);
+        let mut tries = 0;
+        loop {
+            r_new = project3(
+                [r[0] - rho * v[0], r[1] - rho * v[1], r[2] - rho * v[2]],
+                mu,
+            );
+            let dr = [r_new[0] - r[0], r_new[1] - r[1], r_new[2] - r[2]];
+            u_new = mul3(w, &dr, &u);
+            let v_new = shifted(u_new);
+            dr_norm = norm3(&dr);
+            let dv = norm3(&[v_new[0] - v[0], v_new[1] - v[1], v_new[2] - v[2]]);
+            tries += 1;
+            if rho * dv <= 0.9 * dr_norm || dr_norm == 0.0 || tries > 30 {
+                if rho * dv < 0.3 * dr_norm {
+                    rho *= 1.5;
+                }
+                break;
+            }
+            rho *= 0.5;
+        }
+        r = r_new;
+        u = u_new;
+        let res = local_residual3(&r, &u, mu);
+        if res < best.0 {
+            best = (res, r);
+        }
+        if dr_norm <= p.tolerance * scale_r.max(norm3(&r)) {
+            break;
+        }
+    }
+    best.1
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn solve3_solves_and_detects_singular() {
+        let m = [4.0, 1.0, 0.0, 1.0, 3.0, 1.0, 0.0, 1.0, 2.0];
+        let x = solve3(&m, [1.0, 2.0, 3.0]).unwrap();
+        let y = mul3(&m, &x, &[0.0; 3]);
+        assert!((y[0] - 1.0).abs() + (y[1] - 2.0).abs() + (y[2] - 3.0).abs() < 1e-14);
+        assert!(solve3(&[1.0, 2.0, 3.0, 2.0, 4.0, 6.0, 0.0, 0.0, 1.0], [1.0; 3]).is_none());
+    }
+
+    #[test]
+    fn local_3d_cases() {
+        let w = [2.0, 0.1, 0.2, 0.1, 1.5, 0.05, 0.2, 0.05, 1.2];
+        let p = LocalParams::default();
+        for (q, mu) in [
+            ([1.0, 3.0, 1.0], 0.3),
+            ([-1.0, 0.01, 0.02], 0.5),
+            ([-1.0, 3.0, -2.0], 0.3),
+            ([-1.0, -3.0, 0.5], 0.0),
+            ([-1.0, -0.3, 0.5], 1.5),
+        ] {
+            let mut r = [0.0; 3];
+            solve_contact_3d(&w, q, mu, &mut r, &p);
+            let u = mul3(&w, &r, &q);
+            assert!(
+                local_residual3(&r, &u, mu) < 1e-12,
+                "{q:?} {mu} {r:?} {u:?}"
+            );
+        }
+    }
+}

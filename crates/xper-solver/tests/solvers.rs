@@ -1,0 +1,403 @@
+//! The solvers of assembled problems against each other, against hand solutions and against
+//! an independent check of the Signorini-Coulomb conditions.
+
+use proptest::prelude::*;
+use xper_solver::{
+    nlgs, solve, ConvergenceNorm, CsrMatrix, DenseProblem, FrictionProblem, NlgsParams, SolveError,
+    SolveReport, SolverKind, SolverParams,
+};
+
+/// A tiny deterministic generator (splitmix64) for the random problems.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+}
+
+/// `W = H^T M^-1 H` from a random `H` (`dofs x dim n`) and a random diagonal SPD `M`:
+/// rank-deficient when `dofs < dim n`, as for rigid bodies with many contacts.
+/// `q = H^T v` for a random free velocity `v`, as in time stepping without gaps: then `v = 0`
+/// is admissible and a solution exists (a random `q` off the range of `H^T` may make a
+/// rank-deficient problem infeasible).
+fn random_problem(
+    rng: &mut Rng,
+    dim: usize,
+    n: usize,
+    dofs: usize,
+    mu_max: f64,
+) -> FrictionProblem {
+    let m = dim * n;
+    let h: Vec<f64> = (0..dofs * m).map(|_| rng.range(-1.0, 1.0)).collect();
+    let minv: Vec<f64> = (0..dofs).map(|_| rng.range(0.5, 2.0)).collect();
+    let mut w = vec![0.0; m * m];
+    for i in 0..m {
+        for j in 0..m {
+            w[i * m + j] = (0..dofs)
+                .map(|k| h[k * m + i] * minv[k] * h[k * m + j])
+                .sum();
+        }
+    }
+    let v: Vec<f64> = (0..dofs).map(|_| rng.range(-1.0, 1.0)).collect();
+    let q: Vec<f64> = (0..m)
+        .map(|i| (0..dofs).map(|k| h[k * m + i] * v[k]).sum())
+        .collect();
+    let mu: Vec<f64> = (0..n).map(|_| rng.range(0.1, mu_max)).collect();
+    FrictionProblem::new(dim, CsrMatrix::from_dense_row_major(m, m, &w), q, mu).unwrap()
+}
+
+/// Independent check of the Signorini-Coulomb conditions (not through the natural map):
+/// `r_N >= 0`, `u_N >= 0`, `r_N u_N = 0`, `|r_T| <= mu r_N`, and when sliding
+/// (`|u_T| > 0` and `r_N > 0`) `r_T = -mu r_N u_T / |u_T|`; stick (`|r_T| < mu r_N`)
+/// requires `u_T = 0`. `tol` is absolute on quantities of the problem's scale.
+fn check_coulomb(dim: usize, r: &[f64], u: &[f64], mu: &[f64], tol: f64) -> Result<(), String> {
+    for (a, &mu) in mu.iter().enumerate() {
+        let (ra, ua) = (&r[dim * a..dim * (a + 1)], &u[dim * a..dim * (a + 1)]);
+        let rt = ra[1..].iter().map(|x| x * x).sum::<f64>().sqrt();
+        let ut = ua[1..].iter().map(|x| x * x).sum::<f64>().sqrt();
+        let fail = |what: &str| Err(format!("contact {a}: {what}: r = {ra:?}, u = {ua:?}"));
+        if ra[0] < -tol || ua[0] < -tol {
+            return fail("negative normal impulse or velocity");
+        }
+        if (ra[0] * ua[0]).abs() > tol * (1.0 + ra[0].abs() + ua[0].abs()) {
+            return fail("normal complementarity");
+        }
+        if rt > mu * ra[0] + tol {
+            return fail("outside the friction cone");
+        }
+        if rt < mu * ra[0] - tol && ut > tol {
+            return fail("sticking impulse with a sliding velocity");
+        }
+        if ut > tol && ra[0] > tol {
+            for k in 1..dim {
+                if (ra[k] + mu * ra[0] * ua[k] / ut).abs() > tol * (1.0 + ra[0]) {
+                    return fail("friction not opposite to sliding");
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+fn params(kind: SolverKind, tol: f64) -> SolverParams {
+    let mut p = SolverParams::with_kind(kind);
+    p.tolerance = tol;
+    if kind == SolverKind::Nsgs {
+        p.max_iterations = 200_000;
+    }
+    p
+}
+
+fn run(p: &FrictionProblem, kind: SolverKind, tol: f64) -> SolveReport {
+    let rep = solve(p, &params(kind, tol), None).unwrap_or_else(|e| panic!("{kind:?}: {e}"));
+    assert!(rep.converged, "{kind:?} did not converge: {:?}", rep.error);
+    assert!(rep.error.relative_max < 1e-8, "{kind:?}: {:?}", rep.error);
+    rep
+}
+
+fn dist(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y) * (x - y))
+        .sum::<f64>()
+        .sqrt()
+}
+
+fn norm(a: &[f64]) -> f64 {
+    a.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// Relative agreement of two solutions.
+fn agree(a: &[f64], b: &[f64], tol: f64) -> bool {
+    dist(a, b) <= tol * norm(a).max(norm(b)).max(1.0)
+}
+
+#[test]
+fn small_2d_problems_nsgs_newton_lemke_agree() {
+    let mut rng = Rng(11);
+    let mut checked = 0;
+    for case in 0..40 {
+        let n = 1 + case % 5;
+        // Full rank (dofs = 2n + 2) in even cases, rank-deficient (dofs = n + 1) in odd ones.
+        let full_rank = case % 2 == 0;
+        let dofs = if full_rank { 2 * n + 2 } else { n + 1 };
+        let p = random_problem(&mut rng, 2, n, dofs, 0.6);
+        // Tight tolerance (1e-12) so that the comparison below measures disagreement between
+        // solutions, not solver accuracy; Lemke's pivoting is exact up to rounding.
+        let lemke = run(&p, SolverKind::Lemke, 1e-12);
+        let newton_kind = if full_rank {
+            SolverKind::Newton
+        } else {
+            SolverKind::ProximalNewton
+        };
+        let reports = [
+            run(&p, SolverKind::Nsgs, 1e-12),
+            run(&p, newton_kind, 1e-12),
+            run(&p, SolverKind::ProximalNewton, 1e-12),
+        ];
+        check_coulomb(2, &lemke.r, &lemke.u, &p.mu, 1e-9).unwrap();
+        for rep in &reports {
+            check_coulomb(2, &rep.r, &rep.u, &p.mu, 1e-8)
+                .unwrap_or_else(|e| panic!("case {case} {}: {e}", rep.solver));
+            // Velocities: 1e-7 relative. Impulses only when W has full rank: with more
+            // contact unknowns than degrees of freedom, r is not unique (W has a kernel),
+            // while u = W r + q generally is.
+            assert!(
+                agree(&rep.u, &lemke.u, 1e-7),
+                "case {case} {}: u {:?} vs Lemke {:?}",
+                rep.solver,
+                rep.u,
+                lemke.u
+            );
+            if full_rank {
+                assert!(
+                    agree(&rep.r, &lemke.r, 1e-7),
+                    "case {case} {}: r {:?} vs Lemke {:?}",
+                    rep.solver,
+                    rep.r,
+                    lemke.r
+                );
+            }
+        }
+        checked += 1;
+    }
+    assert_eq!(checked, 40);
+}
+
+#[test]
+fn random_3d_problems_nsgs_and_newton_agree() {
+    let mut rng = Rng(5);
+    for case in 0..30 {
+        let n = 1 + case % 6;
+        let full_rank = case % 3 != 0;
+        let dofs = if full_rank { 3 * n + 3 } else { 2 * n };
+        let p = random_problem(&mut rng, 3, n, dofs, 0.8);
+        let nsgs = run(&p, SolverKind::Nsgs, 1e-12);
+        let newton = run(
+            &p,
+            if full_rank {
+                SolverKind::Newton
+            } else {
+                SolverKind::ProximalNewton
+            },
+            1e-12,
+        );
+        for rep in [&nsgs, &newton] {
+            check_coulomb(3, &rep.r, &rep.u, &p.mu, 1e-8)
+                .unwrap_or_else(|e| panic!("case {case} {}: {e}", rep.solver));
+        }
+        // Same tolerances and reasons as in 2D.
+        assert!(agree(&nsgs.u, &newton.u, 1e-7), "case {case}: u differ");
+        if full_rank {
+            assert!(agree(&nsgs.r, &newton.r, 1e-7), "case {case}: r differ");
+        }
+    }
+}
+
+#[test]
+fn nlgs_on_dense_problem_agrees_with_nsgs() {
+    let mut rng = Rng(3);
+    for case in 0..10 {
+        let n = 2 + case % 4;
+        let p = random_problem(&mut rng, 2, n, 2 * n + 1, 0.5);
+        let m = 2 * n;
+        let dense: Vec<f64> = (0..m * m).map(|k| p.w.get(k / m, k % m)).collect();
+        let mut op = DenseProblem::new(dense, p.q.clone(), p.mu.clone());
+        let mut impulses = vec![[0.0; 2]; n];
+        let nlgs_params = NlgsParams {
+            tolerance: 1e-12,
+            max_iterations: 200_000,
+            check_every: 1,
+            relaxation: 1.0,
+            norm: ConvergenceNorm::NaturalMap,
+        };
+        let info = nlgs(
+            &mut op,
+            &p.mu.clone(),
+            &vec![0.0; n],
+            &mut impulses,
+            &nlgs_params,
+        )
+        .unwrap();
+        assert!(info.converged, "case {case}: {info:?}");
+        let r_nlgs: Vec<f64> = impulses.iter().flatten().copied().collect();
+        let rep = run(&p, SolverKind::Nsgs, 1e-12);
+        // Same contact order and the same exact local solve: the two iterations coincide, up
+        // to the rounding of the velocity updates (incremental in nlgs, from rows in nsgs).
+        assert!(
+            agree(&r_nlgs, &rep.r, 1e-8),
+            "case {case}: {r_nlgs:?} vs {:?}",
+            rep.r
+        );
+    }
+}
+
+#[test]
+fn one_contact_3d_stick_slide_take_off() {
+    let w = CsrMatrix::from_dense_row_major(3, 3, &[2., 0., 0., 0., 1., 0., 0., 0., 1.]);
+    // (q, mu, exact r): with W = diag(2, 1, 1)
+    let cases = [
+        // take-off: q_N > 0, r = 0
+        ([1.0, 0.3, -0.2], 0.5, [0.0, 0.0, 0.0]),
+        // stick: r = -W^-1 q = (1, -0.1, -0.05), |r_T| = 0.112 < 0.5 r_N
+        ([-2.0, 0.1, 0.05], 0.5, [1.0, -0.1, -0.05]),
+        // slide: u_N = 0 gives r_N = 1; r_T = -mu r_N (3, 4) / 5; u_T = (2.7, 3.6) // q_T
+        ([-2.0, 3.0, 4.0], 0.5, [1.0, -0.3, -0.4]),
+    ];
+    for (q, mu, exact) in cases {
+        let p = FrictionProblem::new(3, w.clone(), q.to_vec(), vec![mu]).unwrap();
+        for kind in [
+            SolverKind::Nsgs,
+            SolverKind::Newton,
+            SolverKind::ProximalNewton,
+        ] {
+            let rep = run(&p, kind, 1e-12);
+            assert!(dist(&rep.r, &exact) < 1e-10, "{kind:?} {q:?}: {:?}", rep.r);
+            check_coulomb(3, &rep.r, &rep.u, &p.mu, 1e-12).unwrap();
+        }
+    }
+}
+
+#[test]
+fn bad_problems_are_errors_not_panics() {
+    let w0 = CsrMatrix::from_dense_row_major(2, 2, &[0.0, 0.0, 0.0, 1.0]);
+    let zero_wnn = FrictionProblem::new(2, w0, vec![-1.0, 0.0], vec![0.3]).unwrap();
+    let w = CsrMatrix::from_dense_row_major(2, 2, &[1.0, 0.0, 0.0, 1.0]);
+    // Fields are public: a NaN can bypass FrictionProblem::new.
+    let nan_q = FrictionProblem {
+        dim: 2,
+        w: w.clone(),
+        q: vec![f64::NAN, 0.0],
+        mu: vec![0.3],
+    };
+    let bad_size = FrictionProblem {
+        dim: 2,
+        w: w.clone(),
+        q: vec![1.0, 0.0, 0.0],
+        mu: vec![0.3],
+    };
+    for kind in [
+        SolverKind::Nsgs,
+        SolverKind::Newton,
+        SolverKind::ProximalNewton,
+        SolverKind::Lemke,
+    ] {
+        let prm = SolverParams::with_kind(kind);
+        for p in [&zero_wnn, &nan_q, &bad_size] {
+            assert!(solve(p, &prm, None).is_err(), "{kind:?} accepted {p:?}");
+        }
+        let good = FrictionProblem::new(2, w.clone(), vec![-1.0, 0.0], vec![0.3]).unwrap();
+        let bad_warm = solve(&good, &prm, Some(&[f64::NAN, 0.0]));
+        if kind != SolverKind::Lemke {
+            assert!(matches!(bad_warm, Err(SolveError::InvalidData { .. })));
+            assert!(solve(&good, &prm, Some(&[1.0])).is_err());
+        }
+        let mut bad_tol = prm;
+        bad_tol.tolerance = -1.0;
+        assert!(solve(&good, &bad_tol, None).is_err());
+    }
+    let p3 = FrictionProblem::new(
+        3,
+        CsrMatrix::from_dense_row_major(3, 3, &[1., 0., 0., 0., 1., 0., 0., 0., 1.]),
+        vec![-1.0, 0.0, 0.0],
+        vec![0.3],
+    )
+    .unwrap();
+    let lemke3 = solve(&p3, &SolverParams::with_kind(SolverKind::Lemke), None);
+    assert!(matches!(lemke3, Err(SolveError::Unsupported(_))));
+}
+
+#[test]
+fn empty_problem_is_solved() {
+    let p = FrictionProblem::new(
+        3,
+        CsrMatrix::from_triplets(0, 0, &[]).unwrap(),
+        vec![],
+        vec![],
+    )
+    .unwrap();
+    for kind in [
+        SolverKind::Nsgs,
+        SolverKind::Newton,
+        SolverKind::ProximalNewton,
+    ] {
+        let rep = solve(&p, &SolverParams::with_kind(kind), None).unwrap();
+        assert!(rep.converged && rep.r.is_empty());
+    }
+}
+
+#[test]
+fn warm_start_at_the_solution_stops_at_once() {
+    let mut rng = Rng(21);
+    let p = random_problem(&mut rng, 3, 4, 15, 0.5);
+    let first = run(&p, SolverKind::Newton, 1e-12);
+    for kind in [
+        SolverKind::Nsgs,
+        SolverKind::Newton,
+        SolverKind::ProximalNewton,
+    ] {
+        let rep = solve(&p, &params(kind, 1e-10), Some(&first.r)).unwrap();
+        assert!(
+            rep.converged && rep.iterations <= 2,
+            "{kind:?}: {}",
+            rep.iterations
+        );
+    }
+}
+
+#[test]
+fn shuffled_nsgs_is_deterministic_and_converges() {
+    let mut rng = Rng(8);
+    let p = random_problem(&mut rng, 3, 6, 12, 0.7);
+    let mut prm = params(SolverKind::Nsgs, 1e-10);
+    prm.nsgs.shuffle_seed = Some(99);
+    let a = solve(&p, &prm, None).unwrap();
+    let b = solve(&p, &prm, None).unwrap();
+    assert!(a.converged);
+    assert_eq!(a.r, b.r);
+    prm.nsgs.relaxation = 1.3;
+    assert!(solve(&p, &prm, None).unwrap().converged);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    /// Any finite problem (W not even positive) gives a report or an error, never a panic.
+    #[test]
+    fn solve_never_panics(
+        dim in 2usize..=3,
+        n in 1usize..=4,
+        seed in any::<u64>(),
+        kind in 0usize..4,
+        positive_diagonal in prop::bool::weighted(0.9),
+        scale in prop_oneof![Just(1e-300), Just(1e-12), Just(1.0), Just(1e8), Just(1e300)],
+    ) {
+        let mut rng = Rng(seed);
+        let m = dim * n;
+        let mut w: Vec<f64> = (0..m * m).map(|_| scale * rng.range(-2.0, 2.0)).collect();
+        if positive_diagonal {
+            // Most runs pass the W_NN > 0 check and exercise the iterations.
+            for i in 0..m {
+                w[i * m + i] = w[i * m + i].abs() + scale * 1e-3;
+            }
+        }
+        let q: Vec<f64> = (0..m).map(|_| rng.range(-3.0, 3.0)).collect();
+        let mu: Vec<f64> = (0..n).map(|_| rng.range(0.0, 2.0)).collect();
+        let p = FrictionProblem::new(dim, CsrMatrix::from_dense_row_major(m, m, &w), q, mu).unwrap();
+        let kind = [SolverKind::Nsgs, SolverKind::Newton, SolverKind::ProximalNewton, SolverKind::Lemke][kind];
+        let mut prm = SolverParams::with_kind(kind);
+        prm.max_iterations = if kind == SolverKind::Lemke { 0 } else { 30 };
+        if let Ok(rep) = solve(&p, &prm, None) {
+            prop_assert_eq!(rep.r.len(), m);
+            prop_assert!(!rep.converged || rep.error.relative_max < prm.tolerance);
+        }
+    }
+}
