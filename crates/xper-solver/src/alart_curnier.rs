@@ -11,13 +11,16 @@
 //! ```
 //!
 //! with `P_D(R)` the projection on the disk (2D: interval) of radius `R` and `rho_N, rho_T > 0`.
-//! [`ac_function`] returns `Phi` and an element of its generalized Jacobian as two blocks,
+//! `ac_function` returns `Phi` and an element of its generalized Jacobian as two blocks,
 //! `dPhi = A dr + B du`; with `u = W r + q` the Newton matrix is `A + B W`.
 //!
 //! The local 3D solve (`u = W_aa r + q_a`, one contact) enumerates take-off (`q_N >= 0`) and
 //! stick (`r = -W_aa^-1 q_a` inside the cone) in closed form, then runs a damped Newton on
-//! `Phi` (Armijo backtracking on `|Phi|^2 / 2`); when Newton fails it falls back to the
-//! projection on the cone with local iterations of Siconos (`fc3d_projectionOnConeWithLocalIteration`):
+//! `Phi` (Armijo backtracking on `|Phi|^2 / 2`). When Newton fails (about 0.4% of random
+//! sliding cases, on ill-conditioned blocks where the sliding solution is near a pole of
+//! `r_N`), the sliding solution is searched on the slip angle (`slide_by_angle`), and as a last
+//! resort the projection on the cone with local iterations of Siconos
+//! (`fc3d_projectionOnConeWithLocalIteration`) is run:
 //! `r <- P_K(r - rho (u + mu |u_T| e_N))` with `rho` halved while
 //! `rho |Δ(u + mu|u_T| e_N)| > 0.9 |Δr|` (a Lipschitz test in the style of Khobotov's
 //! extragradient rule) and enlarged when the test holds with margin.
@@ -25,7 +28,7 @@
 /// Tuning of the one-contact 3D solver.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct LocalParams {
-    /// Newton iterations before falling back to the projection.
+    /// Newton iterations before falling back to the angle search and the projection.
     pub newton_iterations: u32,
     /// Iterations of the projection fallback.
     pub projection_iterations: u32,
@@ -177,7 +180,9 @@ pub(crate) enum LocalPath {
     Closed,
     /// Alart-Curnier Newton converged.
     Newton,
-    /// Newton failed; the projection fallback gave the answer.
+    /// Newton failed; the sliding solution was found by a search on the slip angle.
+    Angle,
+    /// Newton and the angle search failed; the projection fallback gave the answer.
     Projection,
 }
 
@@ -216,8 +221,91 @@ pub(crate) fn solve_contact_3d(
         *r = x;
         return LocalPath::Newton;
     }
+    if let Some(x) = slide_by_angle(w, &q, mu) {
+        let u = mul3(w, &x, &q);
+        if local_residual3(&x, &u, mu) <= 1e3 * p.tolerance * scale_r.max(norm3(&x)) {
+            *r = x;
+            return LocalPath::Angle;
+        }
+    }
     *r = local_projection(w, &q, mu, start, scale_r, p);
     LocalPath::Projection
+}
+
+/// The sliding solution by a search on the slip angle `theta` (the "enumerative" idea of
+/// Bonnefon, Daviet, Bertails-Descoubes and Acary for the one-contact problem, done here
+/// numerically): with `d = (1, mu cos theta, mu sin theta)` and `r = r_N d`, `u_N = 0` gives
+/// `r_N = -q_N / (W_N. d)`, and the slip condition is that
+/// `u_T = r_N W_T. d + q_T` be anti-parallel to `(cos theta, sin theta)`: the root of
+/// `g = u_T x (cos, sin)` with `u_T . (cos, sin) <= 0` and `r_N >= 0`. Roots are bracketed
+/// on 128 angles and refined by bisection; `None` when no bracket qualifies.
+fn slide_by_angle(w: &[f64; 9], q: &[f64; 3], mu: f64) -> Option<[f64; 3]> {
+    const SAMPLES: usize = 128;
+    let denom = |theta: f64| w[0] + mu * (w[1] * theta.cos() + w[2] * theta.sin());
+    // (g, u_T . (cos, sin), r) at theta; None where W_N. d <= 0 (no positive r_N).
+    let eval = |theta: f64| -> Option<(f64, f64, [f64; 3])> {
+        let (s, c) = theta.sin_cos();
+        let den = denom(theta);
+        if den <= 0.0 {
+            return None;
+        }
+        let rn = -q[0] / den;
+        let r = [rn, rn * mu * c, rn * mu * s];
+        let u = mul3(w, &r, q);
+        Some((u[1] * s - u[2] * c, u[1] * c + u[2] * s, r))
+    };
+    let step = std::f64::consts::TAU / SAMPLES as f64;
+    let mut best: Option<(f64, [f64; 3])> = None;
+    let mut consider = |a: f64, b: f64| {
+        let (Some((ga, _, _)), Some((gb, _, _))) = (eval(a), eval(b)) else {
+            return;
+        };
+        if ga != 0.0 && ga.signum() == gb.signum() {
+            return;
+        }
+        let (mut lo, mut hi) = (a, b);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            match eval(mid) {
+                Some((gm, _, _)) if gm != 0.0 && gm.signum() == ga.signum() => lo = mid,
+                Some(_) => hi = mid,
+                None => return,
+            }
+        }
+        if let Some((_, dot, r)) = eval(0.5 * (lo + hi)) {
+            let u = mul3(w, &r, q);
+            let res = local_residual3(&r, &u, mu);
+            if dot <= 0.0 && best.is_none_or(|(b, _)| res < b) {
+                best = Some((res, r));
+            }
+        }
+    };
+    for k in 0..SAMPLES {
+        let (a, b) = (k as f64 * step, (k + 1) as f64 * step);
+        match (denom(a) > 0.0, denom(b) > 0.0) {
+            (true, true) => consider(a, b),
+            (false, false) => {}
+            (pos_a, _) => {
+                // A pole of r_N (W_N. d = 0) inside: bracket from just beside it to the end
+                // where r_N > 0, since the sliding root may lie between two samples.
+                let (mut lo, mut hi) = (a, b);
+                for _ in 0..60 {
+                    let mid = 0.5 * (lo + hi);
+                    if (denom(mid) > 0.0) == pos_a {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                if pos_a {
+                    consider(a, lo);
+                } else {
+                    consider(hi, b);
+                }
+            }
+        }
+    }
+    best.map(|(_, r)| r)
 }
 
 /// Damped Newton on Alart-Curnier's function of one contact; `None` without convergence.
@@ -350,5 +438,56 @@ mod tests {
                 "{q:?} {mu} {r:?} {u:?}"
             );
         }
+    }
+
+    #[test]
+    fn random_blocks_are_solved_to_rounding() {
+        let mut s = 17u64;
+        let mut rnd = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let p = LocalParams::default();
+        let mut paths = [0usize; 4];
+        let mut projection_misses = 0;
+        for case in 0..20_000 {
+            // W = L L^T + 0.05 I, plus a small skew part in one case out of four (as in the
+            // slightly non-symmetric Capsules problems).
+            let l: Vec<f64> = (0..9).map(|_| rnd()).collect();
+            let mut w = [0.0; 9];
+            for i in 0..3 {
+                for j in 0..3 {
+                    w[i * 3 + j] = (0..3).map(|k| l[i * 3 + k] * l[j * 3 + k]).sum::<f64>()
+                        + if i == j { 0.05 } else { 0.0 };
+                }
+            }
+            if case % 4 == 0 {
+                let e = 0.01 * rnd();
+                w[1] += e;
+                w[3] -= e;
+            }
+            let q = [rnd(), 2.0 * rnd(), 2.0 * rnd()];
+            let mu = 1.2 * rnd().abs();
+            let mut r = [0.0; 3];
+            let path = solve_contact_3d(&w, q, mu, &mut r, &p);
+            paths[path as usize] += 1;
+            let u = mul3(&w, &r, &q);
+            let scale = norm3(&q).max(norm3(&r)).max(norm3(&u));
+            assert!(
+                local_residual3(&r, &u, mu) < 1e-10 * scale,
+                "case {case} {path:?}: {w:?} {q:?} {mu} -> {r:?}"
+            );
+            // The projection alone converges only linearly (slowly on ill-conditioned blocks).
+            let x = local_projection(&w, &q, mu, [0.0; 3], 1.0 / w[0] * norm3(&q), &p);
+            let ux = mul3(&w, &x, &q);
+            if local_residual3(&x, &ux, mu) > 1e-6 * scale {
+                projection_misses += 1;
+            }
+        }
+        assert!(projection_misses <= 20, "{projection_misses}");
+        // Most sliding cases are Newton's; the closed forms take the rest.
+        assert!(paths[LocalPath::Newton as usize] > 5000, "{paths:?}");
     }
 }

@@ -12,6 +12,13 @@
 //! [`ContactOperator`]: an explicit matrix ([`DenseProblem`]) or the factorised form
 //! `W = H^T M^-1 H` of rigid bodies, where applying an impulse updates two body velocities
 //! so one contact update costs O(1).
+//!
+//! Assembled problems ([`FrictionProblem`], explicit CSR `W`, 2D or 3D, as read from
+//! Siconos and LMGC90 files) have their own solvers behind one entry point, [`solve`]:
+//! NSGS ([`mod@nsgs`]), the generalized Newton method on Alart-Curnier's function ([`mod@newton`]),
+//! its proximal-point stabilisation for rank-deficient `W` ([`mod@proximal`]) and Lemke's method
+//! on the LCP form of 2D problems ([`mod@lemke`]), all judged by the shared [`error_measure`].
+#![warn(missing_docs)]
 
 pub mod alart_curnier;
 mod error;

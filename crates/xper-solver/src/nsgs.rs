@@ -152,7 +152,10 @@ fn sweep_contact(
         new[..2].copy_from_slice(&x);
     } else {
         new.copy_from_slice(ra);
-        fallback = solve_contact_3d(block, qf, mu, &mut new, local) == LocalPath::Projection;
+        fallback = matches!(
+            solve_contact_3d(block, qf, mu, &mut new, local),
+            LocalPath::Angle | LocalPath::Projection
+        );
     }
     if omega == 1.0 {
         ra.copy_from_slice(&new[..d]);
