@@ -4,6 +4,7 @@
 pub mod bench;
 pub mod frames;
 pub mod run;
+pub mod solve;
 pub mod validation;
 pub mod world_from_scene;
 

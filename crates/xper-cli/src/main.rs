@@ -8,7 +8,7 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use xper_cli::{bench, run, validation, CliError};
+use xper_cli::{bench, run, solve, validation, CliError};
 
 #[derive(Parser)]
 #[command(
@@ -47,6 +47,8 @@ enum Command {
     },
     /// Run benchmark scenes without outputs; print figures, save JSON and regenerate BENCHMARKS.md.
     Bench(bench::BenchArgs),
+    /// Solve a frictional contact problem file (Siconos .dat, FCLib .hdf5) and print JSON.
+    Solve(solve::SolveArgs),
     /// Run the validation cases against their exact answers and regenerate VALIDATION.md.
     Validate {
         /// The report to write.
@@ -78,6 +80,7 @@ fn main() -> ExitCode {
             )
         }
         Command::Bench(args) => bench::bench(&args),
+        Command::Solve(args) => solve::run_solve(&args),
         Command::Validate { report } => validation::write_report(&report),
     };
     match result {
