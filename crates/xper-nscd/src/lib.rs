@@ -8,7 +8,7 @@
 //! v_free  = v_i + h M^-1 F_theta
 //! U       = H^T v,  W = H^T M^-1 H,  U = W R + H^T v_free
 //! contacts within the alert distance, g_TT = g_i + h (1 - theta) U_N,i:
-//!         Signorini-Coulomb on (U_N + s, U_T) and R                         (NLGS)
+//!         Signorini-Coulomb on (U_N + s, U_T) and R        (NLGS, or Newton on the assembled W)
 //!         s = max(g_TT, 0) / h             for e = 0 (LMGC90's IQS law: approach by at most the gap)
 //!         s = e min(U_N,i, 0) if g_TT <= 0 for e > 0 (Newton's impact law; otherwise no contact)
 //! v_i+1   = v_free + M^-1 H R
@@ -22,12 +22,20 @@
 //! `q += M^-1 H_N P`, velocities unchanged.
 //!
 //! The step is a sequence of named stages on a [`World`] the caller owns, run by a
-//! [`MoreauJean`] stepper that keeps its buffers between steps.
+//! [`MoreauJean`] stepper that keeps its buffers between steps. The velocity problem is
+//! solved by NLGS on the factorised operator, or, per [`World::solver`]
+//! ([`VelocitySolver`]), by the solvers of `xper_solver` (generalized Newton, ...) on the
+//! problem assembled explicitly by [`assemble_problem`]; the stepper can hand that problem
+//! out ([`MoreauJean::capture_next_problem`], [`MoreauJean::next_problem`]).
 
+#![warn(missing_docs)]
+
+mod assemble;
 mod operator;
 mod step;
 mod world;
 
-pub use operator::RigidContactOperator;
+pub use assemble::assemble_problem;
+pub use operator::{ContactRow, RigidContactOperator, SolverBody};
 pub use step::{normal_shift, MoreauJean, StageTimes, StepError, StepReport};
-pub use world::{EnergyBudget, StepParams, World};
+pub use world::{EnergyBudget, StepParams, VelocitySolver, World};

@@ -1,20 +1,25 @@
-//! One Moreau-Jean step as a sequence of named stages: detect, free velocity, assemble,
-//! solve, update, energy, project.
+//! One Moreau-Jean step as a sequence of named stages: detect, assemble, free velocity,
+//! select, solve (NLGS, or an `xper_solver` solver on the assembled problem), energy,
+//! update, project.
 
+use crate::assemble::assemble_problem;
 use crate::operator::{ContactRow, RigidContactOperator};
-use crate::world::World;
+use crate::world::{VelocitySolver, World};
 use std::time::Instant;
 use xper_geometry::Detector;
 use xper_laws::InteractionLaw;
 use xper_math::{Real, DOFS};
-use xper_solver::{nlgs, ContactOperator, ConvergenceNorms, NlgsParams, SolveError};
+use xper_solver::{
+    nlgs, solve, ContactOperator, ConvergenceNorms, FrictionProblem, NlgsParams, ProblemError,
+    SolveError,
+};
 
 /// Wall time of the stages of one step (s).
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct StageTimes {
     /// Broad and narrow phase.
     pub detect: f64,
-    /// The NLGS solve (velocity problem).
+    /// The velocity problem: NLGS, or assembly of `W` and the assembled problem's solver.
     pub solve: f64,
     /// The position projection.
     pub project: f64,
@@ -33,13 +38,14 @@ pub struct StepReport {
     pub contacts: usize,
     /// Contacts in the velocity problem (predicted gap closed).
     pub active: usize,
-    /// NLGS sweeps.
+    /// NLGS sweeps, or the assembled problem's solver iterations (Newton iterations, ...).
     pub iterations: u32,
-    /// Final value of the convergence measure.
+    /// Final value of the convergence measure (for an assembled solve: the natural-map
+    /// error under the solver's scaling).
     pub residual: Real,
-    /// Whether NLGS reached the tolerance.
+    /// Whether the solver reached the tolerance.
     pub converged: bool,
-    /// LMGC90 norms at the last check.
+    /// LMGC90 norms at the last check (zero for an assembled solve).
     pub norms: ConvergenceNorms,
     /// NLGS sweeps of the position projection (0 when it did not run).
     pub projection_iterations: u32,
@@ -124,9 +130,16 @@ pub fn normal_shift(
     }
 }
 
+/// A problem the assembly refused (inconsistent sizes: a bug, never the user's data).
+fn problem_error(e: ProblemError) -> StepError {
+    StepError::Solver(SolveError::SizeMismatch { what: e.0 })
+}
+
 /// The Moreau-Jean stepper with its reusable buffers.
 #[derive(Default)]
 pub struct MoreauJean {
+    capture: bool,
+    captured: Option<FrictionProblem>,
     detector: Detector,
     op: RigidContactOperator,
     all_rows: Vec<ContactRow>,
@@ -151,81 +164,14 @@ impl MoreauJean {
             step: world.step + 1,
             ..Default::default()
         };
-        let (h, theta) = (world.params.dt, world.params.theta);
-        let t_begin = world.step as Real * h;
-        let t_end = (world.step + 1) as Real * h;
-
-        // Stage: detect, on the configuration at the beginning of the step.
-        let laws = &world.laws;
-        self.detector.detect(
-            &world.bodies,
-            world.params.alert_distance,
-            |a, b| laws.between(a, b),
-            &mut world.contacts,
-        );
-        report.contacts = world.contacts.len();
-        report.times.detect = start.elapsed().as_secs_f64();
-
-        // Stage: assemble rows and local velocities at the beginning of the step.
-        let bodies = &world.bodies;
-        self.v_begin.clear();
-        self.v_begin
-            .extend((0..bodies.len()).map(|b| bodies.generalized_velocity(b)));
-        let v_begin = &self.v_begin;
-        self.op.load_bodies(bodies, |b| v_begin[b]);
-        self.all_rows.clear();
-        self.all_rows.extend(
-            world
-                .contacts
-                .contacts
-                .iter()
-                .map(|c| RigidContactOperator::row(bodies, &self.op.bodies, c)),
-        );
-        std::mem::swap(&mut self.op.rows, &mut self.all_rows);
-        self.u_begin.clear();
-        self.u_begin
-            .extend((0..self.op.rows.len()).map(|a| self.op.local_velocity(a)));
-        std::mem::swap(&mut self.op.rows, &mut self.all_rows);
-
-        // Stage: free velocity.
-        self.free_velocity(world, t_begin, t_end);
-
-        // Stage: select the active contacts (predicted gap closed) and their law data.
-        self.op.rows.clear();
-        self.active.clear();
-        self.mu.clear();
-        self.shift.clear();
-        self.impulses.clear();
-        let closed = world.params.projection_tolerance.unwrap_or(0.0);
-        for (a, c) in world.contacts.contacts.iter().enumerate() {
-            let un = self.u_begin[a][0];
-            let InteractionLaw::SignoriniCoulomb(law) = *world.laws.law(c.law);
-            let Some(shift) = normal_shift(c.gap, un, h, theta, law.restitution, closed) else {
-                continue;
-            };
-            self.active.push(a as u32);
-            self.op.rows.push(self.all_rows[a]);
-            self.mu.push(law.friction);
-            self.shift.push(shift);
-            self.impulses.push(c.impulse);
-        }
-        report.active = self.active.len();
+        let h = world.params.dt;
+        let (t_begin, t_end) = (world.step as Real * h, (world.step + 1) as Real * h);
+        self.prepare(world, &mut report, t_begin, t_end);
 
         // Stage: solve.
         let t_solve = Instant::now();
-        let info = nlgs(
-            &mut self.op,
-            &self.mu,
-            &self.shift,
-            &mut self.impulses,
-            &world.params.nlgs,
-        )
-        .map_err(StepError::Solver)?;
+        self.solve(world, &mut report)?;
         report.times.solve = t_solve.elapsed().as_secs_f64();
-        report.iterations = info.iterations;
-        report.residual = info.residual;
-        report.converged = info.converged;
-        report.norms = info.norms;
 
         // Stage: energy exchanged at contacts, with the same H at both ends of the step.
         let mut dissipated = 0.0;
@@ -284,6 +230,140 @@ impl MoreauJean {
             });
         }
         Ok(report)
+    }
+
+    /// Asks the next [`MoreauJean::step`] to keep a copy of its velocity problem, assembled
+    /// before solving, for [`MoreauJean::take_problem`] (e.g. to write it to a file).
+    pub fn capture_next_problem(&mut self) {
+        self.capture = true;
+    }
+
+    /// The problem captured by the last step after [`MoreauJean::capture_next_problem`]
+    /// (also when the solve then failed), if any.
+    pub fn take_problem(&mut self) -> Option<FrictionProblem> {
+        self.captured.take()
+    }
+
+    /// The velocity problem the next step of `world` would solve (same detection, free
+    /// velocities, selection and shifts), without changing `world`; the stepper's buffers are
+    /// rebuilt by the next step, which is unaffected.
+    pub fn next_problem(&mut self, world: &World) -> Result<FrictionProblem, StepError> {
+        let mut world = world.clone();
+        let mut report = StepReport::default();
+        let h = world.params.dt;
+        let (t_begin, t_end) = (world.step as Real * h, (world.step + 1) as Real * h);
+        self.prepare(&mut world, &mut report, t_begin, t_end);
+        assemble_problem(&self.op, &self.mu, &self.shift).map_err(problem_error)
+    }
+
+    /// Stages detect, assemble, free velocity and select: leaves the operator in its state of
+    /// zero impulses at the free velocities, with the active rows, `mu`, shifts and warm start.
+    fn prepare(&mut self, world: &mut World, report: &mut StepReport, t_begin: Real, t_end: Real) {
+        let start = Instant::now();
+        let (h, theta) = (world.params.dt, world.params.theta);
+
+        // Stage: detect, on the configuration at the beginning of the step.
+        let laws = &world.laws;
+        self.detector.detect(
+            &world.bodies,
+            world.params.alert_distance,
+            |a, b| laws.between(a, b),
+            &mut world.contacts,
+        );
+        report.contacts = world.contacts.len();
+        report.times.detect = start.elapsed().as_secs_f64();
+
+        // Stage: assemble rows and local velocities at the beginning of the step.
+        let bodies = &world.bodies;
+        self.v_begin.clear();
+        self.v_begin
+            .extend((0..bodies.len()).map(|b| bodies.generalized_velocity(b)));
+        let v_begin = &self.v_begin;
+        self.op.load_bodies(bodies, |b| v_begin[b]);
+        self.all_rows.clear();
+        self.all_rows.extend(
+            world
+                .contacts
+                .contacts
+                .iter()
+                .map(|c| RigidContactOperator::row(bodies, &self.op.bodies, c)),
+        );
+        std::mem::swap(&mut self.op.rows, &mut self.all_rows);
+        self.u_begin.clear();
+        self.u_begin
+            .extend((0..self.op.rows.len()).map(|a| self.op.local_velocity(a)));
+        std::mem::swap(&mut self.op.rows, &mut self.all_rows);
+
+        // Stage: free velocity.
+        self.free_velocity(world, t_begin, t_end);
+
+        // Stage: select the active contacts (predicted gap closed) and their law data.
+        self.op.rows.clear();
+        self.active.clear();
+        self.mu.clear();
+        self.shift.clear();
+        self.impulses.clear();
+        let closed = world.params.projection_tolerance.unwrap_or(0.0);
+        for (a, c) in world.contacts.contacts.iter().enumerate() {
+            let un = self.u_begin[a][0];
+            let InteractionLaw::SignoriniCoulomb(law) = *world.laws.law(c.law);
+            let Some(shift) = normal_shift(c.gap, un, h, theta, law.restitution, closed) else {
+                continue;
+            };
+            self.active.push(a as u32);
+            self.op.rows.push(self.all_rows[a]);
+            self.mu.push(law.friction);
+            self.shift.push(shift);
+            self.impulses.push(c.impulse);
+        }
+        report.active = self.active.len();
+    }
+
+    /// Stage solve: the velocity problem by the world's [`VelocitySolver`]; on return the
+    /// operator's velocities are those of the impulses found.
+    fn solve(&mut self, world: &World, report: &mut StepReport) -> Result<(), StepError> {
+        let assembled = match world.solver {
+            VelocitySolver::Assembled(params) => Some(params),
+            VelocitySolver::Nlgs => None,
+        };
+        let problem = if self.capture || assembled.is_some() {
+            let p = assemble_problem(&self.op, &self.mu, &self.shift).map_err(problem_error)?;
+            if std::mem::take(&mut self.capture) {
+                self.captured = Some(p.clone());
+            }
+            Some(p)
+        } else {
+            None
+        };
+        let (Some(params), Some(problem)) = (assembled, problem) else {
+            let info = nlgs(
+                &mut self.op,
+                &self.mu,
+                &self.shift,
+                &mut self.impulses,
+                &world.params.nlgs,
+            )
+            .map_err(StepError::Solver)?;
+            report.iterations = info.iterations;
+            report.residual = info.residual;
+            report.converged = info.converged;
+            report.norms = info.norms;
+            return Ok(());
+        };
+        if self.impulses.is_empty() {
+            report.converged = true;
+            return Ok(());
+        }
+        let warm: Vec<Real> = self.impulses.iter().flatten().copied().collect();
+        let solved = solve(&problem, &params, Some(&warm)).map_err(StepError::Solver)?;
+        for (a, r) in self.impulses.iter_mut().enumerate() {
+            *r = [solved.r[2 * a], solved.r[2 * a + 1]];
+            self.op.apply_impulse(a, *r);
+        }
+        report.iterations = solved.iterations;
+        report.residual = params.scaling.pick(&solved.error);
+        report.converged = solved.converged;
+        Ok(())
     }
 
     /// `v_free = v_i + h M^-1 F_theta`; imposed velocities take their value at `t_end`.

@@ -5,7 +5,7 @@ use xper_bodies::BodySet;
 use xper_geometry::ContactSet;
 use xper_laws::LawTable;
 use xper_math::{Real, Vector};
-use xper_solver::NlgsParams;
+use xper_solver::{NlgsParams, SolverParams};
 
 /// Parameters of the time stepping.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -23,6 +23,21 @@ pub struct StepParams {
     /// Overlap (m) beyond which the position projection runs; `None` disables it. Contacts with
     /// restitution whose predicted gap is below it count as closed (see `normal_shift`).
     pub projection_tolerance: Option<Real>,
+}
+
+/// The solver of the velocity problem of each step.
+///
+/// The position projection always runs NLGS with [`StepParams::nlgs`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub enum VelocitySolver {
+    /// NLGS on the factorised operator with [`StepParams::nlgs`] (O(1) per contact update).
+    #[default]
+    Nlgs,
+    /// [`xper_solver::solve`] on the assembled problem ([`crate::assemble_problem`]) with
+    /// these parameters (generalized Newton, proximal Newton, NSGS or Lemke), warm-started
+    /// from the impulses of the previous step; convergence is judged by the natural-map error
+    /// under `scaling`.
+    Assembled(SolverParams),
 }
 
 /// Energies accumulated over the run (J per m of thickness).
@@ -51,6 +66,9 @@ pub struct World {
     pub laws: LawTable,
     /// Time-stepping parameters.
     pub params: StepParams,
+    /// Solver of the velocity problem (NLGS unless set). Part of the step parameters, kept
+    /// beside [`StepParams`] so that existing `StepParams { .. }` literals stay valid.
+    pub solver: VelocitySolver,
     /// Current time (s).
     pub time: Real,
     /// Steps done.
@@ -60,7 +78,7 @@ pub struct World {
 }
 
 impl World {
-    /// A world at time 0.
+    /// A world at time 0, solving with NLGS ([`VelocitySolver::Nlgs`]).
     pub fn new(bodies: BodySet, laws: LawTable, params: StepParams) -> Self {
         let initial = bodies.kinetic_energy() + bodies.potential_energy(&params.gravity);
         World {
@@ -68,6 +86,7 @@ impl World {
             contacts: ContactSet::default(),
             laws,
             params,
+            solver: VelocitySolver::Nlgs,
             time: 0.0,
             step: 0,
             energy: EnergyBudget {
