@@ -28,6 +28,10 @@ pub struct BenchArgs {
     /// The Markdown report regenerated from every JSON result in `--out`.
     #[arg(long, default_value = "BENCHMARKS.md")]
     report: PathBuf,
+    /// Also run every contact solver on the problem files of this suite folder
+    /// (e.g. ../shared/fclib); without `--scene`, only the suite runs.
+    #[arg(long)]
+    fclib: Option<PathBuf>,
     /// Run exactly one scene in this process (used by the parent process).
     #[arg(long, hide = true)]
     single: bool,
@@ -155,6 +159,16 @@ fn bench_one(path: &Path, steps: Option<u64>, settled: usize) -> Result<BenchRes
 
 /// `xper bench`.
 pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
+    if let Some(dir) = &args.fclib {
+        std::fs::create_dir_all(&args.out)
+            .map_err(|e| CliError::BadInput(format!("{}: {e}", args.out.display())))?;
+        let suite = crate::bench_solvers::bench_suite(dir, machine())?;
+        let file = args.out.join(crate::bench_solvers::RESULTS_FILE);
+        xper_io::write_json_atomic(&file, &suite).map_err(|e| CliError::Runtime(e.to_string()))?;
+        if args.scenes.is_empty() {
+            return write_report(&args.out, &args.report);
+        }
+    }
     let scenes = if args.scenes.is_empty() {
         vec![
             PathBuf::from("scenes/box10k/scene.toml"),
@@ -240,6 +254,12 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
          | LMGC90 2025.rc1 (NLGS, stored Delassus loops) | 99 | 79 | ~10 | 21,700 | 25 | 20-25 | 260 | 0.04 / 0.43 |\n\
          | pymunk 7.3 (impulses, not NSCD) | 6.5 | - | 10 | - | - | - | - | 6 / 180 |\n",
     );
+    if let Some(suite) = std::fs::read_to_string(dir.join(crate::bench_solvers::RESULTS_FILE))
+        .ok()
+        .and_then(|s| serde_json::from_str(&s).ok())
+    {
+        md.push_str(&crate::bench_solvers::markdown(&suite));
+    }
     if let Ok(extra) = std::fs::read_to_string(dir.join("NOTES.md")) {
         md.push('\n');
         md.push_str(&extra);

@@ -2,6 +2,7 @@
 //! outputs, benchmarks and validation cases.
 
 pub mod bench;
+pub mod bench_solvers;
 pub mod frames;
 pub mod run;
 pub mod solve;

@@ -369,12 +369,65 @@ pub fn write_report(path: &std::path::Path) -> Result<(), CliError> {
          broad phase finds exactly the pairs of a brute-force search (`crates/xper-geometry/tests/`); the\n\
          exact 2D local solve satisfies Signorini-Coulomb on 10,000 random blocks (`xper-solver`).\n",
     );
+    let suite_failures = suite_section(&mut md)?;
     xper_io::write_atomic(path, md.as_bytes()).map_err(|e| CliError::Runtime(e.to_string()))?;
-    match cases.iter().filter(|c| !c.passed()).count() {
+    match cases.iter().filter(|c| !c.passed()).count() + suite_failures {
         0 => Ok(()),
         n => Err(CliError::Runtime(format!(
             "{n} validation case(s) failed; see {}",
             path.display()
         ))),
     }
+}
+
+/// The external problem suite (`../shared/fclib`, next to the repository): appends its table
+/// to `md` and returns the number of failed problems (0 with a note when the folder is absent).
+fn suite_section(md: &mut String) -> Result<usize, CliError> {
+    use crate::bench_solvers::{suite_files, validate_problem};
+    let dir = std::path::Path::new("../shared/fclib");
+    md.push_str(
+        "\n## External contact problems (`../shared/fclib/`, Siconos and LMGC90)\n\n\
+         The best of proximal Newton, NSGS and Newton on each problem, against the tolerance of the published\n\
+         comparisons (Acary, Bremond, Huber 2018) on the natural-map error scaled by |q|; the solution's\n\
+         Signorini-Coulomb conditions (impulse in the cone, u_N >= 0, r_N u_N = 0 and r_T . u_T = -mu r_N |u_T|,\n\
+         products relative to max|r| + max|u|) are checked by independent code against 10 |e|.\n\n",
+    );
+    if !dir.is_dir() {
+        md.push_str("Not run: `../shared/fclib` is absent.\n");
+        return Ok(0);
+    }
+    if !cfg!(feature = "hdf5") {
+        md.push_str("Built without the `hdf5` feature: the FCLib HDF5 problems were not run.\n\n");
+    }
+    md.push_str(
+        "| problem | dim | contacts | tolerance | best solver | error (/ abs q) | violations: impulse / velocity / products | allowed | result |\n\
+         |---|---|---|---|---|---|---|---|---|\n",
+    );
+    let mut failures = 0;
+    for path in suite_files(dir) {
+        let c = validate_problem(&path)?;
+        failures += (!c.passed) as usize;
+        println!(
+            "{}: {} ({:.2e} <= {:.0e})",
+            if c.passed { "pass" } else { "FAIL" },
+            c.problem,
+            c.error_q,
+            c.tolerance
+        );
+        md.push_str(&format!(
+            "| {} | {} | {} | {:.0e} | {} | {:.2e} | {:.1e} / {:.1e} / {:.1e} | {:.1e} | {} |\n",
+            c.problem,
+            c.dimension,
+            c.contacts,
+            c.tolerance,
+            c.solver,
+            c.error_q,
+            c.violations[0],
+            c.violations[1],
+            c.violations[2],
+            c.allowed,
+            if c.passed { "pass" } else { "FAIL" }
+        ));
+    }
+    Ok(failures)
 }
