@@ -85,7 +85,7 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<Scene, SceneErrors> {
     root.check_keys(&mut ctx, TOP_KEYS);
     let header = sections::header(&mut ctx, &root);
     let solver = sections::solver(&mut ctx, &root);
-    let (frame_every, checkpoint_every) = sections::output(&mut ctx, &root);
+    let output = sections::output(&mut ctx, &root, header.steps);
     let materials = sections::materials(&mut ctx, &root);
 
     let before = ctx.errors.len();
@@ -114,10 +114,15 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<Scene, SceneErrors> {
         alert_distance,
         solver,
         output: OutputSettings {
-            frame_every: frame_every.flatten().unwrap_or(steps.div_ceil(100).max(1)),
-            checkpoint_every: checkpoint_every
+            frame_every: output
+                .frame_every
+                .flatten()
+                .unwrap_or(steps.div_ceil(100).max(1)),
+            checkpoint_every: output
+                .checkpoint_every
                 .flatten()
                 .unwrap_or(steps.div_ceil(10).max(1)),
+            dump_problems: output.dump_problems,
         },
         groups: groups.names,
         laws,

@@ -152,14 +152,14 @@ pub(crate) fn solver(ctx: &mut Ctx, root: &Tbl) -> SolverSettings {
     t.check_keys(ctx, SOLVER_KEYS);
     let kind = t.string(ctx, "kind");
     if !kind.is_absent() {
-        if let Some(k) = choose(
-            ctx,
-            kind.ok(),
-            &t.field("kind"),
-            "solver kind",
-            &[("nlgs", SolverKind::Nlgs)],
-        ) {
+        let kinds = [
+            ("nlgs", SolverKind::Nlgs),
+            ("newton", SolverKind::Newton),
+            ("proximal_newton", SolverKind::ProximalNewton),
+        ];
+        if let Some(k) = choose(ctx, kind.ok(), &t.field("kind"), "solver kind", &kinds) {
             s.kind = k;
+            s.max_iterations = SolverSettings::default_max_iterations(k);
         }
     }
     let tol = t.num(ctx, "tolerance").ok();
@@ -190,9 +190,19 @@ pub(crate) fn solver(ctx: &mut Ctx, root: &Tbl) -> SolverSettings {
         ("maxm", ConvergenceNorm::Maxm),
         ("natural_map", ConvergenceNorm::NaturalMap),
     ];
-    let norm = t.string(ctx, "norm").ok();
-    if let Some(n) = choose(ctx, norm, &t.field("norm"), "norm", &norms) {
-        s.norm = n;
+    if s.kind == SolverKind::Nlgs {
+        let norm = t.string(ctx, "norm").ok();
+        if let Some(n) = choose(ctx, norm, &t.field("norm"), "norm", &norms) {
+            s.norm = n;
+        }
+    } else {
+        t.forbid(
+            ctx,
+            "norm",
+            "applies to kind = \"nlgs\" only: the Newton kinds (and their position projection) \
+             use the natural-map error",
+        );
+        s.norm = ConvergenceNorm::NaturalMap;
     }
     if let Some(b) = t.boolean(ctx, "position_projection").val() {
         s.position_projection = b;
@@ -200,21 +210,72 @@ pub(crate) fn solver(ctx: &mut Ctx, root: &Tbl) -> SolverSettings {
     s
 }
 
-/// The `[output]` table: `(frame_every, checkpoint_every)`, `Some(None)` when not given,
-/// `None` when invalid.
-#[allow(clippy::type_complexity)]
-pub(crate) fn output(ctx: &mut Ctx, root: &Tbl) -> (Option<Option<u64>>, Option<Option<u64>>) {
+/// What `[output]` gives: each cadence `Some(None)` when not given, `None` when invalid.
+pub(crate) struct Output {
+    pub frame_every: Option<Option<u64>>,
+    pub checkpoint_every: Option<Option<u64>>,
+    /// Sorted step numbers (empty when not given or invalid).
+    pub dump_problems: Vec<u64>,
+}
+
+/// The `[output]` table; `steps` (if known) bounds the steps of `dump_problems`.
+pub(crate) fn output(ctx: &mut Ctx, root: &Tbl, steps: Option<u64>) -> Output {
     let Got::Val(t, _) = root.table(ctx, "output") else {
-        return (Some(None), Some(None));
+        return Output {
+            frame_every: Some(None),
+            checkpoint_every: Some(None),
+            dump_problems: Vec::new(),
+        };
     };
-    t.check_keys(ctx, &["frame_every", "checkpoint_every"]);
+    t.check_keys(ctx, &["frame_every", "checkpoint_every", "dump_problems"]);
     let mut one = |key: &str| match t.int(ctx, key) {
         Got::Absent => Some(None),
         g => int_in(ctx, g.ok(), &t.field(key), 1, i64::MAX).map(|v| Some(v as u64)),
     };
-    let frame = one("frame_every");
-    let checkpoint = one("checkpoint_every");
-    (frame, checkpoint)
+    let frame_every = one("frame_every");
+    let checkpoint_every = one("checkpoint_every");
+    Output {
+        frame_every,
+        checkpoint_every,
+        dump_problems: dump_problems(ctx, &t, steps),
+    }
+}
+
+/// `dump_problems = [step, ...]`: distinct integers in `1..=steps`, sorted.
+fn dump_problems(ctx: &mut Ctx, t: &Tbl, steps: Option<u64>) -> Vec<u64> {
+    let field = t.field("dump_problems");
+    let Some(n) = t.get("dump_problems") else {
+        return Vec::new();
+    };
+    let Kind::Array(items) = &n.kind else {
+        ctx.expected(n, &field, "an array of step numbers [1, 100, ...]");
+        return Vec::new();
+    };
+    let mut out: Vec<u64> = Vec::with_capacity(items.len());
+    for (k, e) in items.iter().enumerate() {
+        let f = format!("{field}[{k}]");
+        let Kind::Int(v) = e.kind else {
+            ctx.expected(e, &f, "a step number (integer >= 1)");
+            continue;
+        };
+        let Some(v) = int_in(ctx, Some((v, e.pos)), &f, 1, i64::MAX) else {
+            continue;
+        };
+        let v = v as u64;
+        if let Some(last) = steps.filter(|&last| v > last) {
+            ctx.err(
+                e.pos,
+                &f,
+                format!("step {v} is after the last step of the run ({last})"),
+            );
+        } else if out.contains(&v) {
+            ctx.err(e.pos, &f, format!("step {v} is listed twice"));
+        } else {
+            out.push(v);
+        }
+    }
+    out.sort_unstable();
+    out
 }
 
 /// The `[[materials]]` array.

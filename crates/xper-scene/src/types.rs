@@ -29,11 +29,15 @@ pub struct Scene {
     pub bodies: Vec<BodyDesc>,
 }
 
-/// Which contact solver to use.
+/// Which contact solver to use for the velocity problem of each step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 pub enum SolverKind {
-    /// Non-linear Gauss-Seidel.
+    /// Non-linear Gauss-Seidel on the factorised Delassus operator (`"nlgs"`).
     Nlgs,
+    /// Generalized Newton method on the assembled problem (`"newton"`).
+    Newton,
+    /// Proximal-point iterations around the generalized Newton method (`"proximal_newton"`).
+    ProximalNewton,
 }
 
 /// The norm used by the solver's convergence test.
@@ -52,18 +56,33 @@ pub enum ConvergenceNorm {
 pub struct SolverSettings {
     /// Solver algorithm.
     pub kind: SolverKind,
-    /// Convergence tolerance, > 0.
+    /// Convergence tolerance, > 0: of `norm` for NLGS; of the natural-map error divided by
+    /// `max(|q|, |r|, |u|)` (Siconos' scaling) for the Newton kinds.
     pub tolerance: f64,
-    /// Maximum number of iterations per step, >= 1.
+    /// Maximum number of iterations per step, >= 1: NLGS sweeps, Newton iterations or
+    /// proximal steps.
     pub max_iterations: u32,
-    /// Convergence is checked every this many iterations, >= 1.
+    /// Convergence is checked every this many NLGS iterations, >= 1 (NLGS: the velocity
+    /// problem and the position projection; Newton kinds: the projection only).
     pub check_every: u32,
-    /// Relaxation factor, in (0, 2).
+    /// NLGS relaxation factor, in (0, 2) (as `check_every`).
     pub relaxation: f64,
-    /// Convergence norm.
+    /// NLGS convergence norm (as `check_every`).
     pub norm: ConvergenceNorm,
     /// Whether interpenetrations are corrected by a position projection after each step.
     pub position_projection: bool,
+}
+
+impl SolverSettings {
+    /// The default iteration limit of a solver kind: 1000 NLGS sweeps, 200 Newton iterations,
+    /// 100 proximal steps.
+    pub fn default_max_iterations(kind: SolverKind) -> u32 {
+        match kind {
+            SolverKind::Nlgs => 1000,
+            SolverKind::Newton => 200,
+            SolverKind::ProximalNewton => 100,
+        }
+    }
 }
 
 impl Default for SolverSettings {
@@ -89,6 +108,9 @@ pub struct OutputSettings {
     pub frame_every: u64,
     /// Steps between two checkpoints, >= 1.
     pub checkpoint_every: u64,
+    /// Steps (1-based, increasing, each in `1..=steps`) whose contact problem is written to a
+    /// file before it is solved; empty when not asked for.
+    pub dump_problems: Vec<u64>,
 }
 
 /// A Signorini-Coulomb law between two groups.

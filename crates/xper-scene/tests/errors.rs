@@ -209,7 +209,7 @@ fn solver_errors() {
         &t,
         "solver.kind",
         "pgs",
-        "unknown solver kind `pgs` (known: nlgs)",
+        "unknown solver kind `pgs` (known: nlgs, newton, proximal_newton)",
     );
     expect_error(
         &t,

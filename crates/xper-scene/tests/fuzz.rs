@@ -104,6 +104,8 @@ const ATOMS: &[&str] = &[
     "\"g\"",
     "\"w\"",
     "\"nlgs\"",
+    "\"newton\"",
+    "\"proximal_newton\"",
     "\"quad\"",
     "\"box_of_disks\"",
     "\"hex_lattice\"",
