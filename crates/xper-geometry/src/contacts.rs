@@ -44,14 +44,24 @@ impl ContactSet {
     }
 }
 
+/// The impulse of a contact of the previous step, kept for the warm start.
+#[derive(Clone, Copy, Debug, Default)]
+struct CarriedImpulse {
+    second_body: u32,
+    feature: u32,
+    impulse: [Real; 2],
+}
+
 /// Detection with its reusable buffers: broad phase, narrow phase, carry-over of impulses.
+///
+/// Only the non-zero impulses of the previous step are kept between calls (24 bytes each,
+/// grouped by first body), not the previous contacts themselves.
 #[derive(Clone, Debug, Default)]
 pub struct Detector {
     broad: BroadPhase,
     pairs: Vec<(u32, u32)>,
-    previous: Vec<Contact>,
-    previous_start: Vec<u32>,
-    previous_sorted: Vec<u32>,
+    carried: Vec<CarriedImpulse>,
+    carried_start: Vec<u32>,
 }
 
 impl Detector {
@@ -72,8 +82,7 @@ impl Detector {
         law_of: impl Fn(u16, u16) -> Option<u16>,
         contacts: &mut ContactSet,
     ) {
-        std::mem::swap(&mut self.previous, &mut contacts.contacts);
-        self.index_previous(bodies.len());
+        self.carry_impulses(&contacts.contacts, bodies.len());
         contacts.contacts.clear();
         self.pairs.clear();
         self.broad.find_pairs(bodies, alert, &mut self.pairs);
@@ -110,40 +119,47 @@ impl Detector {
         }
     }
 
-    /// Groups the previous contacts by first body (counting sort) for O(1) look-ups.
-    fn index_previous(&mut self, n_bodies: usize) {
-        self.previous_start.clear();
-        self.previous_start.resize(n_bodies + 1, 0);
-        for c in &self.previous {
-            if (c.bodies[0] as usize) < n_bodies {
-                self.previous_start[c.bodies[0] as usize + 1] += 1;
-            }
+    /// Keeps the non-zero impulses of `previous`, grouped by first body (counting sort), for
+    /// O(1) look-ups.
+    fn carry_impulses(&mut self, previous: &[Contact], n_bodies: usize) {
+        let kept = |c: &&Contact| c.impulse != [0.0, 0.0] && (c.bodies[0] as usize) < n_bodies;
+        self.carried_start.clear();
+        self.carried_start.resize(n_bodies + 1, 0);
+        for c in previous.iter().filter(kept) {
+            self.carried_start[c.bodies[0] as usize + 1] += 1;
         }
         for b in 0..n_bodies {
-            self.previous_start[b + 1] += self.previous_start[b];
+            self.carried_start[b + 1] += self.carried_start[b];
         }
-        self.previous_sorted.clear();
-        self.previous_sorted
-            .resize(self.previous_start[n_bodies] as usize, 0);
-        let mut fill = self.previous_start.clone();
-        for (k, c) in self.previous.iter().enumerate() {
-            let b = c.bodies[0] as usize;
-            if b < n_bodies {
-                self.previous_sorted[fill[b] as usize] = k as u32;
-                fill[b] += 1;
-            }
+        self.carried.clear();
+        self.carried.resize(
+            self.carried_start[n_bodies] as usize,
+            CarriedImpulse::default(),
+        );
+        for c in previous.iter().filter(kept) {
+            let slot = &mut self.carried_start[c.bodies[0] as usize];
+            self.carried[*slot as usize] = CarriedImpulse {
+                second_body: c.bodies[1],
+                feature: c.feature,
+                impulse: c.impulse,
+            };
+            *slot += 1;
         }
+        // The fill moved each start to the next group's start: shift back.
+        for b in (0..n_bodies).rev() {
+            self.carried_start[b + 1] = self.carried_start[b];
+        }
+        self.carried_start[0] = 0;
     }
 
     fn previous_impulse(&self, i: u32, j: u32, feature: u32) -> [Real; 2] {
         let (s, e) = (
-            self.previous_start[i as usize] as usize,
-            self.previous_start[i as usize + 1] as usize,
+            self.carried_start[i as usize] as usize,
+            self.carried_start[i as usize + 1] as usize,
         );
-        self.previous_sorted[s..e]
+        self.carried[s..e]
             .iter()
-            .map(|&k| &self.previous[k as usize])
-            .find(|c| c.bodies[1] == j && c.feature == feature)
+            .find(|c| c.second_body == j && c.feature == feature)
             .map_or([0.0, 0.0], |c| c.impulse)
     }
 }
