@@ -1,4 +1,5 @@
-//! `xper run`: the time loop with its outputs (frames, series, checkpoints, summary, plot).
+//! `xper run`: the time loop with its outputs (frames, series, checkpoints, summary, plot,
+//! and the contact problems of the steps listed in `[output] dump_problems`).
 
 use crate::frames::{bodies_grid, contacts_grid};
 use crate::world_from_scene::world_from_scene;
@@ -52,6 +53,7 @@ pub struct RunOptions {
 struct Summary {
     scene: String,
     scene_file: String,
+    solver: &'static str,
     status: &'static str,
     message: String,
     bodies: usize,
@@ -160,12 +162,25 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
     })?;
     let scene =
         xper_scene::load_scene(&opts.scene).map_err(|e| CliError::BadInput(e.to_string()))?;
-    std::fs::create_dir_all(opts.out.join("frames")).map_err(|e| {
-        CliError::BadInput(format!(
-            "{}: cannot create output directory: {e}",
-            opts.out.display()
-        ))
-    })?;
+    let dumps = &scene.output.dump_problems;
+    if !dumps.is_empty() && !cfg!(feature = "hdf5") {
+        return Err(CliError::BadInput(format!(
+            "{}: [output] dump_problems: built without HDF5 support: rebuild with --features hdf5",
+            opts.scene.display()
+        )));
+    }
+    let mut dirs = vec![opts.out.join("frames")];
+    if !dumps.is_empty() {
+        dirs.push(opts.out.join("problems"));
+    }
+    for dir in dirs {
+        std::fs::create_dir_all(&dir).map_err(|e| {
+            CliError::BadInput(format!(
+                "{}: cannot create output directory: {e}",
+                dir.display()
+            ))
+        })?;
+    }
     let mut out = Outputs {
         dir: opts.out.clone(),
         series: SeriesTable::new(&SERIES_COLUMNS),
@@ -195,7 +210,15 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
     let started = Instant::now();
     let mut failure = None;
     while world.step < last {
-        match stepper.step(&mut world) {
+        if dumps.binary_search(&(world.step + 1)).is_ok() {
+            stepper.capture_next_problem();
+        }
+        let result = stepper.step(&mut world);
+        if let Some(problem) = stepper.take_problem() {
+            // Written also when the step then failed: the problem it could not solve.
+            write_problem(&opts.out, world.step + u64::from(result.is_err()), &problem)?;
+        }
+        match result {
             Ok(report) => {
                 out.push(&report);
                 if world.step % scene.output.frame_every == 0 || world.step == scene.steps {
@@ -261,6 +284,35 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
     }
 }
 
+/// The file of the problem of step `step` (1-based) under the output directory `out`.
+pub fn problem_path(out: &Path, step: u64) -> PathBuf {
+    out.join("problems").join(format!("step_{step:06}.hdf5"))
+}
+
+/// Writes the problem of `step` in FCLib's HDF5 local form, atomically.
+#[cfg(feature = "hdf5")]
+fn write_problem(
+    out: &Path,
+    step: u64,
+    problem: &xper_solver::FrictionProblem,
+) -> Result<(), CliError> {
+    xper_fclib::write_fclib_local(problem_path(out, step), problem)
+        .map_err(|e| CliError::Runtime(format!("problem of step {step}: {e}")))
+}
+
+/// Without HDF5 no problem is captured (dumps are refused before the run starts).
+#[cfg(not(feature = "hdf5"))]
+fn write_problem(
+    out: &Path,
+    step: u64,
+    _problem: &xper_solver::FrictionProblem,
+) -> Result<(), CliError> {
+    Err(CliError::BadInput(format!(
+        "{}: problem of step {step}: built without HDF5 support: rebuild with --features hdf5",
+        problem_path(out, step).display()
+    )))
+}
+
 fn progress_bar(quiet: bool, steps: u64, position: u64) -> ProgressBar {
     let target = if quiet {
         ProgressDrawTarget::hidden()
@@ -297,6 +349,11 @@ fn write_summary(
     let summary = Summary {
         scene: scene.name.clone(),
         scene_file: file.display().to_string(),
+        solver: match scene.solver.kind {
+            xper_scene::SolverKind::Nlgs => "nlgs",
+            xper_scene::SolverKind::Newton => "newton",
+            xper_scene::SolverKind::ProximalNewton => "proximal_newton",
+        },
         status,
         message,
         bodies: world.bodies.len(),
@@ -354,8 +411,11 @@ pub fn write_plot(series: &SeriesTable, path: &Path, title: &str) -> Result<(), 
         ),
         panel(
             "Contact solver",
-            "NLGS sweeps",
-            vec![curve("iterations", "sweeps per step")],
+            "iterations",
+            vec![curve(
+                "iterations",
+                "NLGS sweeps or Newton iterations per step",
+            )],
             false,
         ),
         panel(

@@ -3,9 +3,9 @@
 use xper_bodies::{Body, BodySet, ConvexPolygon, Drive, Shape};
 use xper_laws::{InteractionLaw, LawTable, SignoriniCoulomb};
 use xper_math::{Real, Vector};
-use xper_nscd::{StepParams, World};
+use xper_nscd::{StepParams, VelocitySolver, World};
 use xper_scene::{Scene, ShapeDesc};
-use xper_solver::{ConvergenceNorm, NlgsParams};
+use xper_solver::{ConvergenceNorm, ErrorScaling, NlgsParams, SolverKind, SolverParams};
 
 /// Overlap allowed before the position projection runs, relative to the smallest body size.
 pub const PROJECTION_TOLERANCE_RELATIVE: Real = 1e-4;
@@ -16,6 +16,22 @@ fn drive(d: &xper_scene::Drive) -> Drive {
         xper_scene::Drive::Velocity(f) => Drive::Velocity(f.clone()),
         xper_scene::Drive::Force(f) => Drive::Force(f.clone()),
     }
+}
+
+/// The velocity solver of a scene: NLGS, or an assembled-problem solver with the scene's
+/// tolerance on the natural-map error under Siconos' scaling `max(|q|, |r|, |u|)`.
+pub fn velocity_solver(settings: &xper_scene::SolverSettings) -> VelocitySolver {
+    let kind = match settings.kind {
+        xper_scene::SolverKind::Nlgs => return VelocitySolver::Nlgs,
+        xper_scene::SolverKind::Newton => SolverKind::Newton,
+        xper_scene::SolverKind::ProximalNewton => SolverKind::ProximalNewton,
+    };
+    VelocitySolver::Assembled(SolverParams {
+        tolerance: settings.tolerance,
+        max_iterations: settings.max_iterations,
+        scaling: ErrorScaling::RelativeMax,
+        ..SolverParams::with_kind(kind)
+    })
 }
 
 /// Builds the world of a scene at time 0.
@@ -82,5 +98,7 @@ pub fn world_from_scene(scene: &Scene) -> World {
         projection_tolerance: (s.position_projection && smallest.is_finite())
             .then_some(PROJECTION_TOLERANCE_RELATIVE * smallest),
     };
-    World::new(bodies, laws, params)
+    let mut world = World::new(bodies, laws, params);
+    world.solver = velocity_solver(s);
+    world
 }
