@@ -3,7 +3,9 @@
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
-use xper_scene::{load_scene, ConvergenceNorm, Drive, ShapeDesc, SplitMix64, TimeFunction};
+use xper_scene::{
+    load_scene, ConvergenceNorm, Drive, ShapeDesc, SolverKind, SplitMix64, TimeFunction,
+};
 
 fn scene_path(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -118,6 +120,17 @@ fn box100k_scene() {
     let s = load_scene(&scene_path("box100k")).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(s.bodies.len(), 316 * 316 + 4);
     eprintln!("box100k parsed and validated in {:?}", t.elapsed());
+}
+
+#[test]
+fn newton_deposit_scene() {
+    let s = load_scene(&scene_path("newton_deposit")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(s.bodies.len(), 200 + 4);
+    assert_eq!(s.solver.kind, SolverKind::Newton);
+    assert_eq!((s.solver.tolerance, s.solver.max_iterations), (1e-8, 50));
+    assert_eq!(s.output.dump_problems, vec![400]);
+    assert!(s.laws.iter().all(|l| l.friction == 0.0));
+    assert_eq!((s.dt, s.steps), (2e-4, 600));
 }
 
 #[test]
