@@ -142,7 +142,10 @@ pub struct MoreauJean {
     captured: Option<FrictionProblem>,
     detector: Detector,
     op: RigidContactOperator,
+    /// The rows of every contact while `op.rows` holds only the active ones; empty (and
+    /// `op.rows` holds every row) when every contact is active, the usual case with e = 0.
     all_rows: Vec<ContactRow>,
+    active_is_subset: bool,
     active: Vec<u32>,
     mu: Vec<Real>,
     shift: Vec<Real>,
@@ -280,25 +283,22 @@ impl MoreauJean {
             .extend((0..bodies.len()).map(|b| bodies.generalized_velocity(b)));
         let v_begin = &self.v_begin;
         self.op.load_bodies(bodies, |b| v_begin[b]);
-        self.all_rows.clear();
-        self.all_rows.extend(
+        self.op.rows.clear();
+        self.op.rows.extend(
             world
                 .contacts
                 .contacts
                 .iter()
                 .map(|c| RigidContactOperator::row(bodies, &self.op.bodies, c)),
         );
-        std::mem::swap(&mut self.op.rows, &mut self.all_rows);
         self.u_begin.clear();
         self.u_begin
             .extend((0..self.op.rows.len()).map(|a| self.op.local_velocity(a)));
-        std::mem::swap(&mut self.op.rows, &mut self.all_rows);
 
         // Stage: free velocity.
         self.free_velocity(world, t_begin, t_end);
 
         // Stage: select the active contacts (predicted gap closed) and their law data.
-        self.op.rows.clear();
         self.active.clear();
         self.mu.clear();
         self.shift.clear();
@@ -311,10 +311,19 @@ impl MoreauJean {
                 continue;
             };
             self.active.push(a as u32);
-            self.op.rows.push(self.all_rows[a]);
             self.mu.push(law.friction);
             self.shift.push(shift);
             self.impulses.push(c.impulse);
+        }
+        // Rows of the active contacts: every row as it is when all are active (no copy).
+        self.active_is_subset = self.active.len() < self.op.rows.len();
+        self.all_rows.clear();
+        if self.active_is_subset {
+            std::mem::swap(&mut self.op.rows, &mut self.all_rows);
+            let all = &self.all_rows;
+            self.op
+                .rows
+                .extend(self.active.iter().map(|&a| all[a as usize]));
         }
         report.active = self.active.len();
     }
@@ -450,8 +459,11 @@ impl MoreauJean {
     /// largest overlap before projection.
     fn project(&mut self, world: &mut World) -> Result<(u32, Real), StepError> {
         let (h, theta) = (world.params.dt, world.params.theta);
-        // Linearised gaps at the end of the step.
-        std::mem::swap(&mut self.op.rows, &mut self.all_rows);
+        // Linearised gaps at the end of the step, over every contact's row.
+        let subset = self.active_is_subset;
+        if subset {
+            std::mem::swap(&mut self.op.rows, &mut self.all_rows);
+        }
         self.shift.clear();
         let mut deepest: Real = 0.0;
         for (a, c) in world.contacts.contacts.iter().enumerate() {
@@ -460,12 +472,17 @@ impl MoreauJean {
             deepest = deepest.max(-gap);
             self.shift.push(gap);
         }
+        let restore = |me: &mut Self| {
+            if subset {
+                std::mem::swap(&mut me.op.rows, &mut me.all_rows);
+            }
+        };
         let Some(tolerance) = world.params.projection_tolerance else {
-            std::mem::swap(&mut self.op.rows, &mut self.all_rows);
+            restore(self);
             return Ok((0, deepest));
         };
         if deepest <= tolerance {
-            std::mem::swap(&mut self.op.rows, &mut self.all_rows);
+            restore(self);
             return Ok((0, deepest));
         }
         let n = self.op.rows.len();
@@ -498,7 +515,7 @@ impl MoreauJean {
             bodies.position[b].y += body.velocity[1];
             bodies.angle[b] += body.velocity[2];
         }
-        std::mem::swap(&mut self.op.rows, &mut self.all_rows);
+        restore(self);
         Ok((info.iterations, deepest))
     }
 }
