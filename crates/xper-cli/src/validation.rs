@@ -7,7 +7,7 @@ use crate::CliError;
 use xper_bodies::{Body, BodySet};
 use xper_laws::{InteractionLaw, LawTable, SignoriniCoulomb};
 use xper_math::{Real, Vector};
-use xper_nscd::{MoreauJean, StepParams, World};
+use xper_nscd::{MoreauJean, StepParams, VelocitySolver, World};
 use xper_solver::{ConvergenceNorm, NlgsParams};
 
 const G: Real = 9.81;
@@ -48,6 +48,7 @@ fn params(dt: Real, gravity: Vector) -> StepParams {
             relaxation: 1.0,
             norm: ConvergenceNorm::NaturalMap,
         },
+        solver: VelocitySolver::Nlgs,
         projection_tolerance: Some(1e-9),
     }
 }

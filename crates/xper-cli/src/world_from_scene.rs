@@ -95,10 +95,9 @@ pub fn world_from_scene(scene: &Scene) -> World {
                 xper_scene::ConvergenceNorm::NaturalMap => ConvergenceNorm::NaturalMap,
             },
         },
+        solver: velocity_solver(s),
         projection_tolerance: (s.position_projection && smallest.is_finite())
             .then_some(PROJECTION_TOLERANCE_RELATIVE * smallest),
     };
-    let mut world = World::new(bodies, laws, params);
-    world.solver = velocity_solver(s);
-    world
+    World::new(bodies, laws, params)
 }

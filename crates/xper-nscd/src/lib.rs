@@ -23,7 +23,7 @@
 //!
 //! The step is a sequence of named stages on a [`World`] the caller owns, run by a
 //! [`MoreauJean`] stepper that keeps its buffers between steps. The velocity problem is
-//! solved by NLGS on the factorised operator, or, per [`World::solver`]
+//! solved by NLGS on the factorised operator, or, per [`StepParams::solver`]
 //! ([`VelocitySolver`]), by the solvers of `xper_solver` (generalized Newton, ...) on the
 //! problem assembled explicitly by [`assemble_problem`]; the stepper can hand that problem
 //! out ([`MoreauJean::capture_next_problem`], [`MoreauJean::next_problem`]).

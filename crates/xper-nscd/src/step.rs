@@ -331,7 +331,7 @@ impl MoreauJean {
     /// Stage solve: the velocity problem by the world's [`VelocitySolver`]; on return the
     /// operator's velocities are those of the impulses found.
     fn solve(&mut self, world: &World, report: &mut StepReport) -> Result<(), StepError> {
-        let assembled = match world.solver {
+        let assembled = match world.params.solver {
             VelocitySolver::Assembled(params) => Some(params),
             VelocitySolver::Nlgs => None,
         };

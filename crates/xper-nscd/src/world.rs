@@ -18,8 +18,11 @@ pub struct StepParams {
     pub gravity: Vector,
     /// Alert distance (m): pairs closer than this are contacts.
     pub alert_distance: Real,
-    /// The contact solver's parameters.
+    /// NLGS parameters: the velocity solve when `solver` is [`VelocitySolver::Nlgs`], and
+    /// always the position projection.
     pub nlgs: NlgsParams,
+    /// Solver of the velocity problem of each step.
+    pub solver: VelocitySolver,
     /// Overlap (m) beyond which the position projection runs; `None` disables it. Contacts with
     /// restitution whose predicted gap is below it count as closed (see `normal_shift`).
     pub projection_tolerance: Option<Real>,
@@ -66,9 +69,6 @@ pub struct World {
     pub laws: LawTable,
     /// Time-stepping parameters.
     pub params: StepParams,
-    /// Solver of the velocity problem (NLGS unless set). Part of the step parameters, kept
-    /// beside [`StepParams`] so that existing `StepParams { .. }` literals stay valid.
-    pub solver: VelocitySolver,
     /// Current time (s).
     pub time: Real,
     /// Steps done.
@@ -78,7 +78,7 @@ pub struct World {
 }
 
 impl World {
-    /// A world at time 0, solving with NLGS ([`VelocitySolver::Nlgs`]).
+    /// A world at time 0.
     pub fn new(bodies: BodySet, laws: LawTable, params: StepParams) -> Self {
         let initial = bodies.kinetic_energy() + bodies.potential_energy(&params.gravity);
         World {
@@ -86,7 +86,6 @@ impl World {
             contacts: ContactSet::default(),
             laws,
             params,
-            solver: VelocitySolver::Nlgs,
             time: 0.0,
             step: 0,
             energy: EnergyBudget {

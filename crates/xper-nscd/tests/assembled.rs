@@ -52,6 +52,7 @@ fn params(tolerance: Real) -> StepParams {
             relaxation: 1.0,
             norm: ConvergenceNorm::NaturalMap,
         },
+        solver: VelocitySolver::Nlgs,
         projection_tolerance: Some(1e-6),
     }
 }
@@ -212,7 +213,7 @@ fn small_deposit(solver: VelocitySolver, tolerance: Real) -> World {
         set.insert(b);
     }
     let mut world = World::new(set, laws(0.3), params(tolerance));
-    world.solver = solver;
+    world.params.solver = solver;
     world
 }
 
@@ -249,7 +250,7 @@ fn newton_and_nlgs_agree_in_the_stepper() {
     for step in 1..=30 {
         // One Newton step from the state NLGS reached: the difference of one solve.
         let mut one = a.clone();
-        one.solver = newton;
+        one.params.solver = newton;
         let r1 = s1.step(&mut one).unwrap();
         let (ra, rb) = (sa.step(&mut a).unwrap(), sb.step(&mut b).unwrap());
         for r in [&ra, &rb, &r1] {
