@@ -221,7 +221,10 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
     let mut results: Vec<BenchResult> = std::fs::read_dir(dir)
         .map_err(|e| CliError::Runtime(format!("{}: {e}", dir.display())))?
         .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "json"))
+        .filter(|p| {
+            p.extension().is_some_and(|x| x == "json")
+                && !p.ends_with(crate::bench_solvers::RESULTS_FILE)
+        })
         .filter_map(|p| {
             std::fs::read_to_string(&p)
                 .ok()

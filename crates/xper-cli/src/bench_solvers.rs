@@ -9,7 +9,7 @@ use crate::solve::{load_local, solve_timed, FormArg};
 use crate::CliError;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
-use xper_solver::{ErrorScaling, FrictionProblem, SolverKind};
+use xper_solver::{ErrorScaling, FrictionProblem, ProblemErrorMeasure, SolverKind};
 
 /// File name of the results in the benchmark directory.
 pub const RESULTS_FILE: &str = "solvers.json";
@@ -246,7 +246,7 @@ pub fn validate_problem(path: &Path) -> Result<SuiteCase, CliError> {
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     let tolerance = suite_tolerance(&name);
-    let mut best: Option<(f64, &'static str, Vec<f64>)> = None;
+    let mut best: Option<(ProblemErrorMeasure, &'static str, Vec<f64>)> = None;
     let mut consistent = true;
     for kind in [
         SolverKind::ProximalNewton,
@@ -262,36 +262,41 @@ pub fn validate_problem(path: &Path) -> Result<SuiteCase, CliError> {
         let shared = problem.error(&report.r);
         consistent &= (shared.relative_q - report.error.relative_q).abs()
             <= 1e-12 * (1.0 + shared.relative_q);
-        if best.as_ref().is_none_or(|b| shared.relative_q < b.0) {
-            best = Some((shared.relative_q, kind.name(), report.r));
+        if best
+            .as_ref()
+            .is_none_or(|b| shared.relative_q < b.0.relative_q)
+        {
+            best = Some((shared, kind.name(), report.r));
         }
         if report.converged {
             break;
         }
     }
-    let Some((error_q, solver, r)) = best else {
+    let Some((error, solver, r)) = best else {
         return Err(CliError::Runtime(format!(
             "{}: no solver could start",
             path.display()
         )));
     };
     let violations = law_violations(&problem, &r);
-    let error_abs = problem.error(&r).absolute;
     // r - e is a projection on the cone, so r is within |e| of it; the velocity and product
     // conditions follow within a few |e| (x (1 + mu), mu <= 1 here): allow 10 |e|, plus
     // round-off on the scale of the data.
-    let allowed = 10.0 * error_abs + 1e-12 * problem.q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let allowed =
+        10.0 * error.absolute + 1e-12 * problem.q.iter().fold(0.0f64, |m, x| m.max(x.abs()));
     Ok(SuiteCase {
         problem: name,
         dimension: problem.dim,
         contacts: problem.contact_count(),
         tolerance,
         solver: solver.to_string(),
-        error_q,
-        error_abs,
+        error_q: error.relative_q,
+        error_abs: error.absolute,
         violations,
         allowed,
-        passed: consistent && error_q <= tolerance && violations.iter().all(|&v| v <= allowed),
+        passed: consistent
+            && error.relative_q <= tolerance
+            && violations.iter().all(|&v| v <= allowed),
     })
 }
 
