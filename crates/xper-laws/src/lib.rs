@@ -9,6 +9,8 @@
 
 use serde::{Deserialize, Serialize};
 
+pub mod cohesive;
+
 /// Signorini-Coulomb law with Newton restitution.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SignoriniCoulomb {
