@@ -35,6 +35,11 @@ pub enum FemError {
         /// The admissible range, in words.
         expected: &'static str,
     },
+    /// A strain driver was given a NaN or infinite strain.
+    NonFiniteStrain {
+        /// Index of the step of the strain path.
+        step: usize,
+    },
     /// A strain driver could not enforce its stress condition.
     NotConverged {
         /// Index of the step of the strain path.
@@ -66,6 +71,9 @@ impl fmt::Display for FemError {
                 value,
                 expected,
             } => write!(f, "material: {parameter} = {value} must be {expected}"),
+            FemError::NonFiniteStrain { step } => {
+                write!(f, "strain driver: step {step} has a non-finite strain")
+            }
             FemError::NotConverged { step, residual } => write!(
                 f,
                 "strain driver: step {step} did not converge (stress residual {residual:.3e} Pa)"

@@ -196,9 +196,11 @@ impl Material {
 
     /// The state and consistent tangent at the total in-plane strain `[e_xx, e_yy, 2 e_xy]`
     /// reached from `previous` (backward Euler; exact for an elastic material). The
-    /// parameters are assumed valid ([`Material::validate`]); the plane-stress condition is
-    /// solved to round-off by a bracketed Newton method that cannot fail for valid
-    /// parameters.
+    /// parameters are assumed valid ([`Material::validate`]). The plane-stress condition
+    /// `s_zz = 0` is solved to round-off by Newton's method kept inside a bracket: `s_zz`
+    /// increases with `e_zz` at a rate of at least the bulk modulus, so the bracket always
+    /// exists and bisection always closes it; only non-finite strains (which give
+    /// non-finite stresses) end without a root.
     pub fn update(
         &self,
         hypothesis: Hypothesis,

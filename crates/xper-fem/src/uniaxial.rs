@@ -25,7 +25,8 @@ pub struct UniaxialPoint {
 }
 
 /// Drives the axial strain along `strain_path` from a virgin state and returns one point
-/// per entry. Fails with [`FemError::InvalidMaterial`] for invalid parameters and
+/// per entry. Fails with [`FemError::InvalidMaterial`] for invalid parameters,
+/// [`FemError::NonFiniteStrain`] for a NaN or infinite strain and
 /// [`FemError::NotConverged`] if `s_yy = 0` cannot be met (it always can for a valid
 /// material). `s_yy` is solved to `1e-13` of the stress scale `E |e_xx| + sigma_y`.
 pub fn uniaxial_stress_response(
@@ -39,11 +40,7 @@ pub fn uniaxial_stress_response(
     let mut points = Vec::with_capacity(strain_path.len());
     for (step, &axial) in strain_path.iter().enumerate() {
         if !axial.is_finite() {
-            return Err(FemError::InvalidMaterial {
-                parameter: "axial strain",
-                value: axial,
-                expected: "finite",
-            });
+            return Err(FemError::NonFiniteStrain { step });
         }
         let yield_scale = match *material {
             Material::LinearElastic { .. } => 0.0,

@@ -201,9 +201,9 @@ fn check_tangent(m: &Material, h: Hypothesis, previous: &MaterialState, e: [f64;
             );
         }
     }
-    for i in 0..3 {
-        for j in 0..3 {
-            assert!((d[i][j] - d[j][i]).abs() <= 1e-12 * scale);
+    for (i, row) in d.iter().enumerate() {
+        for (j, x) in row.iter().enumerate() {
+            assert!((x - d[j][i]).abs() <= 1e-12 * scale);
         }
     }
 }
@@ -315,6 +315,9 @@ fn uniaxial_tension_of_an_elastoplastic_element_follows_linear_hardening() {
         density: 1.0,
     };
     assert!(uniaxial_stress_response(&bad, Hypothesis::PlaneStrain, &path).is_err());
+    let nan = [1e-4, f64::NAN];
+    let e = uniaxial_stress_response(&m, Hypothesis::PlaneStrain, &nan).unwrap_err();
+    assert_eq!(e, FemError::NonFiniteStrain { step: 1 });
 }
 
 proptest! {
