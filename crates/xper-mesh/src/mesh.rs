@@ -125,10 +125,16 @@ impl Mesh {
     pub fn with_edge_set(mut self, name: &str, edges: &[[u32; 2]]) -> Result<Mesh, MeshError> {
         let place = format!("edge set `{name}`");
         if name.is_empty() {
-            return Err(MeshError::invalid(place, "an edge set needs a non-empty name"));
+            return Err(MeshError::invalid(
+                place,
+                "an edge set needs a non-empty name",
+            ));
         }
         if self.edge_sets.contains_key(name) {
-            return Err(MeshError::invalid(place, "an edge set of that name already exists"));
+            return Err(MeshError::invalid(
+                place,
+                "an edge set of that name already exists",
+            ));
         }
         let mesh_edges = self.edge_keys();
         let mut keys = Vec::with_capacity(edges.len());
@@ -155,12 +161,18 @@ impl Mesh {
     pub fn with_node_set(mut self, name: &str, nodes: &[u32]) -> Result<Mesh, MeshError> {
         let place = format!("node set `{name}`");
         if name.is_empty() {
-            return Err(MeshError::invalid(place, "a node set needs a non-empty name"));
+            return Err(MeshError::invalid(
+                place,
+                "a node set needs a non-empty name",
+            ));
         }
         if let Some(&n) = nodes.iter().find(|&&n| n as usize >= self.nodes.len()) {
             return Err(MeshError::invalid(
                 place,
-                format!("node {n} out of range (the mesh has {} nodes)", self.nodes.len()),
+                format!(
+                    "node {n} out of range (the mesh has {} nodes)",
+                    self.nodes.len()
+                ),
             ));
         }
         let set = self.node_sets.entry(name.to_string()).or_default();
@@ -198,7 +210,10 @@ impl Mesh {
         {
             return Err(MeshError::invalid(
                 format!("triangle {t}"),
-                format!("region index {r} out of range ({} regions)", self.regions.len()),
+                format!(
+                    "region index {r} out of range ({} regions)",
+                    self.regions.len()
+                ),
             ));
         }
         self.neighbours()?;
@@ -208,16 +223,26 @@ impl Mesh {
             if edges.windows(2).any(|w| w[0] >= w[1]) {
                 return Err(MeshError::invalid(place, "edges not sorted and unique"));
             }
-            if let Some(e) = edges.iter().find(|e| e[0] >= e[1] || !mesh_edges.contains(*e)) {
+            if let Some(e) = edges
+                .iter()
+                .find(|e| e[0] >= e[1] || !mesh_edges.contains(*e))
+            {
                 return Err(MeshError::invalid(
                     place,
-                    format!("[{}, {}] is not an edge of a triangle (nodes ascending)", e[0], e[1]),
+                    format!(
+                        "[{}, {}] is not an edge of a triangle (nodes ascending)",
+                        e[0], e[1]
+                    ),
                 ));
             }
             let Some(set) = self.node_sets.get(name) else {
                 return Err(MeshError::invalid(place, "no node set of the same name"));
             };
-            if let Some(n) = edges.iter().flatten().find(|n| set.binary_search(n).is_err()) {
+            if let Some(n) = edges
+                .iter()
+                .flatten()
+                .find(|n| set.binary_search(n).is_err())
+            {
                 return Err(MeshError::invalid(
                     place,
                     format!("node {n} missing from the node set of the same name"),
@@ -280,7 +305,9 @@ impl Mesh {
 
     /// Total area of the triangles (m^2).
     pub fn area(&self) -> f64 {
-        (0..self.triangles.len()).map(|t| self.triangle_area(t)).sum()
+        (0..self.triangles.len())
+            .map(|t| self.triangle_area(t))
+            .sum()
     }
 
     /// Area of each region (m^2), indexed like `regions`.
@@ -342,7 +369,10 @@ impl Mesh {
 }
 
 fn check_nodes(nodes: &[[f64; 2]]) -> Result<(), MeshError> {
-    match nodes.iter().position(|p| !p[0].is_finite() || !p[1].is_finite()) {
+    match nodes
+        .iter()
+        .position(|p| !p[0].is_finite() || !p[1].is_finite())
+    {
         Some(i) => Err(MeshError::invalid(
             format!("node {i}"),
             format!("non-finite coordinate {:?}", nodes[i]),
@@ -360,7 +390,10 @@ fn check_triangle_indices(t: usize, tri: &[u32; 3], n_nodes: usize) -> Result<()
         ));
     }
     if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
-        return Err(MeshError::invalid(place(), "a node is repeated (degenerate triangle)"));
+        return Err(MeshError::invalid(
+            place(),
+            "a node is repeated (degenerate triangle)",
+        ));
     }
     Ok(())
 }

@@ -165,7 +165,11 @@ pub(crate) fn triangulate(
     lines: &[Line],
 ) -> Result<RawMesh, MeshError> {
     let fail = |reason: String| MeshError::new(ErrorKind::Spec, origin, reason);
-    let points: Vec<Point2<f64>> = pslg.points.iter().map(|p| Point2::new(p[0], p[1])).collect();
+    let points: Vec<Point2<f64>> = pslg
+        .points
+        .iter()
+        .map(|p| Point2::new(p[0], p[1]))
+        .collect();
     let mut conflicts = Vec::new();
     let mut cdt: ConstrainedDelaunayTriangulation<Point2<f64>> =
         ConstrainedDelaunayTriangulation::try_bulk_load_cdt(points, pslg.segments, |e| {

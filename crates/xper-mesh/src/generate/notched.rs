@@ -34,7 +34,12 @@ pub struct NotchedSpec {
 /// meet or cut the square apart, an element size giving more than
 /// [`MAX_TRIANGLES`](super::MAX_TRIANGLES).
 pub fn double_edge_notched(spec: &NotchedSpec) -> Result<Mesh, MeshError> {
-    let (s, d, nw, h) = (spec.side, spec.notch_depth, spec.notch_width, spec.element_size);
+    let (s, d, nw, h) = (
+        spec.side,
+        spec.notch_depth,
+        spec.notch_width,
+        spec.element_size,
+    );
     positive(ORIGIN, "side", s)?;
     positive(ORIGIN, "notch_depth", d)?;
     positive(ORIGIN, "notch_width", nw)?;
@@ -59,18 +64,66 @@ pub fn double_edge_notched(spec: &NotchedSpec) -> Result<Mesh, MeshError> {
     let (lo, hi) = (0.5 * (s - nw), 0.5 * (s + nw));
     let (xl, xr) = (d, s - d);
     let lines = vec![
-        Line { a: [0.0, 0.0], b: [s, 0.0], set: "bottom" },
-        Line { a: [s, 0.0], b: [s, lo], set: "right_lower" },
-        Line { a: [s, lo], b: [xr, lo], set: "notch_right" },
-        Line { a: [xr, lo], b: [xr, hi], set: "notch_right" },
-        Line { a: [xr, hi], b: [s, hi], set: "notch_right" },
-        Line { a: [s, hi], b: [s, s], set: "right_upper" },
-        Line { a: [s, s], b: [0.0, s], set: "top" },
-        Line { a: [0.0, s], b: [0.0, hi], set: "left_upper" },
-        Line { a: [0.0, hi], b: [xl, hi], set: "notch_left" },
-        Line { a: [xl, hi], b: [xl, lo], set: "notch_left" },
-        Line { a: [xl, lo], b: [0.0, lo], set: "notch_left" },
-        Line { a: [0.0, lo], b: [0.0, 0.0], set: "left_lower" },
+        Line {
+            a: [0.0, 0.0],
+            b: [s, 0.0],
+            set: "bottom",
+        },
+        Line {
+            a: [s, 0.0],
+            b: [s, lo],
+            set: "right_lower",
+        },
+        Line {
+            a: [s, lo],
+            b: [xr, lo],
+            set: "notch_right",
+        },
+        Line {
+            a: [xr, lo],
+            b: [xr, hi],
+            set: "notch_right",
+        },
+        Line {
+            a: [xr, hi],
+            b: [s, hi],
+            set: "notch_right",
+        },
+        Line {
+            a: [s, hi],
+            b: [s, s],
+            set: "right_upper",
+        },
+        Line {
+            a: [s, s],
+            b: [0.0, s],
+            set: "top",
+        },
+        Line {
+            a: [0.0, s],
+            b: [0.0, hi],
+            set: "left_upper",
+        },
+        Line {
+            a: [0.0, hi],
+            b: [xl, hi],
+            set: "notch_left",
+        },
+        Line {
+            a: [xl, hi],
+            b: [xl, lo],
+            set: "notch_left",
+        },
+        Line {
+            a: [xl, lo],
+            b: [0.0, lo],
+            set: "notch_left",
+        },
+        Line {
+            a: [0.0, lo],
+            b: [0.0, 0.0],
+            set: "left_lower",
+        },
     ];
     let mut pslg = Pslg::default();
     for line in &lines {
@@ -95,11 +148,16 @@ pub fn double_edge_notched(spec: &NotchedSpec) -> Result<Mesh, MeshError> {
         sets.push((name, edges));
     }
     let n = raw.triangles.len();
-    let regions = vec![Region { name: "concrete".into(), tag: 1 }];
-    let mut mesh =
-        Mesh::new(raw.nodes, raw.triangles, vec![0; n], regions).map_err(|e| e.from_origin(ORIGIN))?;
+    let regions = vec![Region {
+        name: "concrete".into(),
+        tag: 1,
+    }];
+    let mut mesh = Mesh::new(raw.nodes, raw.triangles, vec![0; n], regions)
+        .map_err(|e| e.from_origin(ORIGIN))?;
     for (name, edges) in sets {
-        mesh = mesh.with_edge_set(name, &edges).map_err(|e| e.from_origin(ORIGIN))?;
+        mesh = mesh
+            .with_edge_set(name, &edges)
+            .map_err(|e| e.from_origin(ORIGIN))?;
     }
     Ok(mesh)
 }

@@ -91,7 +91,10 @@ fn check(spec: &RectangleSpec) -> Result<(), MeshError> {
     if let Some((a, b)) = spec.precrack {
         let place = format!("precrack = ({a:?}, {b:?})");
         if a.iter().chain(&b).any(|v| !v.is_finite()) || a == b {
-            return Err(spec_error(place, "the pre-crack needs two distinct finite ends"));
+            return Err(spec_error(
+                place,
+                "the pre-crack needs two distinct finite ends",
+            ));
         }
         let inside = |p: [f64; 2]| p[0] >= 0.0 && p[0] <= w && p[1] >= 0.0 && p[1] <= h;
         if !inside(a) || !inside(b) {
@@ -129,20 +132,44 @@ pub fn rectangle_with_inclusions(spec: &RectangleSpec) -> Result<Mesh, MeshError
     check(spec)?;
     let (w, ht, h) = (spec.width, spec.height, spec.element_size);
     let mut lines = vec![
-        Line { a: [0.0, 0.0], b: [w, 0.0], set: "bottom" },
-        Line { a: [w, 0.0], b: [w, ht], set: "right" },
-        Line { a: [0.0, ht], b: [w, ht], set: "top" },
-        Line { a: [0.0, 0.0], b: [0.0, ht], set: "left" },
+        Line {
+            a: [0.0, 0.0],
+            b: [w, 0.0],
+            set: "bottom",
+        },
+        Line {
+            a: [w, 0.0],
+            b: [w, ht],
+            set: "right",
+        },
+        Line {
+            a: [0.0, ht],
+            b: [w, ht],
+            set: "top",
+        },
+        Line {
+            a: [0.0, 0.0],
+            b: [0.0, ht],
+            set: "left",
+        },
     ];
     for r in &spec.inclusions {
         let c = [[r[0], r[1]], [r[2], r[1]], [r[2], r[3]], [r[0], r[3]]];
         for k in 0..4 {
-            lines.push(Line { a: c[k], b: c[(k + 1) % 4], set: "inclusion_boundary" });
+            lines.push(Line {
+                a: c[k],
+                b: c[(k + 1) % 4],
+                set: "inclusion_boundary",
+            });
         }
     }
     let mut breaks = Vec::new();
     if let Some((a, b)) = spec.precrack {
-        lines.push(Line { a, b, set: "precrack" });
+        lines.push(Line {
+            a,
+            b,
+            set: "precrack",
+        });
         breaks = vec![a, b];
     }
     let mut pslg = Pslg::default();
@@ -156,16 +183,32 @@ pub fn rectangle_with_inclusions(spec: &RectangleSpec) -> Result<Mesh, MeshError
     let triangle_region = (raw.triangles.iter())
         .map(|t| {
             let p = t.map(|n| raw.nodes[n as usize]);
-            let c = [(p[0][0] + p[1][0] + p[2][0]) / 3.0, (p[0][1] + p[1][1] + p[2][1]) / 3.0];
+            let c = [
+                (p[0][0] + p[1][0] + p[2][0]) / 3.0,
+                (p[0][1] + p[1][1] + p[2][1]) / 3.0,
+            ];
             u32::from(in_inclusion(c))
         })
         .collect();
     let regions = vec![
-        Region { name: "matrix".into(), tag: 1 },
-        Region { name: "inclusion".into(), tag: 2 },
+        Region {
+            name: "matrix".into(),
+            tag: 1,
+        },
+        Region {
+            name: "inclusion".into(),
+            tag: 2,
+        },
     ];
     let mut sets: Vec<(&str, Vec<[u32; 2]>)> = Vec::new();
-    for name in ["left", "right", "bottom", "top", "inclusion_boundary", "precrack"] {
+    for name in [
+        "left",
+        "right",
+        "bottom",
+        "top",
+        "inclusion_boundary",
+        "precrack",
+    ] {
         let edges = (lines.iter().filter(|l| l.set == name))
             .flat_map(|l| edges_on(&raw, l, h))
             .collect();
@@ -174,7 +217,9 @@ pub fn rectangle_with_inclusions(spec: &RectangleSpec) -> Result<Mesh, MeshError
     let mut mesh = Mesh::new(raw.nodes, raw.triangles, triangle_region, regions)
         .map_err(|e| e.from_origin(ORIGIN))?;
     for (name, edges) in sets {
-        mesh = mesh.with_edge_set(name, &edges).map_err(|e| e.from_origin(ORIGIN))?;
+        mesh = mesh
+            .with_edge_set(name, &edges)
+            .map_err(|e| e.from_origin(ORIGIN))?;
     }
     Ok(mesh)
 }

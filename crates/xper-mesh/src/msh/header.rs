@@ -162,7 +162,11 @@ pub(crate) fn physical_names(
     }
     match lines.next() {
         Some((_, l)) if trim(l) == b"$EndPhysicalNames" => Ok(names),
-        Some((at, _)) => Err(format_error(origin, place(at), "expected $EndPhysicalNames")),
+        Some((at, _)) => Err(format_error(
+            origin,
+            place(at),
+            "expected $EndPhysicalNames",
+        )),
         None => Err(format_error(
             origin,
             place(bytes.len()),

@@ -67,7 +67,7 @@ pub fn parse_msh(bytes: &[u8], origin: &str) -> Result<Mesh, MeshError> {
 /// its line (ASCII) or byte offset (binary).
 fn translate(err: &MshParserError<&[u8]>, bytes: &[u8], origin: &str, binary: bool) -> MeshError {
     let trace = err.filtered_backtrace();
-    let Some((rest, first)) = trace.first() else {
+    let Some((rest, _)) = trace.first() else {
         return MeshError::new(
             ErrorKind::Format,
             origin,
@@ -75,15 +75,19 @@ fn translate(err: &MshParserError<&[u8]>, bytes: &[u8], origin: &str, binary: bo
         );
     };
     let offset = bytes.len().saturating_sub(rest.len());
-    let within: Vec<String> = (trace[1..].iter().rev())
-        .map(|(_, k)| k.context().map_or_else(|| k.to_string(), str::to_string))
+    let what = (trace.iter())
+        .find(|(_, k)| k.context().is_none())
+        .map_or_else(|| "malformed content".to_string(), |(_, k)| k.to_string());
+    let within: Vec<&str> = (trace.iter().rev())
+        .filter_map(|(_, k)| k.context())
         .collect();
-    let mut reason = first.to_string();
-    if rest.iter().all(u8::is_ascii_whitespace) {
-        reason = format!("unexpected end of file (truncated?): {reason}");
-    }
+    let mut reason = what;
     if !within.is_empty() {
         reason = format!("{reason} (in {})", within.join(" > "));
+    }
+    let last_line = bytes.trim_ascii_end().rsplit(|&b| b == b'\n').next();
+    if !last_line.is_some_and(|l| l.trim_ascii().starts_with(b"$End")) {
+        reason = format!("{reason}; the file does not end with an $End line (truncated?)");
     }
     MeshError::new(ErrorKind::Format, origin, reason).at(header::place_of(bytes, offset, binary))
 }
@@ -102,7 +106,11 @@ fn convert(
     if let Some(e) = &msh.data.entities {
         physical.extend(e.points.iter().map(|p| ((0, p.tag), &p.physical_tags[..])));
         physical.extend(e.curves.iter().map(|c| ((1, c.tag), &c.physical_tags[..])));
-        physical.extend(e.surfaces.iter().map(|s| ((2, s.tag), &s.physical_tags[..])));
+        physical.extend(
+            e.surfaces
+                .iter()
+                .map(|s| ((2, s.tag), &s.physical_tags[..])),
+        );
         physical.extend(e.volumes.iter().map(|v| ((3, v.tag), &v.physical_tags[..])));
     }
     let has_groups = physical.values().any(|p| !p.is_empty());
@@ -137,20 +145,34 @@ fn convert(
     let mut lines: Groups<([u64; 2], u64)> = BTreeMap::new();
     let mut points: Groups<(u64, u64)> = BTreeMap::new();
     let empty: &[i32] = &[];
-    for block in msh.data.elements.iter().flat_map(|e| &e.element_blocks) {
+    // Surfaces first, so that a second-order mesh is reported at its triangles.
+    let mut blocks: Vec<_> = msh
+        .data
+        .elements
+        .iter()
+        .flat_map(|e| &e.element_blocks)
+        .collect();
+    blocks.sort_by_key(|b| std::cmp::Reverse(b.entity_dim));
+    for block in blocks {
         let (dim, entity) = (block.entity_dim, block.entity_tag);
         let groups = physical.get(&(dim, entity)).copied().unwrap_or(empty);
         let Some(first) = block.elements.first() else {
             continue;
         };
-        let place = format!("$Elements, element {} (entity {entity} of dimension {dim})", first.element_tag);
+        let place = format!(
+            "$Elements, element {} (entity {entity} of dimension {dim})",
+            first.element_tag
+        );
         match dim {
             2 => {
                 if block.element_type != ElementType::Tri3 {
                     return Err(err(
                         ErrorKind::Unsupported,
                         place,
-                        format!("only 3-node triangles are supported, found {:?} elements", block.element_type),
+                        format!(
+                            "only 3-node triangles are supported, found {:?} elements",
+                            block.element_type
+                        ),
                     ));
                 }
                 let group = match (has_groups, groups) {
@@ -188,7 +210,12 @@ fn convert(
                 }
                 for &g in groups {
                     let set = lines.entry(g).or_default();
-                    set.extend(block.elements.iter().map(|e| ([e.nodes[0], e.nodes[1]], e.element_tag)));
+                    set.extend(
+                        block
+                            .elements
+                            .iter()
+                            .map(|e| ([e.nodes[0], e.nodes[1]], e.element_tag)),
+                    );
                 }
             }
             0 if !groups.is_empty() => {
@@ -197,13 +224,12 @@ fn convert(
                     set.extend(block.elements.iter().map(|e| (e.nodes[0], e.element_tag)));
                 }
             }
-            3 => {
-                return Err(err(
-                    ErrorKind::Unsupported,
-                    place,
-                    "3D elements are not supported: the mesh must be 2D (triangles in the plane z = 0)".into(),
-                ))
-            }
+            3 => return Err(err(
+                ErrorKind::Unsupported,
+                place,
+                "3D elements are not supported: the mesh must be 2D (triangles in the plane z = 0)"
+                    .into(),
+            )),
             _ => {}
         }
     }
@@ -223,7 +249,10 @@ fn convert(
     let mut nodes = Vec::with_capacity(used.len());
     for (i, &tag) in used.iter().enumerate() {
         let Some(&p) = coords.get(&tag) else {
-            let t = triangles.iter().find(|t| t.0.contains(&tag)).map_or(0, |t| t.1);
+            let t = triangles
+                .iter()
+                .find(|t| t.0.contains(&tag))
+                .map_or(0, |t| t.1);
             return Err(err(
                 ErrorKind::Format,
                 format!("$Elements, element {t}"),
@@ -243,12 +272,18 @@ fn convert(
         group_tags
             .iter()
             .map(|&tag| Region {
-                name: names.get(&(2, tag)).cloned().unwrap_or_else(|| format!("region_{tag}")),
+                name: names
+                    .get(&(2, tag))
+                    .cloned()
+                    .unwrap_or_else(|| format!("region_{tag}")),
                 tag,
             })
             .collect()
     } else {
-        vec![Region { name: "domain".into(), tag: 0 }]
+        vec![Region {
+            name: "domain".into(),
+            tag: 0,
+        }]
     };
     for (i, r) in regions.iter().enumerate() {
         if regions[..i].iter().any(|q| q.name == r.name) {
@@ -273,10 +308,15 @@ fn convert(
             ));
         }
         tris.push(t);
-        let r = if has_groups { group_tags.binary_search(group).unwrap_or(0) } else { 0 };
+        let r = if has_groups {
+            group_tags.binary_search(group).unwrap_or(0)
+        } else {
+            0
+        };
         triangle_region.push(r as u32);
     }
-    let mut mesh = Mesh::new(xy, tris, triangle_region, regions).map_err(|e| e.from_origin(origin))?;
+    let mut mesh =
+        Mesh::new(xy, tris, triangle_region, regions).map_err(|e| e.from_origin(origin))?;
 
     // Edge sets, then node sets of points, merged by name.
     let node_of = |tag: u64, element: u64, what: &str| {
@@ -290,24 +330,37 @@ fn convert(
     };
     let mut edge_sets: BTreeMap<String, Vec<[u32; 2]>> = BTreeMap::new();
     for (tag, members) in &lines {
-        let name = names.get(&(1, *tag)).cloned().unwrap_or_else(|| format!("line_{tag}"));
+        let name = names
+            .get(&(1, *tag))
+            .cloned()
+            .unwrap_or_else(|| format!("line_{tag}"));
         let set = edge_sets.entry(name).or_default();
         for (pair, element) in members {
             let what = format!("a line of physical group {tag}");
-            set.push([node_of(pair[0], *element, &what)?, node_of(pair[1], *element, &what)?]);
+            set.push([
+                node_of(pair[0], *element, &what)?,
+                node_of(pair[1], *element, &what)?,
+            ]);
         }
     }
     for (name, edges) in &edge_sets {
-        mesh = mesh.with_edge_set(name, edges).map_err(|e| e.from_origin(origin))?;
+        mesh = mesh
+            .with_edge_set(name, edges)
+            .map_err(|e| e.from_origin(origin))?;
     }
     for (tag, members) in &points {
-        let name = names.get(&(0, *tag)).cloned().unwrap_or_else(|| format!("point_{tag}"));
+        let name = names
+            .get(&(0, *tag))
+            .cloned()
+            .unwrap_or_else(|| format!("point_{tag}"));
         let what = format!("a point of physical group {tag}");
         let set: Vec<u32> = members
             .iter()
             .map(|(n, element)| node_of(*n, *element, &what))
             .collect::<Result<_, _>>()?;
-        mesh = mesh.with_node_set(&name, &set).map_err(|e| e.from_origin(origin))?;
+        mesh = mesh
+            .with_node_set(&name, &set)
+            .map_err(|e| e.from_origin(origin))?;
     }
     Ok(mesh)
 }
@@ -331,7 +384,10 @@ fn check_coordinates(nodes: &[[f64; 3]], tags: &[u64], origin: &str) -> Result<(
         }
     }
     let diameter = ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2)).sqrt();
-    match nodes.iter().position(|p| !(p[2].abs() <= PLANARITY * diameter)) {
+    match nodes
+        .iter()
+        .position(|p| !(p[2].abs() <= PLANARITY * diameter))
+    {
         Some(i) => Err(MeshError::new(
             ErrorKind::Unsupported,
             origin,
