@@ -21,6 +21,7 @@
 #![warn(missing_docs)]
 
 pub mod alart_curnier;
+mod cohesive;
 mod error;
 pub mod lemke;
 mod local;
@@ -33,11 +34,12 @@ pub mod proximal;
 mod solve;
 
 pub use alart_curnier::LocalParams;
+pub use cohesive::{solve_one_cohesive_contact, CohesiveTerm};
 pub use error::{natural_map_error, project_on_cone, ConvergenceNorms};
 pub use lemke::{lemke, LemkeParams};
 pub use local::solve_one_contact;
 pub use newton::{newton, NewtonParams, RhoStrategy};
-pub use nlgs::{nlgs, ConvergenceNorm, NlgsParams, SolveError, SolveInfo};
+pub use nlgs::{nlgs, nlgs_with_cohesion, ConvergenceNorm, NlgsParams, SolveError, SolveInfo};
 pub use nsgs::{nsgs, NsgsParams};
 pub use operator::{Block2, ContactOperator, DenseProblem};
 pub use problem::{

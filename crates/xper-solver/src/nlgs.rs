@@ -2,12 +2,13 @@
 //!
 //! Each sweep visits the contacts in order; for contact `a` it forms the velocity without its
 //! own impulse, `u_free = U_a - W_aa R_a`, solves the one-contact problem exactly
-//! ([`solve_one_contact`]) and applies the relaxed increment, so that later contacts of
+//! ([`crate::solve_one_contact`]) and applies the relaxed increment, so that later contacts of
 //! the sweep see it (M. Jean, CMAME 177, 1999; LMGC90's `nlgs`). Convergence is checked
 //! every `check_every` sweeps by LMGC90's norms or by the natural-map error.
 
+use crate::cohesive::{solve_one_cohesive_contact, CohesiveTerm};
 use crate::error::{natural_map_error, ConvergenceNorms, NormAccumulator};
-use crate::local::solve_one_contact;
+use crate::local::{local_factors, solve_one_contact_factored};
 use crate::operator::{block_mul, ContactOperator};
 
 /// Which measure decides convergence.
@@ -31,7 +32,8 @@ pub struct NlgsParams {
     pub max_iterations: u32,
     /// Sweeps between convergence checks.
     pub check_every: u32,
-    /// Relaxation `omega` in (0, 2): `R <- omega R_local + (1 - omega) R`.
+    /// Relaxation `omega` in (0, 2): `R <- omega R_local + (1 - omega) R`, projected on the
+    /// Coulomb cone when `omega > 1` (over-relaxation); not applied to adhesive contacts.
     pub relaxation: f64,
     /// Convergence measure.
     pub norm: ConvergenceNorm,
@@ -112,13 +114,32 @@ pub fn nlgs<O: ContactOperator>(
     impulses: &mut [[f64; 2]],
     params: &NlgsParams,
 ) -> Result<SolveInfo, SolveError> {
+    nlgs_with_cohesion(op, mu, normal_shift, &[], impulses, params)
+}
+
+/// [`nlgs`] where contact `a`'s impulse has the adhesive part `cohesion[a]` (see
+/// [`CohesiveTerm`]); `cohesion` is empty (no adhesion anywhere) or has one term per contact.
+/// `impulses` are the total impulses, adhesive part included.
+pub fn nlgs_with_cohesion<O: ContactOperator>(
+    op: &mut O,
+    mu: &[f64],
+    normal_shift: &[f64],
+    cohesion: &[CohesiveTerm],
+    impulses: &mut [[f64; 2]],
+    params: &NlgsParams,
+) -> Result<SolveInfo, SolveError> {
     let n = op.contact_count();
-    if mu.len() != n || normal_shift.len() != n || impulses.len() != n {
+    if mu.len() != n
+        || normal_shift.len() != n
+        || impulses.len() != n
+        || !(cohesion.is_empty() || cohesion.len() == n)
+    {
         return Err(SolveError::SizeMismatch {
             what: format!(
-                "{n} contacts, {} mu, {} shifts, {} impulses",
+                "{n} contacts, {} mu, {} shifts, {} cohesive terms, {} impulses",
                 mu.len(),
                 normal_shift.len(),
+                cohesion.len(),
                 impulses.len()
             ),
         });
@@ -166,8 +187,11 @@ pub fn nlgs<O: ContactOperator>(
         }
         q_norm2 += (u[0] + normal_shift[a]).powi(2) + u[1] * u[1];
     }
+    let adhesive = |a: usize| !cohesion.is_empty() && !cohesion[a].is_zero();
     for (a, r) in impulses.iter_mut().enumerate() {
-        *r = crate::error::project_on_cone(*r, mu[a]);
+        if !adhesive(a) {
+            *r = crate::error::project_on_cone(*r, mu[a]);
+        }
         if r[0] != 0.0 || r[1] != 0.0 {
             op.apply_impulse(a, *r);
         }
@@ -178,6 +202,9 @@ pub fn nlgs<O: ContactOperator>(
         return Ok(info);
     }
     let omega = params.relaxation;
+    let factors: Vec<[f64; 3]> = (0..n)
+        .map(|a| local_factors(&op.diagonal_block(a), mu[a]))
+        .collect();
     for sweep in 1..=params.max_iterations {
         let check = sweep % params.check_every == 0 || sweep == params.max_iterations;
         let mut acc = NormAccumulator::default();
@@ -188,14 +215,25 @@ pub fn nlgs<O: ContactOperator>(
             let r = impulses[a];
             let wr = block_mul(&w, r);
             let u_free = [u[0] - wr[0], u[1] - wr[1]];
-            let local = solve_one_contact(&w, u_free, mu[a]);
-            let r_new = if omega == 1.0 {
+            let (local, adhesive) = if adhesive(a) {
+                let local = solve_one_cohesive_contact(&w, u_free, mu[a], &cohesion[a]);
+                (local, true)
+            } else {
+                (
+                    solve_one_contact_factored(&w, &factors[a], u_free, mu[a]),
+                    false,
+                )
+            };
+            let r_new = if omega == 1.0 || adhesive {
                 local
             } else {
-                [
-                    omega * local[0] + (1.0 - omega) * r[0],
-                    omega * local[1] + (1.0 - omega) * r[1],
-                ]
+                crate::error::project_on_cone(
+                    [
+                        omega * local[0] + (1.0 - omega) * r[0],
+                        omega * local[1] + (1.0 - omega) * r[1],
+                    ],
+                    mu[a],
+                )
             };
             let delta = [r_new[0] - r[0], r_new[1] - r[1]];
             if delta[0] != 0.0 || delta[1] != 0.0 {
