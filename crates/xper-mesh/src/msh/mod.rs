@@ -384,10 +384,7 @@ fn check_coordinates(nodes: &[[f64; 3]], tags: &[u64], origin: &str) -> Result<(
         }
     }
     let diameter = ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2)).sqrt();
-    match nodes
-        .iter()
-        .position(|p| !(p[2].abs() <= PLANARITY * diameter))
-    {
+    match nodes.iter().position(|p| p[2].abs() > PLANARITY * diameter) {
         Some(i) => Err(MeshError::new(
             ErrorKind::Unsupported,
             origin,
