@@ -16,6 +16,8 @@
 //! Every failure is a [`MeshError`] naming the origin (file path or generator), the place
 //! and the reason.
 
+#![warn(missing_docs)]
+
 mod error;
 mod generate;
 mod mesh;

@@ -53,7 +53,10 @@ enum Slot {
 
 impl Mesh {
     /// The edge adjacency of the mesh, in O(number of triangles) time with a hash map keyed
-    /// by the sorted node pair of each edge.
+    /// by the sorted node pair of each edge: the usual edge-matching construction of a
+    /// doubly-connected edge list (M. de Berg, O. Cheong, M. van Kreveld, M. Overmars,
+    /// "Computational Geometry: Algorithms and Applications", 3rd ed., Springer, 2008,
+    /// section 2.2).
     ///
     /// Errors: a node index out of range, an edge shared by three or more triangles
     /// (non-manifold mesh).

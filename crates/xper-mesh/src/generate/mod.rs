@@ -184,13 +184,19 @@ pub(crate) fn triangulate(
     }
     let area: f64 = cdt.inner_faces().map(|f| f.area()).sum();
     let budget = (8.0 * area / (MAX_AREA_FACTOR * h * h)) as usize + 10_000;
-    let result = cdt.refine(
-        RefinementParameters::<f64>::new()
-            .with_angle_limit(AngleLimit::from_deg(MIN_ANGLE_DEGREES))
-            .with_max_allowed_area(MAX_AREA_FACTOR * h * h)
-            .with_max_additional_vertices(budget)
-            .exclude_outer_faces(exclude_outer),
-    );
+    let parameters = RefinementParameters::<f64>::new()
+        .with_angle_limit(AngleLimit::from_deg(MIN_ANGLE_DEGREES))
+        .with_max_allowed_area(MAX_AREA_FACTOR * h * h)
+        .with_max_additional_vertices(budget)
+        .exclude_outer_faces(exclude_outer);
+    // Spade panics when a circumcentre cannot be represented (features far below h in
+    // floating point): that is reported as an error, and the triangulation is dropped.
+    let refined = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| cdt.refine(parameters)));
+    let Ok(result) = refined else {
+        return Err(fail(
+            "Delaunay refinement failed (features too small for the element size?)".into(),
+        ));
+    };
     if !result.refinement_complete {
         return Err(fail(format!(
             "Delaunay refinement did not finish within {budget} added nodes"
