@@ -16,12 +16,24 @@ fn report(name: &str, h: f64, run: impl Fn() -> Result<Mesh, xper_mesh::MeshErro
         }
     };
     let seconds = start.elapsed().as_secs_f64();
+    let start = Instant::now();
+    let topology = mesh.neighbours().expect("a generated mesh is manifold");
+    let adjacency = start.elapsed().as_secs_f64();
     let stats = mesh.edge_length_stats();
+    // FNV-1a of the coordinates and triangles: equal across runs when meshing is deterministic.
+    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
+    let words = (mesh.nodes.iter().flatten().map(|v| v.to_bits()))
+        .chain(mesh.triangles.iter().flatten().map(|&n| u64::from(n)));
+    for w in words {
+        hash = (hash ^ w).wrapping_mul(0x100_0000_01b3);
+    }
     println!(
-        "{name}: h = {h:e} m, {} triangles, {} nodes, {seconds:.3} s, min angle {:.2} deg, \
-         edge length min/mean/max = {:.3}/{:.3}/{:.3} h",
+        "{name}: h = {h:e} m, {} triangles, {} nodes, {} interfaces, meshed in {seconds:.3} s, \
+         adjacency in {adjacency:.3} s, min angle {:.2} deg, edge length min/mean/max = \
+         {:.3}/{:.3}/{:.3} h, checksum {hash:016x}",
         mesh.triangles.len(),
         mesh.nodes.len(),
+        topology.interior.len(),
         mesh.min_angle_degrees(),
         stats.min / h,
         stats.mean / h,

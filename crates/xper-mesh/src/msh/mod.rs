@@ -123,6 +123,8 @@ fn convert(
             let mut tags = vec![0u64; block.nodes.len()];
             match &block.node_tags {
                 Some(map) => map.iter().for_each(|(&tag, &i)| tags[i] = tag),
+                // mshio keeps the tags of a sparse section only; a dense one holds the tags
+                // min..=max, which Gmsh writes in increasing order across the blocks.
                 None => tags.iter_mut().for_each(|t| {
                     *t = next_tag;
                     next_tag += 1;
