@@ -1,0 +1,28 @@
+//! Non-smooth fracture dynamics (NSFD): every triangle of a mesh is its own deformable body
+//! and a frictional cohesive interface joins every pair of neighbouring triangles
+//! (BRIEF.md sections 2 and 3; F. Perales, F. Dubois, Y. Monerie, B. Piar, L. Stainier,
+//! "A NonSmooth Contact Dynamics-based multi-domain solver", EJCM 19, 2010).
+//!
+//! [`FractureModel::new`] explodes a [`xper_mesh::Mesh`] as a [`FractureSpec`] says
+//! (materials per region, interface laws per pair of regions, pre-cracks, loads on node
+//! sets); [`FractureStepper::step`] advances it by the theta-method, solving the interface
+//! problem by NLGS on the factorised operator ([`ElementContactOperator`]) with the adhesive
+//! part of each cohesive point eliminated exactly in its local solve.
+
+mod dense;
+mod interface;
+mod model;
+mod operator;
+mod step;
+mod update;
+
+pub use dense::{masked_spd_inverse, Mat6};
+pub use model::{
+    BuildError, ElementBody, FractureEnergy, FractureModel, FractureSpec, Interface, InterfaceLaw,
+    InterfaceRule, MassMatrix, NodeLoad, PointState,
+};
+pub use operator::{ElementContactOperator, ElementWork, InterfaceRow};
+pub use step::{
+    elastic_energy, stored_energy, FractureStepError, FractureStepReport, FractureStepper,
+    LoadReading,
+};

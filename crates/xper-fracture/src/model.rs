@@ -1,0 +1,435 @@
+//! The fracture model: an exploded mesh (one deformable body per triangle), the interfaces
+//! between neighbouring triangles, loads, and the state that evolves during a run.
+
+use serde::{Deserialize, Serialize};
+use xper_bodies::Drive;
+use xper_fem::{Hypothesis, Material, MaterialState, Triangle3};
+use xper_laws::cohesive::CohesiveZone;
+use xper_mesh::Mesh;
+use xper_solver::NlgsParams;
+
+use crate::dense::{add_scaled, Mat6};
+
+/// The law of an interface between two elements.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub enum InterfaceLaw {
+    /// Frictional cohesive zone (BRIEF.md section 3; LMGC90's MP3_CZM); once broken, unilateral
+    /// contact with the zone's friction coefficient.
+    Cohesive(CohesiveZone),
+    /// Unilateral contact with Coulomb friction `mu` and no adhesion.
+    Contact {
+        /// Friction coefficient (dimensionless).
+        friction: f64,
+    },
+}
+
+impl InterfaceLaw {
+    /// Friction coefficient of the contact part.
+    pub fn friction(&self) -> f64 {
+        match self {
+            InterfaceLaw::Cohesive(z) => z.friction,
+            InterfaceLaw::Contact { friction } => *friction,
+        }
+    }
+}
+
+/// The law between the elements of two regions (an unordered pair of region indices).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct InterfaceRule {
+    /// Region indices into `Mesh::regions`; `[r, r]` for interfaces inside region `r`.
+    pub regions: [u32; 2],
+    /// The law.
+    pub law: InterfaceLaw,
+}
+
+/// A load on a set of mesh nodes: per component, free, an imposed velocity (m/s) or a total
+/// force (N). The force is spread as a uniform traction over the boundary edges joining two
+/// nodes of the set (consistent nodal forces); a set without such an edge (a point) shares
+/// it equally among the copies of its nodes.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct NodeLoad {
+    /// Name of the load (reported in the series).
+    pub name: String,
+    /// Mesh node indices.
+    pub nodes: Vec<u32>,
+    /// Drive of the x and y components.
+    pub drives: [Drive; 2],
+}
+
+/// Element mass matrix.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum MassMatrix {
+    /// Consistent mass `rho A t / 12 [2 1 1; 1 2 1; 1 1 2]`.
+    #[default]
+    Consistent,
+    /// Row-sum lumped mass `rho A t / 3` per node.
+    Lumped,
+}
+
+/// Everything needed to build a [`FractureModel`] from a mesh.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FractureSpec {
+    /// Out-of-plane thickness t (m).
+    pub thickness: f64,
+    /// Plane strain or plane stress.
+    pub hypothesis: Hypothesis,
+    /// Material of each region, in the order of `Mesh::regions`.
+    pub materials: Vec<Material>,
+    /// Interface law per pair of regions; every pair of neighbouring regions needs one.
+    pub interface_laws: Vec<InterfaceRule>,
+    /// Interfaces on these edge sets start broken (pre-cracks, notches closed in the mesh).
+    pub broken_edge_sets: Vec<String>,
+    /// Loads on node sets.
+    pub loads: Vec<NodeLoad>,
+    /// Body force per unit mass (m/s^2).
+    pub gravity: [f64; 2],
+    /// Element mass matrix.
+    pub mass: MassMatrix,
+    /// Time step h (s).
+    pub dt: f64,
+    /// theta of the theta-method, in [1/2, 1].
+    pub theta: f64,
+    /// NLGS parameters of the interface problem.
+    pub nlgs: NlgsParams,
+}
+
+/// Why a model cannot be built.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BuildError(pub String);
+
+impl std::fmt::Display for BuildError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for BuildError {}
+
+/// One triangle as a deformable body (6 degrees of freedom: x and y of its three nodes).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ElementBody {
+    /// Mesh nodes of the triangle (counter-clockwise); the body has its own copy of each.
+    pub mesh_nodes: [u32; 3],
+    /// Region index.
+    pub region: u32,
+    /// Reference geometry.
+    pub triangle: Triangle3,
+    /// Nodal displacements `[u1x, u1y, u2x, u2y, u3x, u3y]` (m).
+    pub displacement: [f64; 6],
+    /// Nodal velocities (m/s).
+    pub velocity: [f64; 6],
+    /// Material state (one point: the strain of a linear triangle is constant).
+    pub state: MaterialState,
+    /// Mass matrix (kg).
+    pub mass: Mat6,
+    /// Tangent stiffness (N/m).
+    pub stiffness: Mat6,
+    /// Internal force `A t B^T sigma` at the current displacement (N).
+    pub internal_force: [f64; 6],
+    /// Load index of each degree of freedom (`u16::MAX`: none).
+    pub load: [u16; 6],
+    /// Share of its load's force carried by each node copy: half the length of the boundary
+    /// edges of this element whose two nodes are in the load's set, over the total of the
+    /// set (a uniform traction); an equal share per copy when the set has no such edge.
+    pub load_share: [f64; 3],
+}
+
+/// State of one of the two contact points of an interface.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct PointState {
+    /// Displacement jump `[u_N, u_T]` (m), body b minus body a in the interface frame.
+    pub jump: [f64; 2],
+    /// Largest jump norm reached (m), the memory of the cohesive law.
+    pub max_jump: f64,
+    /// Adhesion intensity beta (1 sound, 0 broken).
+    pub intensity: f64,
+    /// Total impulse of the last step (N s), adhesive part included: the warm start.
+    pub impulse: [f64; 2],
+    /// Adhesive part of that impulse (N s).
+    pub adhesive_impulse: [f64; 2],
+}
+
+/// The interface between two neighbouring elements, with two contact points (the edge's
+/// end nodes, one copy in each element), each standing for half the edge.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Interface {
+    /// Elements `[a, b]`; the normal points from a to b.
+    pub elements: [u32; 2],
+    /// For each point, the local node in a and in b.
+    pub local_nodes: [[u8; 2]; 2],
+    /// Unit normal of the reference edge, outward from a (the frame `(n, t)`, `t = (-n_y, n_x)`).
+    pub normal: [f64; 2],
+    /// Reference edge length (m).
+    pub length: f64,
+    /// Index of the law in `FractureModel::laws`.
+    pub law: u16,
+    /// The two points.
+    pub points: [PointState; 2],
+}
+
+/// Energies (J), accumulated since the start of the run.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct FractureEnergy {
+    /// Kinetic energy now.
+    pub kinetic: f64,
+    /// Elastic energy stored in the elements now.
+    pub elastic: f64,
+    /// Plastic work dissipated in the elements.
+    pub plastic: f64,
+    /// Elastic energy stored in the cohesive interfaces now.
+    pub cohesive_stored: f64,
+    /// Energy dissipated by interface damage (fracture energy spent).
+    pub cohesive_dissipated: f64,
+    /// Energy dissipated by the contact part of the interfaces (friction, inelastic closure).
+    pub contact_dissipated: f64,
+    /// Work of the loads (imposed velocities and forces) and of gravity.
+    pub external_work: f64,
+    /// Initial total (kinetic + elastic + stored).
+    pub initial: f64,
+}
+
+impl FractureEnergy {
+    /// `kinetic + elastic + stored + dissipated - initial - external work`: zero for an exact
+    /// budget.
+    pub fn error(&self) -> f64 {
+        self.kinetic
+            + self.elastic
+            + self.plastic
+            + self.cohesive_stored
+            + self.cohesive_dissipated
+            + self.contact_dissipated
+            - self.initial
+            - self.external_work
+    }
+}
+
+/// An exploded mesh in motion.
+#[derive(Clone, Debug)]
+pub struct FractureModel {
+    /// The mesh it was built from.
+    pub mesh: Mesh,
+    /// The build parameters.
+    pub spec: FractureSpec,
+    /// One body per triangle.
+    pub elements: Vec<ElementBody>,
+    /// Interfaces between neighbouring triangles.
+    pub interfaces: Vec<Interface>,
+    /// Distinct interface laws.
+    pub laws: Vec<InterfaceLaw>,
+    /// Current time (s).
+    pub time: f64,
+    /// Steps done.
+    pub step: u64,
+    /// Energy budget.
+    pub energy: FractureEnergy,
+}
+
+const NO_LOAD: u16 = u16::MAX;
+
+impl FractureModel {
+    /// Explodes `mesh` into element bodies and interfaces as `spec` says.
+    pub fn new(mesh: Mesh, spec: FractureSpec) -> Result<Self, BuildError> {
+        let err = |s: String| Err(BuildError(s));
+        if !(spec.thickness > 0.0 && spec.thickness.is_finite()) {
+            return err(format!("thickness {} m must be positive", spec.thickness));
+        }
+        if !(spec.dt > 0.0 && spec.dt.is_finite()) {
+            return err(format!("dt {} s must be positive", spec.dt));
+        }
+        if !(0.5..=1.0).contains(&spec.theta) {
+            return err(format!("theta {} must be in [0.5, 1]", spec.theta));
+        }
+        if spec.materials.len() != mesh.regions.len() {
+            return err(format!(
+                "{} materials for {} regions ({})",
+                spec.materials.len(),
+                mesh.regions.len(),
+                region_names(&mesh)
+            ));
+        }
+        for (m, r) in spec.materials.iter().zip(&mesh.regions) {
+            m.validate()
+                .map_err(|e| BuildError(format!("material of region '{}': {e}", r.name)))?;
+        }
+        if spec.loads.len() >= NO_LOAD as usize {
+            return err(format!(
+                "{} loads: at most {}",
+                spec.loads.len(),
+                NO_LOAD - 1
+            ));
+        }
+        let mut node_load = vec![[NO_LOAD; 2]; mesh.nodes.len()];
+        for (l, load) in spec.loads.iter().enumerate() {
+            if load.nodes.is_empty() {
+                return err(format!("load '{}' selects no node", load.name));
+            }
+            for &n in &load.nodes {
+                let Some(slot) = node_load.get_mut(n as usize) else {
+                    return err(format!("load '{}': node {n} is not in the mesh", load.name));
+                };
+                for d in 0..2 {
+                    if matches!(load.drives[d], Drive::Free) {
+                        continue;
+                    }
+                    if slot[d] != NO_LOAD {
+                        return err(format!(
+                            "node {n} component {d} is driven by both '{}' and '{}'",
+                            spec.loads[slot[d] as usize].name, load.name
+                        ));
+                    }
+                    slot[d] = l as u16;
+                }
+            }
+        }
+        let mut elements = Vec::with_capacity(mesh.triangles.len());
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            let region = mesh.triangle_region[t];
+            let material = &spec.materials[region as usize];
+            let nodes = tri.map(|n| mesh.nodes[n as usize]);
+            let triangle = Triangle3::new(nodes, spec.thickness)
+                .map_err(|e| BuildError(format!("triangle {t}: {e}")))?;
+            let mass = match spec.mass {
+                MassMatrix::Consistent => triangle.consistent_mass(material.density()),
+                MassMatrix::Lumped => {
+                    let d = triangle.lumped_mass(material.density());
+                    let mut m = [[0.0; 6]; 6];
+                    for i in 0..6 {
+                        m[i][i] = d[i];
+                    }
+                    m
+                }
+            };
+            let stiffness = triangle.stiffness(&material.elastic_tangent(spec.hypothesis));
+            let mut load = [NO_LOAD; 6];
+            for (j, &n) in tri.iter().enumerate() {
+                load[2 * j] = node_load[n as usize][0];
+                load[2 * j + 1] = node_load[n as usize][1];
+            }
+            elements.push(ElementBody {
+                mesh_nodes: *tri,
+                region,
+                triangle,
+                displacement: [0.0; 6],
+                velocity: [0.0; 6],
+                state: MaterialState::default(),
+                mass,
+                stiffness,
+                internal_force: [0.0; 6],
+                load,
+                load_share: [0.0; 3],
+            });
+        }
+        load_shares(&mesh, &spec, &node_load, &mut elements)?;
+        let (interfaces, laws) = crate::interface::build_interfaces(&mesh, &spec)?;
+        Ok(FractureModel {
+            mesh,
+            spec,
+            elements,
+            interfaces,
+            laws,
+            time: 0.0,
+            step: 0,
+            energy: FractureEnergy::default(),
+        })
+    }
+
+    /// Whether degree of freedom `d` of element `e` has an imposed velocity.
+    pub fn is_imposed(&self, e: usize, d: usize) -> bool {
+        let l = self.elements[e].load[d];
+        l != NO_LOAD && self.spec.loads[l as usize].drives[d % 2].is_imposed_velocity()
+    }
+
+    /// Kinetic energy `v^T M v / 2` summed over the elements (J).
+    pub fn kinetic_energy(&self) -> f64 {
+        self.elements
+            .iter()
+            .map(|e| {
+                let mv = crate::dense::mul_vec(&e.mass, &e.velocity);
+                0.5 * mv.iter().zip(&e.velocity).map(|(a, b)| a * b).sum::<f64>()
+            })
+            .sum()
+    }
+
+    /// Effective mass `M + h^2 theta^2 K` of an element.
+    pub fn effective_mass(&self, e: usize) -> Mat6 {
+        let (h, th) = (self.spec.dt, self.spec.theta);
+        let el = &self.elements[e];
+        add_scaled(&el.mass, h * h * th * th, &el.stiffness)
+    }
+
+    /// Number of broken interface points (intensity 0).
+    pub fn broken_points(&self) -> usize {
+        self.interfaces
+            .iter()
+            .flat_map(|i| i.points.iter())
+            .filter(|p| p.intensity == 0.0)
+            .count()
+    }
+}
+
+/// `a, b, c` list of the region names, for messages.
+pub(crate) fn region_names(mesh: &Mesh) -> String {
+    mesh.regions
+        .iter()
+        .map(|r| format!("'{}'", r.name))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Fills `ElementBody::load_share` (see there).
+fn load_shares(
+    mesh: &Mesh,
+    spec: &FractureSpec,
+    node_load: &[[u16; 2]],
+    elements: &mut [ElementBody],
+) -> Result<(), BuildError> {
+    let topology = mesh
+        .neighbours()
+        .map_err(|e| BuildError(format!("mesh adjacency: {e}")))?;
+    let loaded = |n: u32| {
+        node_load[n as usize]
+            .iter()
+            .find(|&&l| l != NO_LOAD)
+            .copied()
+    };
+    let mut total = vec![0.0; spec.loads.len()];
+    for edge in &topology.boundary {
+        let [p, q] = edge.nodes;
+        let (Some(lp), Some(lq)) = (loaded(p), loaded(q)) else {
+            continue;
+        };
+        if lp != lq {
+            continue;
+        }
+        let [xp, xq] = [p, q].map(|n| mesh.nodes[n as usize]);
+        let half = 0.5 * ((xq[0] - xp[0]).powi(2) + (xq[1] - xp[1]).powi(2)).sqrt();
+        let el = &mut elements[edge.triangle as usize];
+        for n in [p, q] {
+            if let Some(j) = el.mesh_nodes.iter().position(|&m| m == n) {
+                el.load_share[j] += half;
+            }
+        }
+        total[lp as usize] += 2.0 * half;
+    }
+    let mut copies = vec![0usize; spec.loads.len()];
+    for el in elements.iter() {
+        for &n in &el.mesh_nodes {
+            if let Some(l) = loaded(n) {
+                copies[l as usize] += 1;
+            }
+        }
+    }
+    for el in elements.iter_mut() {
+        for j in 0..3 {
+            if let Some(l) = loaded(el.mesh_nodes[j]) {
+                let l = l as usize;
+                el.load_share[j] = if total[l] > 0.0 {
+                    el.load_share[j] / total[l]
+                } else {
+                    1.0 / copies[l] as f64
+                };
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,391 @@
+//! One time step of non-smooth fracture dynamics (NSFD): Moreau-Jean's theta-method on
+//! deformable elements joined by frictional cohesive interfaces.
+//!
+//! For each element (BRIEF.md section 2; M. Jean, CMAME 177, 1999):
+//! `M_eff (v - v_i) = h (F_ext - F_int(q_i)) - h^2 theta K v_i + H R + P`,
+//! `M_eff = M + h^2 theta^2 K`, `q_i+1 = q_i + h ((1 - theta) v_i + theta v)`,
+//! with `P` the reactions on imposed degrees of freedom. For each interface point the impulse
+//! is `R = R_c + R_coh`: `R_c` obeys Signorini-Coulomb and the adhesive part is the theta-
+//! average of the cohesive force over the step with the intensity beta frozen,
+//! `R_coh = -h A beta C ((1 - theta) [u]_i + theta [u]_i+1)` (A = half the edge length times
+//! the thickness), eliminated exactly in each local solve ([`xper_solver::CohesiveTerm`]);
+//! beta is updated once per step from the new jump (F. Perales, S. Bourgeois,
+//! A. Chrysochoos, Y. Monerie, Eng. Fract. Mech. 75, 2008).
+//!
+//! Stages: `free_velocity`, `assemble` (rows, shifts, adhesive terms), `solve` (NLGS),
+//! `update` (velocities, displacements, materials, reactions), `interfaces` (jumps,
+//! intensities, energies).
+
+use std::time::Instant;
+
+use xper_bodies::Drive;
+use xper_solver::{nlgs_with_cohesion, CohesiveTerm, SolveError};
+
+use crate::dense::{masked_spd_inverse, mul_vec, Mat6};
+use crate::interface::cohesive;
+use crate::model::FractureModel;
+use crate::operator::{ElementContactOperator, ElementWork};
+
+/// Reading of one load over a step.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct LoadReading {
+    /// Force exerted on the specimen through the load's nodes (N), x and y: the reaction of
+    /// imposed velocities, or the imposed force.
+    pub force: [f64; 2],
+    /// Mean displacement of the load's nodes (m).
+    pub displacement: [f64; 2],
+}
+
+/// What a step did.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct FractureStepReport {
+    /// Step number (1-based).
+    pub step: u64,
+    /// Time at the end of the step (s).
+    pub time: f64,
+    /// Contact points in the problem.
+    pub contacts: usize,
+    /// Broken interface points (intensity 0).
+    pub broken_points: usize,
+    /// NLGS sweeps.
+    pub iterations: u32,
+    /// Final residual of the convergence norm.
+    pub residual: f64,
+    /// Whether NLGS converged.
+    pub converged: bool,
+    /// One reading per load.
+    pub loads: Vec<LoadReading>,
+    /// Wall time of the step and of its solve (s).
+    pub wall_time: f64,
+    /// Wall time of the solve (s).
+    pub solve_time: f64,
+}
+
+/// Why a step failed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FractureStepError {
+    /// The effective mass of an element is not positive definite.
+    SingularElement(usize),
+    /// The solver refused the problem.
+    Solver(SolveError),
+    /// A non-finite velocity or displacement appeared.
+    NonFinite {
+        /// The element.
+        element: usize,
+    },
+}
+
+impl std::fmt::Display for FractureStepError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FractureStepError::SingularElement(e) => {
+                write!(f, "element {e}: effective mass not positive definite")
+            }
+            FractureStepError::Solver(e) => write!(f, "interface solver: {e}"),
+            FractureStepError::NonFinite { element } => {
+                write!(f, "element {element}: non-finite velocity (blow-up)")
+            }
+        }
+    }
+}
+
+impl std::error::Error for FractureStepError {}
+
+/// The stepper with its working buffers.
+#[derive(Debug, Default)]
+pub struct FractureStepper {
+    op: ElementContactOperator,
+    inv_mass_valid: Vec<bool>,
+    rhs: Vec<[f64; 6]>,
+    v_begin: Vec<[f64; 6]>,
+    mu: Vec<f64>,
+    shift: Vec<f64>,
+    cohesion: Vec<CohesiveTerm>,
+    /// The adhesive offset without the normal shift correction, per point.
+    offset: Vec<[f64; 2]>,
+    impulses: Vec<[f64; 2]>,
+    u_begin: Vec<[f64; 2]>,
+    started: bool,
+}
+
+impl FractureStepper {
+    /// A stepper with empty buffers.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Advances the model by one step.
+    pub fn step(&mut self, m: &mut FractureModel) -> Result<FractureStepReport, FractureStepError> {
+        let start = Instant::now();
+        if m.step == 0 && !self.started {
+            m.energy.initial = m.kinetic_energy() + elastic_energy(m) + stored_energy(m);
+        }
+        self.started = true;
+        self.prepare(m);
+        let (t_begin, t_end) = (m.time, m.time + m.spec.dt);
+        let ext = self.free_velocity(m, t_begin, t_end)?;
+        self.assemble(m);
+        let t_solve = Instant::now();
+        let info = nlgs_with_cohesion(
+            &mut self.op,
+            &self.mu,
+            &self.shift,
+            &self.cohesion,
+            &mut self.impulses,
+            &m.spec.nlgs,
+        )
+        .map_err(FractureStepError::Solver)?;
+        let solve_time = t_solve.elapsed().as_secs_f64();
+        let loads = self.update(m, ext)?;
+        crate::update::interfaces(self, m);
+        m.step += 1;
+        m.time = t_end;
+        Ok(FractureStepReport {
+            step: m.step,
+            time: m.time,
+            contacts: self.op.rows.len(),
+            broken_points: m.broken_points(),
+            iterations: info.iterations,
+            residual: info.residual,
+            converged: info.converged,
+            loads,
+            wall_time: start.elapsed().as_secs_f64(),
+            solve_time,
+        })
+    }
+
+    fn prepare(&mut self, m: &FractureModel) {
+        let n = m.elements.len();
+        if self.inv_mass_valid.len() != n {
+            self.inv_mass_valid = vec![false; n];
+            self.op.bodies = vec![ElementWork::default(); n];
+        }
+        self.rhs.resize(n, [0.0; 6]);
+        self.v_begin.resize(n, [0.0; 6]);
+    }
+
+    /// Stage: `v_free = v_i + M_eff^-1 rhs` on free degrees of freedom, imposed velocities at
+    /// `t_end`; returns the external forces at `t_theta` per element (N).
+    fn free_velocity(
+        &mut self,
+        m: &FractureModel,
+        t_begin: f64,
+        t_end: f64,
+    ) -> Result<Vec<[f64; 6]>, FractureStepError> {
+        let (h, th) = (m.spec.dt, m.spec.theta);
+        let t_theta = t_begin + th * h;
+        let g = m.spec.gravity;
+        let mut ext_all = Vec::with_capacity(m.elements.len());
+        for (e, el) in m.elements.iter().enumerate() {
+            let free: [bool; 6] = std::array::from_fn(|d| !m.is_imposed(e, d));
+            let m_eff = m.effective_mass(e);
+            if !self.inv_mass_valid[e] {
+                self.op.bodies[e].inv_mass = masked_spd_inverse(&m_eff, free)
+                    .ok_or(FractureStepError::SingularElement(e))?;
+                self.inv_mass_valid[e] = true;
+            }
+            let mut ext = mul_vec(&el.mass, &[g[0], g[1], g[0], g[1], g[0], g[1]]);
+            let mut dv = [0.0; 6];
+            for d in 0..6 {
+                let l = el.load[d];
+                if l == u16::MAX {
+                    continue;
+                }
+                let load = &m.spec.loads[l as usize];
+                match &load.drives[d % 2] {
+                    Drive::Velocity(f) => dv[d] = f.eval(t_end) - el.velocity[d],
+                    Drive::Force(f) => ext[d] += f.eval(t_theta) * el.load_share[d / 2],
+                    Drive::Free => {}
+                }
+            }
+            let kv = mul_vec(&el.stiffness, &el.velocity);
+            let mut rhs = [0.0; 6];
+            for d in 0..6 {
+                rhs[d] = h * (ext[d] - el.internal_force[d]) - h * h * th * kv[d];
+            }
+            let mut r = rhs;
+            let coupling = mul_vec(&m_eff, &dv);
+            for d in 0..6 {
+                r[d] -= coupling[d];
+            }
+            let dv_free = mul_vec(&self.op.bodies[e].inv_mass, &r);
+            let work = &mut self.op.bodies[e];
+            for d in 0..6 {
+                let step = if free[d] { dv_free[d] } else { dv[d] };
+                work.velocity[d] = el.velocity[d] + step;
+            }
+            self.rhs[e] = rhs;
+            self.v_begin[e] = el.velocity;
+            ext_all.push(ext);
+        }
+        Ok(ext_all)
+    }
+
+    /// Stage: one row per interface point, its normal shift (gap closure, LMGC90's IQS) and
+    /// the adhesive term of cohesive points.
+    fn assemble(&mut self, m: &FractureModel) {
+        let (h, th) = (m.spec.dt, m.spec.theta);
+        let n = 2 * m.interfaces.len();
+        self.op.rows.clear();
+        for v in [&mut self.mu, &mut self.shift] {
+            v.clear();
+        }
+        self.cohesion.clear();
+        self.offset.clear();
+        self.impulses.clear();
+        self.u_begin.clear();
+        let any_cohesive = m.laws.iter().any(|l| cohesive(l).is_some());
+        for i in &m.interfaces {
+            let law = &m.laws[i.law as usize];
+            let area = 0.5 * i.length * m.spec.thickness;
+            for (k, p) in i.points.iter().enumerate() {
+                let row = self.op.row(i.elements, i.local_nodes[k], i.normal);
+                let [a, b] = i.elements.map(|e| e as usize);
+                let u0 = ElementContactOperator::local_velocity_of(
+                    &row,
+                    &self.v_begin[a],
+                    &self.v_begin[b],
+                );
+                let g_tt = p.jump[0] + h * (1.0 - th) * u0[0];
+                let shift = g_tt.max(0.0) / h;
+                let mut term = CohesiveTerm::default();
+                let mut offset = [0.0; 2];
+                if let Some(z) = cohesive(law).filter(|_| p.intensity > 0.0) {
+                    let c = z.stiffness(p.intensity);
+                    for d in 0..2 {
+                        offset[d] = h * area * c[d] * (p.jump[d] + h * th * (1.0 - th) * u0[d]);
+                        term.stiffness[d] = h * h * th * th * area * c[d];
+                    }
+                    term.offset = [offset[0] - term.stiffness[0] * shift, offset[1]];
+                }
+                self.op.rows.push(row);
+                self.mu.push(law.friction());
+                self.shift.push(shift);
+                if any_cohesive {
+                    self.cohesion.push(term);
+                }
+                self.offset.push(offset);
+                self.impulses.push(p.impulse);
+                self.u_begin.push(u0);
+            }
+        }
+        debug_assert_eq!(self.op.rows.len(), n);
+    }
+
+    /// Stage: velocities and displacements, material update, reactions and work of the loads.
+    fn update(
+        &mut self,
+        m: &mut FractureModel,
+        ext: Vec<[f64; 6]>,
+    ) -> Result<Vec<LoadReading>, FractureStepError> {
+        let (h, th) = (m.spec.dt, m.spec.theta);
+        // Generalised contact impulses per element.
+        let mut contact = vec![[0.0; 6]; m.elements.len()];
+        for (row, r) in self.op.rows.iter().zip(&self.impulses) {
+            let p = ElementContactOperator::global_impulse(row, *r);
+            for (k, sign) in [(0usize, -1.0), (1, 1.0)] {
+                let c = 2 * row.nodes[k] as usize;
+                let g = &mut contact[row.elements[k] as usize];
+                g[c] += sign * p[0];
+                g[c + 1] += sign * p[1];
+            }
+        }
+        let mut readings = vec![LoadReading::default(); m.spec.loads.len()];
+        let mut counts = vec![[0usize; 2]; m.spec.loads.len()];
+        let (hypothesis, mut work, mut plastic) = (m.spec.hypothesis, 0.0, 0.0);
+        for e in 0..m.elements.len() {
+            let v = self.op.bodies[e].velocity;
+            if v.iter().any(|x| !x.is_finite()) {
+                return Err(FractureStepError::NonFinite { element: e });
+            }
+            let m_eff: Mat6 = m.effective_mass(e);
+            let el = &mut m.elements[e];
+            let v0 = el.velocity;
+            let dv: [f64; 6] = std::array::from_fn(|d| v[d] - v0[d]);
+            let inertia = mul_vec(&m_eff, &dv);
+            for d in 0..6 {
+                let du = h * ((1.0 - th) * v0[d] + th * v[d]);
+                el.displacement[d] += du;
+                let force_on_body = ext[e][d];
+                let l = el.load[d];
+                if l != u16::MAX {
+                    let reading = &mut readings[l as usize];
+                    if m.spec.loads[l as usize].drives[d % 2].is_imposed_velocity() {
+                        let reaction = inertia[d] - self.rhs[e][d] - contact[e][d];
+                        reading.force[d % 2] += reaction / h;
+                        work += reaction * du / h;
+                    } else if let Drive::Force(_) = m.spec.loads[l as usize].drives[d % 2] {
+                        let g = m.spec.gravity[d % 2];
+                        let gravity: f64 = (0..6)
+                            .filter(|k| k % 2 == d % 2)
+                            .map(|k| el.mass[d][k] * g)
+                            .sum();
+                        reading.force[d % 2] += ext[e][d] - gravity;
+                    }
+                    reading.displacement[d % 2] += el.displacement[d];
+                    counts[l as usize][d % 2] += 1;
+                }
+                work += force_on_body * du;
+            }
+            el.velocity = v;
+            let material = &m.spec.materials[el.region as usize];
+            let strain = el.triangle.strain(&el.displacement);
+            let up = material.update(hypothesis, &el.state, strain);
+            el.state = up.state;
+            el.internal_force = el.triangle.internal_force(&up.state.in_plane_stress());
+            plastic += up.plastic_work * el.triangle.volume();
+            if matches!(material, xper_fem::Material::J2Plastic { .. }) {
+                el.stiffness = el.triangle.stiffness(&up.tangent);
+                self.inv_mass_valid[e] = false;
+            }
+        }
+        for (reading, count) in readings.iter_mut().zip(&counts) {
+            for d in 0..2 {
+                if count[d] > 0 {
+                    reading.displacement[d] /= count[d] as f64;
+                }
+            }
+        }
+        m.energy.external_work += work;
+        m.energy.plastic += plastic;
+        m.energy.kinetic = m.kinetic_energy();
+        m.energy.elastic = elastic_energy(m);
+        Ok(readings)
+    }
+
+    /// Read access for the interface stage.
+    pub(crate) fn solved(&self) -> (&ElementContactOperator, &[[f64; 2]], &[[f64; 2]], &[f64]) {
+        (&self.op, &self.impulses, &self.u_begin, &self.shift)
+    }
+
+    /// The adhesive offsets (without shift) and stiffnesses of the step's points.
+    pub(crate) fn adhesive(&self) -> (&[[f64; 2]], &[CohesiveTerm]) {
+        (&self.offset, &self.cohesion)
+    }
+}
+
+/// Elastic energy of the elements (J).
+pub fn elastic_energy(m: &FractureModel) -> f64 {
+    m.elements
+        .iter()
+        .map(|e| {
+            e.triangle
+                .elastic_energy(&m.spec.materials[e.region as usize], &e.state)
+        })
+        .sum()
+}
+
+/// Elastic energy stored in the cohesive interfaces (J).
+pub fn stored_energy(m: &FractureModel) -> f64 {
+    m.interfaces
+        .iter()
+        .filter_map(|i| cohesive(&m.laws[i.law as usize]).map(|z| (i, z)))
+        .map(|(i, z)| {
+            let area = 0.5 * i.length * m.spec.thickness;
+            i.points
+                .iter()
+                .map(|p| area * z.stored_energy_per_area(p.jump, p.intensity))
+                .sum::<f64>()
+        })
+        .sum()
+}
