@@ -9,6 +9,9 @@
 //! problem by NLGS on the factorised operator ([`ElementContactOperator`]) with the adhesive
 //! part of each cohesive point eliminated exactly in its local solve.
 
+// Dense 6x6 kernels read best with explicit indices.
+#![allow(clippy::needless_range_loop)]
+
 mod dense;
 mod interface;
 mod model;

@@ -354,8 +354,8 @@ impl FractureStepper {
     }
 
     /// Read access for the interface stage.
-    pub(crate) fn solved(&self) -> (&ElementContactOperator, &[[f64; 2]], &[[f64; 2]], &[f64]) {
-        (&self.op, &self.impulses, &self.u_begin, &self.shift)
+    pub(crate) fn solved(&self) -> (&ElementContactOperator, &[[f64; 2]], &[[f64; 2]]) {
+        (&self.op, &self.impulses, &self.u_begin)
     }
 
     /// The adhesive offsets (without shift) and stiffnesses of the step's points.

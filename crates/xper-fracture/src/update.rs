@@ -10,7 +10,7 @@ use crate::step::{stored_energy, FractureStepper};
 /// Updates the interface points of `m` from the solved step in `stepper`.
 pub(crate) fn interfaces(stepper: &FractureStepper, m: &mut FractureModel) {
     let (h, th) = (m.spec.dt, m.spec.theta);
-    let (op, impulses, u_begin, _) = stepper.solved();
+    let (op, impulses, u_begin) = stepper.solved();
     let (offsets, terms) = stepper.adhesive();
     let (mut damage, mut contact) = (0.0, 0.0);
     for (i, interface) in m.interfaces.iter_mut().enumerate() {
