@@ -24,7 +24,7 @@ use xper_solver::{nlgs_with_cohesion, CohesiveTerm, SolveError};
 use crate::dense::{masked_spd_inverse, mul_vec, Mat6};
 use crate::interface::cohesive;
 use crate::model::FractureModel;
-use crate::operator::{ElementContactOperator, ElementWork};
+use crate::operator::{ElementContactOperator, ElementWork, InterfaceRow};
 
 /// Reading of one load over a step.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
@@ -101,10 +101,8 @@ pub struct FractureStepper {
     mu: Vec<f64>,
     shift: Vec<f64>,
     cohesion: Vec<CohesiveTerm>,
-    /// The adhesive offset without the normal shift correction, per point.
-    offset: Vec<[f64; 2]>,
     impulses: Vec<[f64; 2]>,
-    u_begin: Vec<[f64; 2]>,
+    points: Vec<PointWork>,
     started: bool,
 }
 
@@ -225,15 +223,13 @@ impl FractureStepper {
     /// the adhesive term of cohesive points.
     fn assemble(&mut self, m: &FractureModel) {
         let (h, th) = (m.spec.dt, m.spec.theta);
-        let n = 2 * m.interfaces.len();
         self.op.rows.clear();
         for v in [&mut self.mu, &mut self.shift] {
             v.clear();
         }
         self.cohesion.clear();
-        self.offset.clear();
         self.impulses.clear();
-        self.u_begin.clear();
+        self.points.clear();
         let any_cohesive = m.laws.iter().any(|l| cohesive(l).is_some());
         for i in &m.interfaces {
             let law = &m.laws[i.law as usize];
@@ -248,28 +244,55 @@ impl FractureStepper {
                 );
                 let g_tt = p.jump[0] + h * (1.0 - th) * u0[0];
                 let shift = g_tt.max(0.0) / h;
-                let mut term = CohesiveTerm::default();
-                let mut offset = [0.0; 2];
+                let (mut stiffness, mut offset) = ([0.0; 2], [0.0; 2]);
                 if let Some(z) = cohesive(law).filter(|_| p.intensity > 0.0) {
                     let c = z.stiffness(p.intensity);
                     for d in 0..2 {
                         offset[d] = h * area * c[d] * (p.jump[d] + h * th * (1.0 - th) * u0[d]);
-                        term.stiffness[d] = h * h * th * th * area * c[d];
+                        stiffness[d] = h * h * th * th * area * c[d];
                     }
-                    term.offset = [offset[0] - term.stiffness[0] * shift, offset[1]];
                 }
-                self.op.rows.push(row);
-                self.mu.push(law.friction());
-                self.shift.push(shift);
-                if any_cohesive {
-                    self.cohesion.push(term);
+                let mut work = PointWork {
+                    row,
+                    u_begin: u0,
+                    offset,
+                    stiffness,
+                    impulse: p.impulse,
+                    solved: NOT_SOLVED,
+                };
+                if row.block[0] > 0.0 {
+                    work.solved = self.op.rows.len() as u32;
+                    self.op.rows.push(row);
+                    self.mu.push(law.friction());
+                    self.shift.push(shift);
+                    if any_cohesive {
+                        self.cohesion.push(CohesiveTerm {
+                            stiffness,
+                            offset: [offset[0] - stiffness[0] * shift, offset[1]],
+                        });
+                    }
+                    self.impulses.push(p.impulse);
+                } else {
+                    // Both sides imposed: the motion is known, the impulse is the adhesive part.
+                    let u = self.end_velocity(&row);
+                    work.impulse = [
+                        -(offset[0] + stiffness[0] * u[0]),
+                        -(offset[1] + stiffness[1] * u[1]),
+                    ];
                 }
-                self.offset.push(offset);
-                self.impulses.push(p.impulse);
-                self.u_begin.push(u0);
+                self.points.push(work);
             }
         }
-        debug_assert_eq!(self.op.rows.len(), n);
+    }
+
+    /// Local velocity of a row from the working (end-of-step) element velocities.
+    pub(crate) fn end_velocity(&self, row: &InterfaceRow) -> [f64; 2] {
+        let [a, b] = row.elements.map(|e| e as usize);
+        ElementContactOperator::local_velocity_of(
+            row,
+            &self.op.bodies[a].velocity,
+            &self.op.bodies[b].velocity,
+        )
     }
 
     /// Stage: velocities and displacements, material update, reactions and work of the loads.
@@ -281,8 +304,14 @@ impl FractureStepper {
         let (h, th) = (m.spec.dt, m.spec.theta);
         // Generalised contact impulses per element.
         let mut contact = vec![[0.0; 6]; m.elements.len()];
-        for (row, r) in self.op.rows.iter().zip(&self.impulses) {
-            let p = ElementContactOperator::global_impulse(row, *r);
+        for point in &mut self.points {
+            if point.solved != NOT_SOLVED {
+                point.impulse = self.impulses[point.solved as usize];
+            }
+        }
+        for point in &self.points {
+            let row = &point.row;
+            let p = ElementContactOperator::global_impulse(row, point.impulse);
             for (k, sign) in [(0usize, -1.0), (1, 1.0)] {
                 let c = 2 * row.nodes[k] as usize;
                 let g = &mut contact[row.elements[k] as usize];
@@ -353,16 +382,30 @@ impl FractureStepper {
         Ok(readings)
     }
 
-    /// Read access for the interface stage.
-    pub(crate) fn solved(&self) -> (&ElementContactOperator, &[[f64; 2]], &[[f64; 2]]) {
-        (&self.op, &self.impulses, &self.u_begin)
-    }
-
-    /// The adhesive offsets (without shift) and stiffnesses of the step's points.
-    pub(crate) fn adhesive(&self) -> (&[[f64; 2]], &[CohesiveTerm]) {
-        (&self.offset, &self.cohesion)
+    /// The step's interface points, in interface order (two per interface).
+    pub(crate) fn points(&self) -> &[PointWork] {
+        &self.points
     }
 }
+
+/// Everything the step knows about one interface point.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct PointWork {
+    /// Its row (frame, nodes, diagonal block).
+    pub row: InterfaceRow,
+    /// Local velocity at the start of the step.
+    pub u_begin: [f64; 2],
+    /// Adhesive offset `o` (impulse), without the normal shift.
+    pub offset: [f64; 2],
+    /// Adhesive stiffness `K` (impulse per velocity).
+    pub stiffness: [f64; 2],
+    /// Total impulse: the warm start, then the solution.
+    pub impulse: [f64; 2],
+    /// Index in the solved problem, or `NOT_SOLVED` when both sides are imposed.
+    pub solved: u32,
+}
+
+const NOT_SOLVED: u32 = u32::MAX;
 
 /// Elastic energy of the elements (J).
 pub fn elastic_energy(m: &FractureModel) -> f64 {

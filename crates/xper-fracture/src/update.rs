@@ -1,8 +1,6 @@
 //! Stage `interfaces` of a step: new displacement jumps, intensities (once per step, as in
 //! BRIEF.md section 3) and the interface energies.
 
-use xper_solver::ContactOperator;
-
 use crate::interface::cohesive;
 use crate::model::FractureModel;
 use crate::step::{stored_energy, FractureStepper};
@@ -10,23 +8,21 @@ use crate::step::{stored_energy, FractureStepper};
 /// Updates the interface points of `m` from the solved step in `stepper`.
 pub(crate) fn interfaces(stepper: &FractureStepper, m: &mut FractureModel) {
     let (h, th) = (m.spec.dt, m.spec.theta);
-    let (op, impulses, u_begin) = stepper.solved();
-    let (offsets, terms) = stepper.adhesive();
+    let points = stepper.points();
     let (mut damage, mut contact) = (0.0, 0.0);
     for (i, interface) in m.interfaces.iter_mut().enumerate() {
         let law = m.laws[interface.law as usize];
         let area = 0.5 * interface.length * m.spec.thickness;
         for (k, p) in interface.points.iter_mut().enumerate() {
-            let c = 2 * i + k;
-            let (u0, u1, r) = (u_begin[c], op.local_velocity(c), impulses[c]);
+            let w = &points[2 * i + k];
+            let (u0, u1, r) = (w.u_begin, stepper.end_velocity(&w.row), w.impulse);
             let weighted = [
                 (1.0 - th) * u0[0] + th * u1[0],
                 (1.0 - th) * u0[1] + th * u1[1],
             ];
-            let stiffness = terms.get(c).map_or([0.0; 2], |t| t.stiffness);
             let adhesive = [
-                -(offsets[c][0] + stiffness[0] * u1[0]),
-                -(offsets[c][1] + stiffness[1] * u1[1]),
+                -(w.offset[0] + w.stiffness[0] * u1[0]),
+                -(w.offset[1] + w.stiffness[1] * u1[1]),
             ];
             let rc = [r[0] - adhesive[0], r[1] - adhesive[1]];
             contact -= rc[0] * weighted[0] + rc[1] * weighted[1];
