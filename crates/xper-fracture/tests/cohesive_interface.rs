@@ -88,10 +88,6 @@ fn run(m: &mut FractureModel, steps: usize) -> Vec<([f64; 2], [f64; 2], f64)> {
     out
 }
 
-fn ramp(v: f64, t: f64) -> TimeFunction {
-    TimeFunction::Table(vec![(0.0, v), (t, v), (t * 1.000001, 0.0)])
-}
-
 #[test]
 fn mode_one_follows_the_law_and_dissipates_w_times_length() {
     let z = tested(0.0);
