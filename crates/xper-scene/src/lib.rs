@@ -4,6 +4,11 @@
 //! validates everything, collecting *all* errors (each with file, line, column, field path
 //! and reason), expands the generators and returns a flat [`Scene`] of plain data that
 //! knows nothing of the engine. It never panics, whatever the input.
+//!
+//! A scene with a `[mesh]` section is a fracture scene: [`parse_any_scene`] /
+//! [`load_any_scene`] read either kind ([`AnyScene`]); a [`FractureScene`] is plain data too,
+//! and [`FractureScene::build`] reads or generates its mesh and checks the rest against it,
+//! giving the mesh and the `xper_fracture::FractureSpec` to build the model from.
 
 // Negated float comparisons (`!(x > 0.0)`) are deliberate: they also reject NaN.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
@@ -14,6 +19,7 @@ pub mod rng;
 pub mod types;
 
 mod bodies;
+mod fracture;
 mod generators;
 mod geometry;
 mod overlap;
@@ -25,6 +31,11 @@ mod tree;
 use std::path::Path;
 
 pub use error::{SceneError, SceneErrors};
+pub use fracture::build::FractureSetup;
+pub use fracture::types::{
+    AnyScene, EdgeSetRef, FractureScene, InterfaceDesc, InterfaceLawDesc, LoadDesc, MeshDesc,
+    MeshSource, Place, RegionDesc, Stiffness,
+};
 pub use generators::MAX_GENERATED;
 pub use overlap::MAX_OVERLAP_REPORTS;
 pub use rng::SplitMix64;
@@ -64,9 +75,51 @@ pub fn load_scene(path: &Path) -> Result<Scene, SceneErrors> {
     }
 }
 
-/// Parses and validates the text of a scene file; `file` is only used in messages.
-/// Returns every error found, sorted by position.
-pub fn parse_scene(text: &str, file: &Path) -> Result<Scene, SceneErrors> {
+/// Reads and parses a scene file of either kind (see [`parse_any_scene`]).
+pub fn load_any_scene(path: &Path) -> Result<AnyScene, SceneErrors> {
+    match std::fs::read_to_string(path) {
+        Ok(text) => parse_any_scene(&text, path),
+        Err(e) => Err(SceneErrors(vec![SceneError {
+            file: path.to_path_buf(),
+            line: 0,
+            column: 0,
+            field: String::new(),
+            message: format!("cannot read the scene file: {e}"),
+        }])),
+    }
+}
+
+/// Whether `text` is a fracture scene: valid TOML with a top-level `mesh` key.
+pub fn is_fracture_scene(text: &str) -> bool {
+    toml_edit::ImDocument::parse(text).is_ok_and(|d| d.as_table().contains_key("mesh"))
+}
+
+/// Parses and validates a scene of either kind: a fracture scene when it has a `[mesh]`
+/// section ([`parse_fracture_scene`]), else a rigid scene ([`parse_scene`]).
+pub fn parse_any_scene(text: &str, file: &Path) -> Result<AnyScene, SceneErrors> {
+    if is_fracture_scene(text) {
+        parse_fracture_scene(text, file).map(AnyScene::Fracture)
+    } else {
+        parse_scene(text, file).map(AnyScene::Rigid)
+    }
+}
+
+/// Parses and validates the text of a fracture scene (FORMAT.md, "Fracture scenes"); `file`
+/// is used in messages and to resolve a mesh file. Checks that need the mesh are left to
+/// [`FractureScene::build`]. Returns every error found, sorted by position.
+pub fn parse_fracture_scene(text: &str, file: &Path) -> Result<FractureScene, SceneErrors> {
+    with_root(text, file, |ctx, root| {
+        fracture::fracture_scene(ctx, root, file)
+    })
+}
+
+/// Parses the TOML of `text` and hands its root table to `read`; the result is returned when
+/// no error was recorded, else every error sorted by position.
+fn with_root<T>(
+    text: &str,
+    file: &Path,
+    read: impl FnOnce(&mut Ctx, &Tbl) -> Option<T>,
+) -> Result<T, SceneErrors> {
     let idx = LineIndex::new(text);
     let mut ctx = Ctx::new(file);
     let doc = match toml_edit::ImDocument::parse(text) {
@@ -79,26 +132,51 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<Scene, SceneErrors> {
         }
     };
     let root_node = tree::root(doc.as_table(), &idx);
-    let Some(root) = Tbl::of(&mut ctx, &root_node, String::new()) else {
-        return Err(SceneErrors(ctx.errors));
-    };
-    root.check_keys(&mut ctx, TOP_KEYS);
-    let header = sections::header(&mut ctx, &root);
-    let solver = sections::solver(&mut ctx, &root);
-    let output = sections::output(&mut ctx, &root, header.steps);
-    let materials = sections::materials(&mut ctx, &root);
+    let value = Tbl::of(&mut ctx, &root_node, String::new()).and_then(|root| read(&mut ctx, &root));
+    match value {
+        Some(v) if ctx.errors.is_empty() => Ok(v),
+        _ => {
+            if ctx.errors.is_empty() {
+                ctx.err(Pos::START, "", "invalid scene");
+            }
+            let mut errors = ctx.errors;
+            errors.sort_by_key(|e| (e.line, e.column));
+            Err(SceneErrors(errors))
+        }
+    }
+}
+
+/// Parses and validates the text of a rigid scene file; `file` is only used in messages.
+/// Returns every error found, sorted by position. A fracture scene (with `[mesh]`) is an
+/// error here: read it with [`parse_any_scene`].
+pub fn parse_scene(text: &str, file: &Path) -> Result<Scene, SceneErrors> {
+    with_root(text, file, rigid_scene)
+}
+
+fn rigid_scene(ctx: &mut Ctx, root: &Tbl) -> Option<Scene> {
+    if let Some(n) = root.get("mesh") {
+        let msg = "`[mesh]` makes this a fracture scene, which the rigid-scene reader does not \
+                   read (use `parse_any_scene`; `xper check` and `xper run` read both kinds)";
+        ctx.err(n.pos, "mesh", msg);
+        return None;
+    }
+    root.check_keys(ctx, TOP_KEYS);
+    let header = sections::header(ctx, root);
+    let solver = sections::solver(ctx, root);
+    let output = sections::output(ctx, root, header.steps);
+    let materials = sections::materials(ctx, root);
 
     let before = ctx.errors.len();
     let mut groups = Groups::default();
     let mut built = Built::default();
-    bodies::bodies(&mut ctx, &root, &materials, &mut groups, &mut built);
-    bodies::walls(&mut ctx, &root, &mut groups, &mut built);
-    generators::generators(&mut ctx, &root, &materials, &mut groups, &mut built);
+    bodies::bodies(ctx, root, &materials, &mut groups, &mut built);
+    bodies::walls(ctx, root, &mut groups, &mut built);
+    generators::generators(ctx, root, &materials, &mut groups, &mut built);
     if ctx.errors.len() == before {
         // Only when every body was built, so that indices are those of the scene.
-        overlap::check(&mut ctx, &built);
+        overlap::check(ctx, &built);
     }
-    let laws = sections::laws(&mut ctx, &root, &groups);
+    let laws = sections::laws(ctx, root, &groups);
 
     let steps = header.steps.unwrap_or(1);
     let alert_distance = header
@@ -128,13 +206,7 @@ pub fn parse_scene(text: &str, file: &Path) -> Result<Scene, SceneErrors> {
         laws,
         bodies: built.bodies,
     };
-    if ctx.errors.is_empty() {
-        Ok(scene)
-    } else {
-        let mut errors = ctx.errors;
-        errors.sort_by_key(|e| (e.line, e.column));
-        Err(SceneErrors(errors))
-    }
+    Some(scene)
 }
 
 /// 0.1 x the smallest disk radius; without disks, 1e-3 x the smallest polygon size
