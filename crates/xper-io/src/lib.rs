@@ -1,6 +1,6 @@
 //! Output writers for the xper simulator: atomic file writes, VTK XML
 //! unstructured grids (`.vtu`) and ParaView collections (`.pvd`), CSV time
-//! series, PNG line plots and peak memory measurement.
+//! series, PNG line plots and segment drawings, and peak memory measurement.
 //!
 //! This crate knows nothing about physics; it only formats and writes data.
 
@@ -11,6 +11,7 @@ mod base64;
 pub mod memory;
 pub mod plot;
 pub mod pvd;
+pub mod segments;
 pub mod series;
 pub mod vtu;
 mod xml;
@@ -19,5 +20,6 @@ pub use atomic::{write_atomic, write_json_atomic};
 pub use memory::peak_memory_bytes;
 pub use plot::{plot_panels, Curve, Panel};
 pub use pvd::{PvdCollection, PvdEntry};
+pub use segments::{plot_segments, SegmentLayer};
 pub use series::SeriesTable;
 pub use vtu::{read_vtu, write_vtu, DataArray, DataValues, UnstructuredGrid};

@@ -61,7 +61,7 @@ pub struct Panel {
 }
 
 /// Registers the bundled font once; returns the registration outcome.
-fn ensure_font() -> Result<(), String> {
+pub(crate) fn ensure_font() -> Result<(), String> {
     static REGISTERED: OnceLock<Result<(), String>> = OnceLock::new();
     REGISTERED
         .get_or_init(|| {
@@ -305,7 +305,7 @@ fn render(
 }
 
 /// Encodes an 8-bit RGB buffer as PNG.
-fn encode_png(buf: &[u8], width: u32, height: u32) -> Result<Vec<u8>, String> {
+pub(crate) fn encode_png(buf: &[u8], width: u32, height: u32) -> Result<Vec<u8>, String> {
     let mut out = Vec::new();
     let mut encoder = png::Encoder::new(&mut out, width, height);
     encoder.set_color(png::ColorType::Rgb);

@@ -4,7 +4,7 @@ mod common;
 
 use std::path::Path;
 
-use xper_io::{plot_panels, Curve, Panel};
+use xper_io::{plot_panels, plot_segments, Curve, Panel, SegmentLayer};
 
 /// Width and height from the IHDR chunk, after checking the PNG signature.
 fn png_size(path: &Path) -> (u32, u32) {
@@ -111,4 +111,48 @@ fn degenerate_data_does_not_fail() {
     assert_eq!(png_size(&dir.join("none.png")), (300, 240));
     let err = plot_panels(&dir.join("tiny.png"), "t", &panels, 10, 10).unwrap_err();
     assert!(err.to_string().contains("tiny.png"), "{err}");
+}
+
+#[test]
+fn segment_drawing_follows_the_aspect_ratio_and_draws_in_colour() {
+    let dir = common::test_dir("segments");
+    let path = dir.join("cracks.png");
+    let square = |x: f64| {
+        vec![
+            [[x, 0.0], [x + 1.0, 0.0]],
+            [[x + 1.0, 0.0], [x + 1.0, 0.5]],
+            [[x + 1.0, 0.5], [x, 0.5]],
+            [[x, 0.5], [x, 0.0]],
+        ]
+    };
+    let layers = [
+        SegmentLayer {
+            label: "outline".into(),
+            color: [128, 128, 128],
+            width: 1,
+            segments: square(0.0),
+        },
+        SegmentLayer {
+            label: "broken".into(),
+            color: [200, 0, 0],
+            width: 3,
+            segments: vec![[[0.5, 0.0], [0.5, 0.5]], [[f64::NAN, 0.0], [1.0, 1.0]]],
+        },
+    ];
+    plot_segments(&path, "Crack pattern", "x (m)", "y (m)", &layers, 800).unwrap();
+    let (w, h) = png_size(&path);
+    assert_eq!(w, 800);
+    // Plot area 690 px wide for a 2:1 drawing (with margins): about 370 px high plus bands.
+    assert!((450..600).contains(&h), "height {h}");
+    let decoder = png::Decoder::new(std::fs::File::open(&path).unwrap());
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let red = buf[..info.buffer_size()]
+        .chunks(3)
+        .filter(|p| p[0] > 150 && p[1] < 60 && p[2] < 60)
+        .count();
+    assert!(red > 300, "only {red} red pixels");
+    assert!(plot_segments(&path, "t", "x", "y", &[], 100).is_err());
+    plot_segments(&dir.join("empty.png"), "t", "x", "y", &[], 400).unwrap();
 }
