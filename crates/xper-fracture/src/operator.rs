@@ -109,8 +109,10 @@ impl ContactOperator for ElementContactOperator {
             let body = &mut self.bodies[row.elements[k] as usize];
             let c = 2 * row.nodes[k] as usize;
             let (px, py) = (sign * p[0], sign * p[1]);
+            // M_eff^-1 is symmetric: its columns c, c + 1 are its rows, contiguous in memory.
+            let (col_x, col_y) = (body.inv_mass[c], body.inv_mass[c + 1]);
             for i in 0..6 {
-                body.velocity[i] += body.inv_mass[i][c] * px + body.inv_mass[i][c + 1] * py;
+                body.velocity[i] += col_x[i] * px + col_y[i] * py;
             }
         }
     }

@@ -205,6 +205,9 @@ pub fn nlgs_with_cohesion<O: ContactOperator>(
     let factors: Vec<[f64; 3]> = (0..n)
         .map(|a| local_factors(&op.diagonal_block(a), mu[a]))
         .collect();
+    let proximal: Vec<f64> = (0..n)
+        .map(|a| proximal_weight(&op.diagonal_block(a)))
+        .collect();
     for sweep in 1..=params.max_iterations {
         let check = sweep % params.check_every == 0 || sweep == params.max_iterations;
         let mut acc = NormAccumulator::default();
@@ -215,7 +218,20 @@ pub fn nlgs_with_cohesion<O: ContactOperator>(
             let r = impulses[a];
             let wr = block_mul(&w, r);
             let u_free = [u[0] - wr[0], u[1] - wr[1]];
-            let (local, adhesive) = if adhesive(a) {
+            let (local, adhesive) = if proximal[a] > 0.0 {
+                // A singular block: proximal step, exact at convergence (see proximal_weight).
+                let eps = proximal[a];
+                let wp = [w[0] + eps, w[1], w[2], w[3] + eps];
+                let up = [u_free[0] - eps * r[0], u_free[1] - eps * r[1]];
+                if adhesive(a) {
+                    (
+                        solve_one_cohesive_contact(&wp, up, mu[a], &cohesion[a]),
+                        true,
+                    )
+                } else {
+                    (crate::local::solve_one_contact(&wp, up, mu[a]), false)
+                }
+            } else if adhesive(a) {
                 let local = solve_one_cohesive_contact(&w, u_free, mu[a], &cohesion[a]);
                 (local, true)
             } else {
@@ -296,4 +312,21 @@ pub(crate) fn scaled_natural_map_error<O: ContactOperator>(
     };
     let scale = q_norm.max(norm(&u)).max(norm(impulses));
     natural_map_error(&u, impulses, mu) / if scale > 0.0 { scale } else { 1.0 }
+}
+
+/// The proximal weight `eps` of a contact whose block `W_aa` is singular (rank one: e.g. both
+/// bodies share an imposed velocity component, so normal and tangential velocities move
+/// together), 0 otherwise. On such a block the local impulse is not unique and plain
+/// Gauss-Seidel can wander without converging; the local solve then minimises
+/// `dual(R_a) + eps |R_a - R_a,old|^2 / 2`, i.e. uses `W_aa + eps I` and
+/// `u_free - eps R_a,old` (a proximal-point step, exact at its fixed point; B. Martinet 1970,
+/// R.T. Rockafellar 1976), with `eps` a tenth of the block's trace.
+fn proximal_weight(w: &[f64; 4]) -> f64 {
+    let trace = w[0] + w[3];
+    let det = w[0] * w[3] - w[1] * w[2];
+    if trace > 0.0 && det <= 1e-9 * trace * trace {
+        0.1 * trace
+    } else {
+        0.0
+    }
 }
