@@ -1,10 +1,13 @@
-//! The library behind the `xper` command: scene-to-world conversion, the run loop with its
-//! outputs, benchmarks and validation cases.
+//! The library behind the `xper` command: scene-to-world conversion, the run loops (rigid
+//! scenes and fracture scenes) with their outputs, benchmarks and validation cases.
 
 pub mod bench;
 pub mod bench_solvers;
+pub mod fracture_frames;
+pub mod fracture_outputs;
 pub mod frames;
 pub mod run;
+pub mod run_fracture;
 pub mod solve;
 pub mod validation;
 pub mod world_from_scene;

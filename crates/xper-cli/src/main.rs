@@ -1,4 +1,5 @@
-//! `xper`: check, run and benchmark scenes of rigid bodies in frictional contact.
+//! `xper`: check, run and benchmark scenes of rigid bodies in frictional contact, and check
+//! and run fracture scenes (meshed specimens with cohesive interfaces).
 //!
 //! Exit codes: 0 success, 1 the run failed (I/O error, blow-up), 2 bad input (scene, command
 //! line, checkpoint).
@@ -8,13 +9,13 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use xper_cli::{bench, run, solve, validation, CliError};
+use xper_cli::{bench, run, run_fracture, solve, validation, CliError};
 
 #[derive(Parser)]
 #[command(
     name = "xper",
     version,
-    about = "Non-smooth contact dynamics of rigid bodies (Moreau-Jean, NLGS)"
+    about = "Non-smooth contact dynamics (Moreau-Jean, NLGS): rigid bodies, and fracture of meshed specimens"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -28,7 +29,8 @@ enum Command {
         /// Scene file (TOML).
         scene: PathBuf,
     },
-    /// Run a scene and write result.pvd, frames/, series.csv, series.png, summary.json, checkpoint.bin.
+    /// Run a scene and write result.pvd, frames/, series.csv, series.png, summary.json,
+    /// checkpoint.bin (fracture scenes: also force_displacement.png and crack_pattern.png).
     Run {
         /// Scene file (TOML).
         scene: PathBuf,
@@ -60,6 +62,7 @@ enum Command {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Check { scene } if is_fracture(&scene) => run_fracture::check(&scene),
         Command::Check { scene } => check(&scene),
         Command::Run {
             scene,
@@ -69,15 +72,18 @@ fn main() -> ExitCode {
             quiet,
         } => {
             let quiet = quiet || !std::io::stderr().is_terminal();
-            run::run(
-                &run::RunOptions {
-                    scene,
-                    out,
-                    resume,
-                    stop_at_step,
-                },
-                quiet,
-            )
+            let fracture = is_fracture(&scene);
+            let opts = run::RunOptions {
+                scene,
+                out,
+                resume,
+                stop_at_step,
+            };
+            if fracture {
+                run_fracture::run(&opts, quiet)
+            } else {
+                run::run(&opts, quiet)
+            }
         }
         Command::Bench(args) => bench::bench(&args),
         Command::Solve(args) => solve::run_solve(&args),
@@ -94,6 +100,12 @@ fn main() -> ExitCode {
             ExitCode::from(1)
         }
     }
+}
+
+/// Whether the file is a fracture scene (a readable TOML file with a `[mesh]` section);
+/// anything else goes to the rigid-scene reader, which reports what is wrong.
+fn is_fracture(path: &std::path::Path) -> bool {
+    std::fs::read_to_string(path).is_ok_and(|text| xper_scene::is_fracture_scene(&text))
 }
 
 fn check(path: &std::path::Path) -> Result<(), CliError> {

@@ -313,7 +313,8 @@ fn write_problem(
     )))
 }
 
-fn progress_bar(quiet: bool, steps: u64, position: u64) -> ProgressBar {
+/// The progress bar of a run: steps/s, ETA and a message; hidden when `quiet`.
+pub(crate) fn progress_bar(quiet: bool, steps: u64, position: u64) -> ProgressBar {
     let target = if quiet {
         ProgressDrawTarget::hidden()
     } else {
