@@ -1,10 +1,11 @@
 //! The parser never panics: random text, and random TOML assembled from the scene's own
-//! keys with random (often wrong) values.
+//! keys (rigid and fracture scenes) with random (often wrong) values. A fracture scene that
+//! parses is also built against its mesh when the mesh is small.
 
 use std::path::Path;
 
 use proptest::prelude::*;
-use xper_scene::parse_scene;
+use xper_scene::{parse_any_scene, AnyScene, MeshSource};
 
 const KEYS: &[&str] = &[
     "name",
@@ -61,6 +62,32 @@ const KEYS: &[&str] = &[
     "phase",
     "offset",
     "radious",
+    "thickness",
+    "hypothesis",
+    "broken",
+    "generator",
+    "file",
+    "side",
+    "notch_depth",
+    "notch_width",
+    "element_size",
+    "width",
+    "height",
+    "inclusions",
+    "precrack",
+    "young",
+    "poisson",
+    "yield_stress",
+    "hardening",
+    "law",
+    "normal_stiffness",
+    "tangential_stiffness",
+    "fracture_energy",
+    "strength",
+    "initial_damage",
+    "nodes",
+    "set",
+    "segment",
 ];
 
 const HEADERS: &[&str] = &[
@@ -76,6 +103,14 @@ const HEADERS: &[&str] = &[
     "[bodies.drive.x]",
     "[walls.drive]",
     "[extra]",
+    "[fracture]",
+    "[mesh]",
+    "[[regions]]",
+    "[[interfaces]]",
+    "[[loads]]",
+    "[regions.material]",
+    "[interfaces.law]",
+    "[loads.nodes]",
 ];
 
 const ATOMS: &[&str] = &[
@@ -114,7 +149,32 @@ const ATOMS: &[&str] = &[
     "\"lattice\"",
     "\"\"",
     "1979-05-27",
+    "0.2",
+    "0.05",
+    "0.025",
+    "\"double_edge_notched\"",
+    "\"rectangle_with_inclusions\"",
+    "\"elastic\"",
+    "\"j2\"",
+    "\"cohesive\"",
+    "\"contact\"",
+    "\"rule_of_thumb\"",
+    "\"free\"",
+    "\"top\"",
+    "\"concrete\"",
+    "\"plane_strain\"",
+    "\"lumped\"",
 ];
+
+/// Triangles a generated mesh would have, roughly; files count as small.
+fn estimated_triangles(source: &MeshSource) -> f64 {
+    let (area, h) = match source {
+        MeshSource::File(_) => return 0.0,
+        MeshSource::DoubleEdgeNotched(s) => (s.side * s.side, s.element_size),
+        MeshSource::RectangleWithInclusions(s) => (s.width * s.height, s.element_size),
+    };
+    2.0 * area / (0.433 * h * h)
+}
 
 fn value() -> impl Strategy<Value = String> {
     let atom = prop::sample::select(ATOMS).prop_map(str::to_string);
@@ -143,13 +203,30 @@ fn line() -> impl Strategy<Value = String> {
 
 fn check(text: &str) {
     // Must return (Ok or Err), never panic; errors must carry positions inside the text.
-    if let Err(e) = parse_scene(text, Path::new("fuzz.toml")) {
-        assert!(!e.0.is_empty());
-        let lines = text.lines().count().max(1) + 1;
-        for x in &e.0 {
-            assert!(x.line >= 1 && x.line <= lines && x.column >= 1, "{x}");
+    let lines = text.lines().count().max(1) + 1;
+    let errors = match parse_any_scene(text, Path::new("fuzz.toml")) {
+        Err(e) => e,
+        Ok(AnyScene::Fracture(s)) if estimated_triangles(&s.mesh.source) < 3000.0 => {
+            match s.build() {
+                Ok(_) => return,
+                Err(e) => e,
+            }
         }
+        Ok(_) => return,
+    };
+    assert!(!errors.0.is_empty());
+    for x in &errors.0 {
+        assert!(x.line >= 1 && x.line <= lines && x.column >= 1, "{x}");
     }
+}
+
+fn mutated(base: &str, lines: Vec<String>, at: usize) -> String {
+    let mut all: Vec<String> = base.lines().map(str::to_string).collect();
+    let at = at.min(all.len());
+    for (k, l) in lines.into_iter().enumerate() {
+        all.insert(at + k, l);
+    }
+    all.join("\n")
 }
 
 proptest! {
@@ -175,12 +252,20 @@ proptest! {
         lines in prop::collection::vec(line(), 0..6),
         at in 0usize..40,
     ) {
-        let base = include_str!("../../../scenes/drop/scene.toml");
-        let mut all: Vec<String> = base.lines().map(str::to_string).collect();
-        let at = at.min(all.len());
-        for (k, l) in lines.into_iter().enumerate() {
-            all.insert(at + k, l);
-        }
-        check(&all.join("\n"));
+        check(&mutated(include_str!("../../../scenes/drop/scene.toml"), lines, at));
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    #[test]
+    fn mutated_fracture_scene_never_panics(
+        lines in prop::collection::vec(line(), 0..6),
+        at in 0usize..70,
+    ) {
+        let base = include_str!("../../../scenes/nooru_mohamed_small/scene.toml")
+            .replace("element_size = 1e-2", "element_size = 2e-2");
+        check(&mutated(&base, lines, at));
     }
 }

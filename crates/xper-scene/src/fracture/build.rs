@@ -280,11 +280,18 @@ impl FractureScene {
                     ..d.place.clone()
                 },
             );
-            let msg = format!(
-                "regions `{}` and `{}` are neighbours ({count} interior edges) but no \
-                 [[interfaces]] entry gives their law",
-                mesh.regions[a].name, mesh.regions[b].name
-            );
+            let (na, nb) = (&mesh.regions[a].name, &mesh.regions[b].name);
+            let msg = if a == b {
+                format!(
+                    "the {count} interfaces inside region `{na}` have no law: add an \
+                     [[interfaces]] entry with between = [\"{na}\", \"{na}\"]"
+                )
+            } else {
+                format!(
+                    "regions `{na}` and `{nb}` are neighbours ({count} interfaces) but have no \
+                     law: add an [[interfaces]] entry with between = [\"{na}\", \"{nb}\"]"
+                )
+            };
             errors.at(&place, msg);
         }
         (rules, notes)
