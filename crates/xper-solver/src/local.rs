@@ -44,58 +44,6 @@ pub fn solve_one_contact(w: &Block2, u_free: [f64; 2], mu: f64) -> [f64; 2] {
     [rn, s * mu * rn]
 }
 
-/// The reciprocals [`solve_one_contact`] divides by, for one block and friction coefficient:
-/// `[1 / det W, 1 / (W_nn - mu W_nt), 1 / (W_nn + mu W_nt)]`, 0 where the divisor is not
-/// positive. Computed once per solve, they take the divisions out of the sweeps.
-#[inline]
-pub fn local_factors(w: &Block2, mu: f64) -> [f64; 3] {
-    let [wnn, wnt, wtn, wtt] = *w;
-    let inv = |d: f64| if d > 0.0 { 1.0 / d } else { 0.0 };
-    [
-        inv(wnn * wtt - wnt * wtn),
-        inv(wnn - mu * wnt),
-        inv(wnn + mu * wnt),
-    ]
-}
-
-/// [`solve_one_contact`] with the divisions replaced by the products by `factors`
-/// ([`local_factors`] of the same block and `mu`): the same cases in the same order of
-/// preference, all evaluated and then selected without branches, so that a sweep does not
-/// stall on mispredicted case switches.
-#[inline(always)]
-pub fn solve_one_contact_factored(
-    w: &Block2,
-    factors: &[f64; 3],
-    u_free: [f64; 2],
-    mu: f64,
-) -> [f64; 2] {
-    let [wnn, wnt, wtn, wtt] = *w;
-    let [ufn, uft] = u_free;
-    let take_off = ufn >= 0.0 || wnn <= 0.0;
-    let stick = [
-        (-ufn * wtt + uft * wnt) * factors[0],
-        (-uft * wnn + ufn * wtn) * factors[0],
-    ];
-    let stick_ok = factors[0] > 0.0 && stick[0] >= 0.0 && stick[1].abs() <= mu * stick[0];
-    let back_n = -ufn * factors[1];
-    let back_ok = factors[1] != 0.0 && back_n >= 0.0 && uft + (wtn - mu * wtt) * back_n >= 0.0;
-    let fwd_n = -ufn * factors[2];
-    let fwd_ok = factors[2] != 0.0 && fwd_n >= 0.0 && uft + (wtn + mu * wtt) * fwd_n <= 0.0;
-    let slide = if back_ok {
-        [back_n, -mu * back_n]
-    } else {
-        [fwd_n, mu * fwd_n]
-    };
-    let r = if stick_ok { stick } else { slide };
-    if take_off {
-        [0.0, 0.0]
-    } else if stick_ok || back_ok || fwd_ok {
-        r
-    } else {
-        solve_one_contact(w, u_free, mu)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -143,31 +91,6 @@ mod tests {
             let (l11, l21, l22) = (a.abs() + 0.1, c, b.abs() + 0.1);
             let w = [l11 * l11, l11 * l21, l11 * l21, l21 * l21 + l22 * l22];
             check_solution(&w, [rnd(), rnd() * 3.0], rnd().abs());
-        }
-    }
-
-    #[test]
-    fn factored_solve_matches_the_plain_solve() {
-        let mut s = 11u64;
-        let mut rnd = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
-        for _ in 0..10_000 {
-            // Non-symmetric couplings too, so that every case (and the fallback) is reached.
-            let w = [rnd().abs() + 0.05, rnd(), rnd(), rnd().abs() + 0.05];
-            let (uf, mu) = ([rnd(), rnd() * 3.0], rnd().abs() * 1.5);
-            let plain = solve_one_contact(&w, uf, mu);
-            let fast = solve_one_contact_factored(&w, &local_factors(&w, mu), uf, mu);
-            for k in 0..2 {
-                let scale = 1e-12 * (1.0 + plain[0].abs() + plain[1].abs());
-                assert!(
-                    (plain[k] - fast[k]).abs() <= scale,
-                    "{w:?} {uf:?} {plain:?} {fast:?}"
-                );
-            }
         }
     }
 }

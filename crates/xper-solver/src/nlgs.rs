@@ -8,7 +8,7 @@
 
 use crate::cohesive::{solve_one_cohesive_contact, CohesiveTerm};
 use crate::error::{natural_map_error, ConvergenceNorms, NormAccumulator};
-use crate::local::{local_factors, solve_one_contact_factored};
+use crate::local::solve_one_contact;
 use crate::operator::{block_mul, ContactOperator};
 
 /// Which measure decides convergence.
@@ -202,9 +202,6 @@ pub fn nlgs_with_cohesion<O: ContactOperator>(
         return Ok(info);
     }
     let omega = params.relaxation;
-    let factors: Vec<[f64; 3]> = (0..n)
-        .map(|a| local_factors(&op.diagonal_block(a), mu[a]))
-        .collect();
     let proximal: Vec<f64> = (0..n)
         .map(|a| proximal_weight(&op.diagonal_block(a)))
         .collect();
@@ -229,16 +226,13 @@ pub fn nlgs_with_cohesion<O: ContactOperator>(
                         true,
                     )
                 } else {
-                    (crate::local::solve_one_contact(&wp, up, mu[a]), false)
+                    (solve_one_contact(&wp, up, mu[a]), false)
                 }
             } else if adhesive(a) {
                 let local = solve_one_cohesive_contact(&w, u_free, mu[a], &cohesion[a]);
                 (local, true)
             } else {
-                (
-                    solve_one_contact_factored(&w, &factors[a], u_free, mu[a]),
-                    false,
-                )
+                (solve_one_contact(&w, u_free, mu[a]), false)
             };
             let r_new = if omega == 1.0 || adhesive {
                 local
