@@ -257,6 +257,8 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
     if opts.resume {
         out.resume(&mut model)?;
     } else {
+        // A checkpoint of an earlier run in the same directory is not this run's.
+        let _ = std::fs::remove_file(opts.out.join("checkpoint.bin"));
         out.write_frame(&model)?;
     }
     let last = opts
@@ -286,11 +288,16 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
                 }
             }
             Err(e) => {
+                let checkpoint = opts.out.join("checkpoint.bin");
+                let kept = if checkpoint.exists() {
+                    format!("the last checkpoint is kept in {}", checkpoint.display())
+                } else {
+                    "no checkpoint was written".to_string()
+                };
                 failure = Some(format!(
-                    "step {} (t = {:.6e} s): {e}; the last checkpoint is kept in {}",
+                    "step {} (t = {:.6e} s): {e}; {kept}",
                     model.step + 1,
                     model.time,
-                    opts.out.join("checkpoint.bin").display()
                 ));
                 break;
             }
