@@ -279,32 +279,42 @@ pub fn write_force_displacement(
     plot_panels(path, title, &panels, 900, 320)
 }
 
-/// `crack_pattern.png`: the mesh outline and region boundaries at the current state,
-/// partially damaged interfaces in orange and broken ones in thick black.
+/// Intensity below which a damaged interface is drawn as strongly damaged.
+pub const STRONG_DAMAGE: f64 = 0.5;
+
+/// `crack_pattern.png`: the mesh outline and region boundaries at the current state;
+/// damaged cohesive interfaces (smallest point intensity below beta0) in light orange,
+/// strongly damaged ones (below [`STRONG_DAMAGE`]) in orange, broken ones in thick black.
 pub fn write_crack_pattern(m: &FractureModel, path: &Path, title: &str) -> std::io::Result<()> {
-    let (mut outline, mut regions, mut damaged, mut broken) =
-        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let mut layers: [Vec<[[f64; 2]; 2]>; 5] = Default::default();
     if let Ok(topology) = m.mesh.neighbours() {
         for edge in &topology.boundary {
             let t = edge.triangle as usize;
             let j = edge.local_edge as usize;
             let p = crate::fracture_frames::node_position(m, t, j);
             let q = crate::fracture_frames::node_position(m, t, (j + 1) % 3);
-            outline.push([p, q]);
+            layers[0].push([p, q]);
         }
     }
     for i in &m.interfaces {
         let seg = [point_position(m, i, 0), point_position(m, i, 1)];
         let [a, b] = i.elements.map(|e| m.elements[e as usize].region);
-        if is_broken(m, i) {
-            broken.push(seg);
+        let beta = i.points[0].intensity.min(i.points[1].intensity);
+        let k = if is_broken(m, i) {
+            4
+        } else if is_damaged(m, i) && beta < STRONG_DAMAGE {
+            3
         } else if is_damaged(m, i) {
-            damaged.push(seg);
+            2
         } else if a != b || matches!(m.laws[i.law as usize], InterfaceLaw::Contact { .. }) {
-            regions.push(seg);
-        }
+            1
+        } else {
+            continue;
+        };
+        layers[k].push(seg);
     }
-    let counts = (broken.len(), damaged.len());
+    let [outline, regions, light, strong, broken] = layers;
+    let (n_light, n_strong, n_broken) = (light.len(), strong.len(), broken.len());
     let layer = |label: String, color, width, segments| SegmentLayer {
         label,
         color,
@@ -320,12 +330,18 @@ pub fn write_crack_pattern(m: &FractureModel, path: &Path, title: &str) -> std::
             regions,
         ),
         layer(
-            format!("damaged (beta < beta0): {}", counts.1),
-            [245, 160, 60],
-            2,
-            damaged,
+            format!("damaged, beta < beta0: {n_light}"),
+            [250, 215, 160],
+            1,
+            light,
         ),
-        layer(format!("broken: {}", counts.0), [20, 20, 20], 3, broken),
+        layer(
+            format!("strongly damaged, beta < {STRONG_DAMAGE}: {n_strong}"),
+            [235, 120, 20],
+            2,
+            strong,
+        ),
+        layer(format!("broken: {n_broken}"), [20, 20, 20], 3, broken),
     ];
     let title = format!("{title}: step {}, t = {:.4e} s", m.step, m.time);
     plot_segments(path, &title, "x (m)", "y (m)", &layers, 1000)

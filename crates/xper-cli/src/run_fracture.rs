@@ -235,6 +235,32 @@ impl Outputs {
     }
 }
 
+/// The divergence guard: an energy balance error that is not finite or exceeds half the
+/// energy in play (every term of the budget in absolute value) means the run has blown up
+/// even though every step solved; a sound run keeps it many orders of magnitude smaller.
+pub fn diverging(e: &FractureEnergy) -> Option<String> {
+    let in_play = [
+        e.kinetic,
+        e.elastic,
+        e.plastic,
+        e.cohesive_stored,
+        e.cohesive_dissipated,
+        e.contact_dissipated,
+        e.external_work,
+        e.initial,
+    ]
+    .iter()
+    .map(|v| v.abs())
+    .sum::<f64>();
+    let error = e.error();
+    (!error.is_finite() || error.abs() > 0.5 * in_play).then(|| {
+        format!(
+            "diverging: the energy balance error {error:.3e} J exceeds half the energy in play \
+             ({in_play:.3e} J); reduce dt"
+        )
+    })
+}
+
 /// Runs a fracture scene (see [`RunOptions`]); `quiet` hides the progress bar.
 pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
     let (scene, mut model) = load_model(&opts.scene)?;
@@ -269,39 +295,44 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
     let started = Instant::now();
     let mut failure = None;
     while model.step < last {
-        match stepper.step(&mut model) {
+        let (step, error) = match stepper.step(&mut model) {
             Ok(report) => {
                 out.series.push(series_row(&model, &report));
                 let step = model.step;
-                if step % scene.output.frame_every == 0 || step == scene.steps {
+                if let Some(e) = diverging(&model.energy) {
+                    // The diverged state is shown, not checkpointed.
                     out.write_frame(&model)?;
-                }
-                if step % scene.output.checkpoint_every == 0 {
-                    out.write_checkpoint(&model)?;
-                }
-                if step % 10 == 0 || step == last {
-                    bar.set_position(step);
-                    bar.set_message(format!(
-                        "t = {:.4e} s, {} broken points, {} sweeps",
-                        model.time, report.broken_points, report.iterations
-                    ));
-                }
-            }
-            Err(e) => {
-                let checkpoint = opts.out.join("checkpoint.bin");
-                let kept = if checkpoint.exists() {
-                    format!("the last checkpoint is kept in {}", checkpoint.display())
+                    (step, e)
                 } else {
-                    "no checkpoint was written".to_string()
-                };
-                failure = Some(format!(
-                    "step {} (t = {:.6e} s): {e}; {kept}",
-                    model.step + 1,
-                    model.time,
-                ));
-                break;
+                    if step % scene.output.frame_every == 0 || step == scene.steps {
+                        out.write_frame(&model)?;
+                    }
+                    if step % scene.output.checkpoint_every == 0 {
+                        out.write_checkpoint(&model)?;
+                    }
+                    if step % 10 == 0 || step == last {
+                        bar.set_position(step);
+                        bar.set_message(format!(
+                            "t = {:.4e} s, {} broken points, {} sweeps",
+                            model.time, report.broken_points, report.iterations
+                        ));
+                    }
+                    continue;
+                }
             }
-        }
+            Err(e) => (model.step + 1, e.to_string()),
+        };
+        let checkpoint = opts.out.join("checkpoint.bin");
+        let kept = if checkpoint.exists() {
+            format!("the last checkpoint is kept in {}", checkpoint.display())
+        } else {
+            "no checkpoint was written".to_string()
+        };
+        failure = Some(format!(
+            "step {step} (t = {:.6e} s): {error}; {kept}",
+            step as f64 * model.spec.dt
+        ));
+        break;
     }
     bar.finish_and_clear();
     if failure.is_none() {
