@@ -502,3 +502,32 @@ fn blow_up_stops_with_exit_1_and_a_failed_summary() {
     assert!(summary.contains("\"status\": \"failed\""), "{summary}");
     assert_png(&out_dir.join("series.png"));
 }
+
+#[test]
+fn divergence_guard_flags_a_broken_energy_budget_only() {
+    use xper_cli::run_fracture::diverging;
+    use xper_fracture::FractureEnergy;
+    let sound = FractureEnergy {
+        kinetic: 1.0,
+        elastic: 2.0,
+        plastic: 0.5,
+        external_work: 3.5 + 1e-9,
+        ..FractureEnergy::default()
+    };
+    assert!(diverging(&sound).is_none());
+    assert!(diverging(&FractureEnergy::default()).is_none());
+    let blown = FractureEnergy {
+        kinetic: 1e6,
+        ..sound
+    };
+    let message = diverging(&blown).expect("diverging");
+    assert!(
+        message.contains("energy balance error") && message.contains("reduce dt"),
+        "{message}"
+    );
+    let nan = FractureEnergy {
+        kinetic: f64::NAN,
+        ..sound
+    };
+    assert!(diverging(&nan).is_some());
+}

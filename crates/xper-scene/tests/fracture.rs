@@ -7,8 +7,8 @@ use xper_bodies::{Drive, TimeFunction};
 use xper_fem::{Hypothesis, Material};
 use xper_fracture::{InterfaceLaw, MassMatrix};
 use xper_scene::{
-    parse_any_scene, parse_scene, AnyScene, FractureScene, MeshSource, SceneError, SceneErrors,
-    Stiffness,
+    load_any_scene, parse_any_scene, parse_scene, AnyScene, FractureScene, MeshSource, SceneError,
+    SceneErrors, Stiffness,
 };
 
 const NOTCHED: &str = r#"[scene]
@@ -484,4 +484,63 @@ fn several_errors_are_all_reported_in_order() {
     let e = parse(&t).unwrap_err();
     assert_eq!(e.0.len(), 3, "{e}");
     assert!(e.0.windows(2).all(|w| w[0].line <= w[1].line));
+}
+
+#[test]
+fn shipped_fracture_scenes_parse_and_the_small_ones_build() {
+    let scenes = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes");
+    for (name, elements) in [
+        ("nooru_mohamed", None),
+        ("bimaterial_tension", None),
+        ("bimaterial_compression", None),
+        ("nooru_mohamed_small", Some(1491)),
+        ("bimaterial_small", Some(1570)),
+    ] {
+        let s = match load_any_scene(&scenes.join(name).join("scene.toml")) {
+            Ok(AnyScene::Fracture(s)) => s,
+            Ok(AnyScene::Rigid(_)) => panic!("{name}: parsed as a rigid scene"),
+            Err(e) => panic!("{name}: {e}"),
+        };
+        assert_eq!(s.name, name);
+        assert_eq!(s.gravity, [0.0, 0.0]);
+        if let Some(count) = elements {
+            let setup = s.build().unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_eq!(setup.mesh.triangles.len(), count, "{name}");
+        }
+    }
+    let tension = std::fs::read_to_string(scenes.join("bimaterial_tension/scene.toml")).unwrap();
+    let compression =
+        std::fs::read_to_string(scenes.join("bimaterial_compression/scene.toml")).unwrap();
+    let velocities = |t: &str| -> Vec<String> {
+        t.lines()
+            .filter(|l| l.starts_with("velocity"))
+            .map(|l| l.split('#').next().unwrap().trim().to_string())
+            .collect()
+    };
+    assert_eq!(
+        velocities(&tension),
+        ["velocity = [-2.0, \"free\"]", "velocity = [2.0, \"free\"]"]
+    );
+    assert_eq!(
+        velocities(&compression),
+        ["velocity = [2.0, \"free\"]", "velocity = [-2.0, \"free\"]"]
+    );
+}
+
+#[test]
+fn format_doc_fracture_example_parses_and_builds() {
+    let doc = include_str!("../FORMAT.md");
+    let start = doc.rfind("```toml\n").expect("example") + "```toml\n".len();
+    let end = start + doc[start..].find("```").expect("end of example");
+    let s = parse(&doc[start..end]).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        (s.name.as_str(), s.steps, s.loads.len()),
+        ("nooru_mohamed", 5000, 2)
+    );
+    let coarse = doc[start..end].replace("element_size = 2e-3", "element_size = 2e-2");
+    let setup = parse(&coarse)
+        .unwrap()
+        .build()
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(setup.spec.loads[1].nodes, setup.mesh.node_sets["bottom"]);
 }
