@@ -11,7 +11,7 @@ use xper_fracture::{FractureEnergy, FractureModel, FractureStepper, PointState};
 use xper_io::{write_atomic, write_json_atomic, write_vtu, PvdCollection, SeriesTable};
 use xper_scene::{FractureScene, MeshSource};
 
-use crate::fracture_frames::{elements_grid, interfaces_grid};
+use crate::fracture_frames::{elements_grid, interfaces_grid, is_broken};
 use crate::fracture_outputs::{
     series_columns, series_row, summary, write_crack_pattern, write_force_displacement,
     write_series_plot,
@@ -30,6 +30,12 @@ fn bad(e: impl std::fmt::Display) -> CliError {
 /// Reads a fracture scene and builds its model; every problem is a bad-input error naming
 /// the scene file (and the place in it).
 pub fn load_model(path: &Path) -> Result<(FractureScene, FractureModel), CliError> {
+    let (scene, model, _) = load(path)?;
+    Ok((scene, model))
+}
+
+/// The scene, its model and the notes of its build (rule-of-thumb stiffnesses).
+fn load(path: &Path) -> Result<(FractureScene, FractureModel, Vec<String>), CliError> {
     let scene = match xper_scene::load_any_scene(path).map_err(bad)? {
         xper_scene::AnyScene::Fracture(s) => s,
         xper_scene::AnyScene::Rigid(_) => {
@@ -46,23 +52,12 @@ pub fn load_model(path: &Path) -> Result<(FractureScene, FractureModel), CliErro
             path.display()
         ))
     })?;
-    Ok((scene, model))
+    Ok((scene, model, setup.notes))
 }
 
 /// `xper check` on a fracture scene: builds the model and prints what it holds.
 pub fn check(path: &Path) -> Result<(), CliError> {
-    let scene = match xper_scene::load_any_scene(path).map_err(bad)? {
-        xper_scene::AnyScene::Fracture(s) => s,
-        xper_scene::AnyScene::Rigid(_) => return Err(bad("not a fracture scene")),
-    };
-    let setup = scene.build().map_err(bad)?;
-    let notes = setup.notes.clone();
-    let model = FractureModel::new(setup.mesh, setup.spec).map_err(|e| {
-        CliError::BadInput(format!(
-            "{}: cannot build the fracture model: {e}",
-            path.display()
-        ))
-    })?;
+    let (scene, model, notes) = load(path)?;
     let mesh = &model.mesh;
     println!(
         "{}: fracture scene `{}` is valid: {} elements, {} nodes, {} interfaces ({} broken at \
@@ -72,7 +67,9 @@ pub fn check(path: &Path) -> Result<(), CliError> {
         model.elements.len(),
         mesh.nodes.len(),
         model.interfaces.len(),
-        model.broken_points() / 2,
+        (model.interfaces.iter())
+            .filter(|i| is_broken(&model, i))
+            .count(),
         scene.steps,
         scene.dt
     );
