@@ -251,6 +251,35 @@ fn snap(nodes: &mut [[f64; 2]], lines: &[Line], h: f64) {
     }
 }
 
+/// The mesh of a generator: `raw` with its regions, and one edge set per name in `sets`, made
+/// of the mesh edges lying on the `lines` of that set (errors attributed to `origin`).
+pub(crate) fn finish_mesh(
+    origin: &str,
+    raw: RawMesh,
+    triangle_region: Vec<u32>,
+    regions: Vec<crate::mesh::Region>,
+    lines: &[Line],
+    h: f64,
+    sets: &[&str],
+) -> Result<crate::mesh::Mesh, MeshError> {
+    let edges: Vec<Vec<[u32; 2]>> = sets
+        .iter()
+        .map(|name| {
+            (lines.iter().filter(|l| l.set == *name))
+                .flat_map(|l| edges_on(&raw, l, h))
+                .collect()
+        })
+        .collect();
+    let mut mesh = crate::mesh::Mesh::new(raw.nodes, raw.triangles, triangle_region, regions)
+        .map_err(|e| e.from_origin(origin))?;
+    for (name, edges) in sets.iter().zip(edges) {
+        mesh = mesh
+            .with_edge_set(name, &edges)
+            .map_err(|e| e.from_origin(origin))?;
+    }
+    Ok(mesh)
+}
+
 /// The edges of `triangles` whose two nodes lie within `1e-9 h` of `line`, nodes ascending,
 /// sorted.
 pub(crate) fn edges_on(raw: &RawMesh, line: &Line, h: f64) -> Vec<[u32; 2]> {

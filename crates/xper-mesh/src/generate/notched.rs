@@ -4,7 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{check_count, edges_on, positive, triangulate, Line, Pslg};
+use super::{check_count, finish_mesh, positive, triangulate, Line, Pslg};
 use crate::error::{ErrorKind, MeshError};
 use crate::mesh::{Mesh, Region};
 
@@ -131,8 +131,12 @@ pub fn double_edge_notched(spec: &NotchedSpec) -> Result<Mesh, MeshError> {
     }
     let in_notch = |p: [f64; 2]| p[1] > lo && p[1] < hi && (p[0] < xl || p[0] > xr);
     let raw = triangulate(ORIGIN, pslg, h, true, |p| !in_notch(p), &lines)?;
-    let mut sets: Vec<(&str, Vec<[u32; 2]>)> = Vec::new();
-    for name in [
+    let n = raw.triangles.len();
+    let regions = vec![Region {
+        name: "concrete".into(),
+        tag: 1,
+    }];
+    let sets = [
         "bottom",
         "top",
         "left_lower",
@@ -141,23 +145,6 @@ pub fn double_edge_notched(spec: &NotchedSpec) -> Result<Mesh, MeshError> {
         "right_upper",
         "notch_left",
         "notch_right",
-    ] {
-        let edges = (lines.iter().filter(|l| l.set == name))
-            .flat_map(|l| edges_on(&raw, l, h))
-            .collect();
-        sets.push((name, edges));
-    }
-    let n = raw.triangles.len();
-    let regions = vec![Region {
-        name: "concrete".into(),
-        tag: 1,
-    }];
-    let mut mesh = Mesh::new(raw.nodes, raw.triangles, vec![0; n], regions)
-        .map_err(|e| e.from_origin(ORIGIN))?;
-    for (name, edges) in sets {
-        mesh = mesh
-            .with_edge_set(name, &edges)
-            .map_err(|e| e.from_origin(ORIGIN))?;
-    }
-    Ok(mesh)
+    ];
+    finish_mesh(ORIGIN, raw, vec![0; n], regions, &lines, h, &sets)
 }

@@ -4,7 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{check_count, edges_on, positive, triangulate, Line, Pslg};
+use super::{check_count, finish_mesh, positive, triangulate, Line, Pslg};
 use crate::error::{ErrorKind, MeshError};
 use crate::mesh::{Mesh, Region};
 
@@ -200,28 +200,15 @@ pub fn rectangle_with_inclusions(spec: &RectangleSpec) -> Result<Mesh, MeshError
             tag: 2,
         },
     ];
-    let mut sets: Vec<(&str, Vec<[u32; 2]>)> = Vec::new();
-    for name in [
+    let sets = [
         "left",
         "right",
         "bottom",
         "top",
         "inclusion_boundary",
         "precrack",
-    ] {
-        let edges = (lines.iter().filter(|l| l.set == name))
-            .flat_map(|l| edges_on(&raw, l, h))
-            .collect();
-        sets.push((name, edges));
-    }
-    let mut mesh = Mesh::new(raw.nodes, raw.triangles, triangle_region, regions)
-        .map_err(|e| e.from_origin(ORIGIN))?;
-    for (name, edges) in sets {
-        mesh = mesh
-            .with_edge_set(name, &edges)
-            .map_err(|e| e.from_origin(ORIGIN))?;
-    }
-    Ok(mesh)
+    ];
+    finish_mesh(ORIGIN, raw, triangle_region, regions, &lines, h, &sets)
 }
 
 #[cfg(test)]
