@@ -254,11 +254,7 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
             .write_csv(&opts.out.join("series.csv"))
             .map_err(io_err)?;
     }
-    let status = match (&failure, world.step == scene.steps) {
-        (Some(_), _) => "failed",
-        (None, true) => "completed",
-        (None, false) => "stopped",
-    };
+    let status = run_status(failure.is_some(), world.step, scene.steps);
     write_summary(
         &out,
         &scene,
@@ -436,4 +432,13 @@ pub fn write_plot(series: &SeriesTable, path: &Path, title: &str) -> Result<(), 
         ),
     ];
     plot_panels(path, title, &panels, 1000, 300).map_err(io_err)
+}
+
+/// The status of a run in its summary: `failed`, `completed` (all its steps) or `stopped`.
+pub(crate) fn run_status(failed: bool, step: u64, steps: u64) -> &'static str {
+    match (failed, step == steps) {
+        (true, _) => "failed",
+        (false, true) => "completed",
+        (false, false) => "stopped",
+    }
 }

@@ -7,7 +7,9 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 use xper_fem::MaterialState;
-use xper_fracture::{FractureEnergy, FractureModel, FractureStepper, PointState};
+use xper_fracture::{
+    FractureEnergy, FractureModel, FractureStepError, FractureStepper, PointState,
+};
 use xper_io::{write_atomic, write_json_atomic, write_vtu, PvdCollection, SeriesTable};
 use xper_scene::{FractureScene, MeshSource};
 
@@ -232,32 +234,6 @@ impl Outputs {
     }
 }
 
-/// The divergence guard: an energy balance error that is not finite or exceeds half the
-/// energy in play (every term of the budget in absolute value) means the run has blown up
-/// even though every step solved; a sound run keeps it many orders of magnitude smaller.
-pub fn diverging(e: &FractureEnergy) -> Option<String> {
-    let in_play = [
-        e.kinetic,
-        e.elastic,
-        e.plastic,
-        e.cohesive_stored,
-        e.cohesive_dissipated,
-        e.contact_dissipated,
-        e.external_work,
-        e.initial,
-    ]
-    .iter()
-    .map(|v| v.abs())
-    .sum::<f64>();
-    let error = e.error();
-    (!error.is_finite() || error.abs() > 0.5 * in_play).then(|| {
-        format!(
-            "diverging: the energy balance error {error:.3e} J exceeds half the energy in play \
-             ({in_play:.3e} J); reduce dt"
-        )
-    })
-}
-
 /// Runs a fracture scene (see [`RunOptions`]); `quiet` hides the progress bar.
 pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
     let (scene, mut model) = load_model(&opts.scene)?;
@@ -296,26 +272,25 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
             Ok(report) => {
                 out.series.push(series_row(&model, &report));
                 let step = model.step;
-                if let Some(e) = diverging(&model.energy) {
-                    // The diverged state is shown, not checkpointed.
+                if step % scene.output.frame_every == 0 || step == scene.steps {
                     out.write_frame(&model)?;
-                    (step, e)
-                } else {
-                    if step % scene.output.frame_every == 0 || step == scene.steps {
-                        out.write_frame(&model)?;
-                    }
-                    if step % scene.output.checkpoint_every == 0 {
-                        out.write_checkpoint(&model)?;
-                    }
-                    if step % 10 == 0 || step == last {
-                        bar.set_position(step);
-                        bar.set_message(format!(
-                            "t = {:.4e} s, {} broken points, {} sweeps",
-                            model.time, report.broken_points, report.iterations
-                        ));
-                    }
-                    continue;
                 }
+                if step % scene.output.checkpoint_every == 0 {
+                    out.write_checkpoint(&model)?;
+                }
+                if step % 10 == 0 || step == last {
+                    bar.set_position(step);
+                    bar.set_message(format!(
+                        "t = {:.4e} s, {} broken points, {} sweeps",
+                        model.time, report.broken_points, report.iterations
+                    ));
+                }
+                continue;
+            }
+            Err(e @ FractureStepError::Diverging(_)) => {
+                // The diverged state is shown, not checkpointed.
+                out.write_frame(&model)?;
+                (model.step, e.to_string())
             }
             Err(e) => (model.step + 1, e.to_string()),
         };
@@ -339,11 +314,7 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
             .write_csv(&opts.out.join("series.csv"))
             .map_err(io_err)?;
     }
-    let status = match (&failure, model.step == scene.steps) {
-        (Some(_), _) => "failed",
-        (None, true) => "completed",
-        (None, false) => "stopped",
-    };
+    let status = crate::run::run_status(failure.is_some(), model.step, scene.steps);
     let message = failure.clone().unwrap_or_default();
     let s = summary(
         &model,

@@ -505,8 +505,8 @@ fn blow_up_stops_with_exit_1_and_a_failed_summary() {
 
 #[test]
 fn divergence_guard_flags_a_broken_energy_budget_only() {
-    use xper_cli::run_fracture::diverging;
     use xper_fracture::FractureEnergy;
+    let diverging = |e: &FractureEnergy| e.divergence();
     let sound = FractureEnergy {
         kinetic: 1.0,
         elastic: 2.0,

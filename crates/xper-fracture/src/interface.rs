@@ -5,18 +5,16 @@
 //! `[u] = (u_b - u_a) . (n, t)`.
 
 use xper_laws::cohesive::CohesiveZone;
-use xper_mesh::Mesh;
+use xper_mesh::{Mesh, Topology};
 
 use crate::model::{region_names, BuildError, FractureSpec, Interface, InterfaceLaw, PointState};
 
 /// Builds the interfaces of `mesh` and the distinct laws they use.
 pub(crate) fn build_interfaces(
     mesh: &Mesh,
+    topology: &Topology,
     spec: &FractureSpec,
 ) -> Result<(Vec<Interface>, Vec<InterfaceLaw>), BuildError> {
-    let topology = mesh
-        .neighbours()
-        .map_err(|e| BuildError(format!("mesh adjacency: {e}")))?;
     let regions = mesh.regions.len() as u32;
     let mut laws: Vec<InterfaceLaw> = Vec::new();
     let mut table = vec![None; (regions * regions) as usize];

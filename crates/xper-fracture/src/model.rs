@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 use xper_bodies::Drive;
 use xper_fem::{Hypothesis, Material, MaterialState, Triangle3};
 use xper_laws::cohesive::CohesiveZone;
-use xper_mesh::Mesh;
+use xper_mesh::{Mesh, Topology};
 use xper_solver::NlgsParams;
 
 use crate::dense::{add_scaled, Mat6};
@@ -189,6 +189,36 @@ pub struct FractureEnergy {
 }
 
 impl FractureEnergy {
+    /// The energy in play: every term of the budget in absolute value (J).
+    pub fn in_play(&self) -> f64 {
+        [
+            self.kinetic,
+            self.elastic,
+            self.plastic,
+            self.cohesive_stored,
+            self.cohesive_dissipated,
+            self.contact_dissipated,
+            self.external_work,
+            self.initial,
+        ]
+        .iter()
+        .map(|v| v.abs())
+        .sum()
+    }
+
+    /// Why the budget shows a blow-up, if it does: a balance error that is not finite or
+    /// exceeds half the energy in play means the run diverged even though every step solved
+    /// (a sound run keeps it many orders of magnitude smaller).
+    pub fn divergence(&self) -> Option<String> {
+        let (error, in_play) = (self.error(), self.in_play());
+        (!error.is_finite() || error.abs() > 0.5 * in_play).then(|| {
+            format!(
+                "diverging: the energy balance error {error:.3e} J exceeds half the energy in \
+                 play ({in_play:.3e} J); reduce dt"
+            )
+        })
+    }
+
     /// `kinetic + elastic + stored + dissipated - initial - external work`: zero for an exact
     /// budget.
     pub fn error(&self) -> f64 {
@@ -324,8 +354,11 @@ impl FractureModel {
                 load_share: [0.0; 3],
             });
         }
-        load_shares(&mesh, &spec, &node_load, &mut elements)?;
-        let (interfaces, laws) = crate::interface::build_interfaces(&mesh, &spec)?;
+        let topology = mesh
+            .neighbours()
+            .map_err(|e| BuildError(format!("mesh adjacency: {e}")))?;
+        load_shares(&mesh, &topology, &spec, &node_load, &mut elements);
+        let (interfaces, laws) = crate::interface::build_interfaces(&mesh, &topology, &spec)?;
         Ok(FractureModel {
             mesh,
             spec,
@@ -384,13 +417,11 @@ pub(crate) fn region_names(mesh: &Mesh) -> String {
 /// Fills `ElementBody::load_share` (see there).
 fn load_shares(
     mesh: &Mesh,
+    topology: &Topology,
     spec: &FractureSpec,
     node_load: &[[u16; 2]],
     elements: &mut [ElementBody],
-) -> Result<(), BuildError> {
-    let topology = mesh
-        .neighbours()
-        .map_err(|e| BuildError(format!("mesh adjacency: {e}")))?;
+) {
     let loaded = |n: u32| {
         node_load[n as usize]
             .iter()
@@ -436,7 +467,6 @@ fn load_shares(
             }
         }
     }
-    Ok(())
 }
 
 /// `mesh` with its triangles in Morton order of their centroids (the nodes keep their

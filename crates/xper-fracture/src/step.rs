@@ -73,6 +73,9 @@ pub enum FractureStepError {
         /// The element.
         element: usize,
     },
+    /// The energy budget blew up ([`crate::FractureEnergy::divergence`]); the model holds the
+    /// diverged state.
+    Diverging(String),
 }
 
 impl std::fmt::Display for FractureStepError {
@@ -85,6 +88,7 @@ impl std::fmt::Display for FractureStepError {
             FractureStepError::NonFinite { element } => {
                 write!(f, "element {element}: non-finite velocity (blow-up)")
             }
+            FractureStepError::Diverging(why) => f.write_str(why),
         }
     }
 }
@@ -138,6 +142,9 @@ impl FractureStepper {
         crate::update::interfaces(self, m);
         m.step += 1;
         m.time = t_end;
+        if let Some(why) = m.energy.divergence() {
+            return Err(FractureStepError::Diverging(why));
+        }
         Ok(FractureStepReport {
             step: m.step,
             time: m.time,
