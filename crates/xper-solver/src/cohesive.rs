@@ -44,28 +44,68 @@ pub fn solve_one_cohesive_contact(
     mu: f64,
     term: &CohesiveTerm,
 ) -> [f64; 2] {
-    let [k0, k1] = term.stiffness;
-    let [w0, w1, w2, w3] = *w;
-    // A = I + W K and its inverse.
-    let a = [1.0 + w0 * k0, w1 * k1, w2 * k0, 1.0 + w3 * k1];
-    let det = a[0] * a[3] - a[1] * a[2];
-    let inv = [a[3] / det, -a[1] / det, -a[2] / det, a[0] / det];
-    let mul = |m: &Block2, x: [f64; 2]| [m[0] * x[0] + m[1] * x[1], m[2] * x[0] + m[3] * x[1]];
-    let w_eff = [
-        inv[0] * w0 + inv[1] * w2,
-        inv[0] * w1 + inv[1] * w3,
-        inv[2] * w0 + inv[3] * w2,
-        inv[2] * w1 + inv[3] * w3,
-    ];
-    let wo = mul(w, term.offset);
-    let q = mul(&inv, [u_free[0] - wo[0], u_free[1] - wo[1]]);
-    let rc = solve_one_contact(&w_eff, q, mu);
-    let wr = mul(&w_eff, rc);
-    let u = [q[0] + wr[0], q[1] + wr[1]];
-    [
-        rc[0] - term.offset[0] - k0 * u[0],
-        rc[1] - term.offset[1] - k1 * u[1],
-    ]
+    PreparedCohesiveContact::new(w, term).solve(u_free, mu)
+}
+
+/// The parts of a cohesive contact's local solve that depend only on `W_aa` and the term,
+/// computed once per solve instead of once per sweep: `(I + W K)^-1`, `W'` and
+/// `(I + W K)^-1 W o`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PreparedCohesiveContact {
+    inverse: Block2,
+    w_eff: Block2,
+    offset_velocity: [f64; 2],
+    term: CohesiveTerm,
+}
+
+#[inline(always)]
+fn mul(m: &Block2, x: [f64; 2]) -> [f64; 2] {
+    [m[0] * x[0] + m[1] * x[1], m[2] * x[0] + m[3] * x[1]]
+}
+
+impl PreparedCohesiveContact {
+    /// Prepares the local solve of a contact with block `w` and adhesive part `term`.
+    pub fn new(w: &Block2, term: &CohesiveTerm) -> Self {
+        let [k0, k1] = term.stiffness;
+        let [w0, w1, w2, w3] = *w;
+        // A = I + W K and its inverse.
+        let a = [1.0 + w0 * k0, w1 * k1, w2 * k0, 1.0 + w3 * k1];
+        let det = a[0] * a[3] - a[1] * a[2];
+        let inverse = [a[3] / det, -a[1] / det, -a[2] / det, a[0] / det];
+        let w_eff = [
+            inverse[0] * w0 + inverse[1] * w2,
+            inverse[0] * w1 + inverse[1] * w3,
+            inverse[2] * w0 + inverse[3] * w2,
+            inverse[2] * w1 + inverse[3] * w3,
+        ];
+        let offset_velocity = mul(&inverse, mul(w, term.offset));
+        PreparedCohesiveContact {
+            inverse,
+            w_eff,
+            offset_velocity,
+            term: *term,
+        }
+    }
+
+    /// The total impulse `R = R_c - (o + K U)` for the free local velocity `u_free`.
+    #[inline(always)]
+    pub fn solve(&self, u_free: [f64; 2], mu: f64) -> [f64; 2] {
+        let qi = mul(&self.inverse, u_free);
+        let q = [
+            qi[0] - self.offset_velocity[0],
+            qi[1] - self.offset_velocity[1],
+        ];
+        let [k0, k1] = self.term.stiffness;
+        let [o0, o1] = self.term.offset;
+        if q[0] >= 0.0 {
+            // Opening: no unilateral impulse, U = q.
+            return [-o0 - k0 * q[0], -o1 - k1 * q[1]];
+        }
+        let rc = solve_one_contact(&self.w_eff, q, mu);
+        let wr = mul(&self.w_eff, rc);
+        let u = [q[0] + wr[0], q[1] + wr[1]];
+        [rc[0] - o0 - k0 * u[0], rc[1] - o1 - k1 * u[1]]
+    }
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@
 //! the sweep see it (M. Jean, CMAME 177, 1999; LMGC90's `nlgs`). Convergence is checked
 //! every `check_every` sweeps by LMGC90's norms or by the natural-map error.
 
-use crate::cohesive::{solve_one_cohesive_contact, CohesiveTerm};
+use crate::cohesive::{CohesiveTerm, PreparedCohesiveContact};
 use crate::error::{natural_map_error, ConvergenceNorms, NormAccumulator};
 use crate::local::solve_one_contact;
 use crate::operator::{block_mul, ContactOperator};
@@ -205,6 +205,16 @@ pub fn nlgs_with_cohesion<O: ContactOperator>(
     let proximal: Vec<f64> = (0..n)
         .map(|a| proximal_weight(&op.diagonal_block(a)))
         .collect();
+    let is_adhesive: Vec<bool> = (0..n).map(adhesive).collect();
+    let prepared: Vec<PreparedCohesiveContact> = (0..n)
+        .map(|a| {
+            if !is_adhesive[a] {
+                return PreparedCohesiveContact::default();
+            }
+            let (w, eps) = (op.diagonal_block(a), proximal[a]);
+            PreparedCohesiveContact::new(&[w[0] + eps, w[1], w[2], w[3] + eps], &cohesion[a])
+        })
+        .collect();
     for sweep in 1..=params.max_iterations {
         let check = sweep % params.check_every == 0 || sweep == params.max_iterations;
         let mut acc = NormAccumulator::default();
@@ -214,25 +224,20 @@ pub fn nlgs_with_cohesion<O: ContactOperator>(
             u[0] += normal_shift[a];
             let r = impulses[a];
             let wr = block_mul(&w, r);
-            let u_free = [u[0] - wr[0], u[1] - wr[1]];
-            let (local, adhesive) = if proximal[a] > 0.0 {
+            let mut u_free = [u[0] - wr[0], u[1] - wr[1]];
+            let eps = proximal[a];
+            let mut w_local = w;
+            if eps > 0.0 {
                 // A singular block: proximal step, exact at convergence (see proximal_weight).
-                let eps = proximal[a];
-                let wp = [w[0] + eps, w[1], w[2], w[3] + eps];
-                let up = [u_free[0] - eps * r[0], u_free[1] - eps * r[1]];
-                if adhesive(a) {
-                    (
-                        solve_one_cohesive_contact(&wp, up, mu[a], &cohesion[a]),
-                        true,
-                    )
-                } else {
-                    (solve_one_contact(&wp, up, mu[a]), false)
-                }
-            } else if adhesive(a) {
-                let local = solve_one_cohesive_contact(&w, u_free, mu[a], &cohesion[a]);
-                (local, true)
+                w_local[0] += eps;
+                w_local[3] += eps;
+                u_free = [u_free[0] - eps * r[0], u_free[1] - eps * r[1]];
+            }
+            let adhesive = is_adhesive[a];
+            let local = if adhesive {
+                prepared[a].solve(u_free, mu[a])
             } else {
-                (solve_one_contact(&w, u_free, mu[a]), false)
+                solve_one_contact(&w_local, u_free, mu[a])
             };
             let r_new = if omega == 1.0 || adhesive {
                 local
