@@ -2,6 +2,7 @@
 //! scenes and fracture scenes) with their outputs, benchmarks and validation cases.
 
 pub mod bench;
+pub mod bench_fracture;
 pub mod bench_solvers;
 pub mod fracture_frames;
 pub mod fracture_outputs;
