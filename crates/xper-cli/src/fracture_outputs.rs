@@ -118,6 +118,8 @@ pub struct FractureSummary {
     pub energy: FractureEnergy,
     /// `energy.error()` at the end (J).
     pub energy_error: f64,
+    /// Measures of the crack pattern at the end.
+    pub crack: crate::crack::CrackMetrics,
     /// Peak resident memory of the process (bytes), where the platform reports it.
     pub peak_memory_bytes: Option<u64>,
     /// Version of xper.
@@ -163,6 +165,7 @@ pub fn summary(
         final_broken_interfaces: m.interfaces.iter().filter(|i| is_broken(m, i)).count(),
         energy: m.energy,
         energy_error: m.energy.error(),
+        crack: crate::crack::crack_metrics(m),
         peak_memory_bytes: xper_io::peak_memory_bytes(),
         xper_version: env!("CARGO_PKG_VERSION"),
     }

@@ -4,6 +4,7 @@
 pub mod bench;
 pub mod bench_fracture;
 pub mod bench_solvers;
+pub mod crack;
 pub mod fracture_frames;
 pub mod fracture_outputs;
 pub mod frames;
@@ -11,6 +12,7 @@ pub mod run;
 pub mod run_fracture;
 pub mod solve;
 pub mod validation;
+pub mod validation_paper;
 pub mod world_from_scene;
 
 /// A failure with the exit code it maps to.

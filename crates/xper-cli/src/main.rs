@@ -56,6 +56,10 @@ enum Command {
         /// The report to write.
         #[arg(long, default_value = "VALIDATION.md")]
         report: PathBuf,
+        /// Also run (or continue, from their checkpoints in validation-runs/) the paper's
+        /// fracture applications at the paper's resolution: hours of computation.
+        #[arg(long)]
+        full: bool,
     },
 }
 
@@ -87,7 +91,7 @@ fn main() -> ExitCode {
         }
         Command::Bench(args) => bench::bench(&args),
         Command::Solve(args) => solve::run_solve(&args),
-        Command::Validate { report } => validation::write_report(&report),
+        Command::Validate { report, full } => validation::write_report(&report, full),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -15,7 +15,7 @@ use xper_scene::{FractureScene, MeshSource};
 
 use crate::fracture_frames::{elements_grid, interfaces_grid, is_broken};
 use crate::fracture_outputs::{
-    series_columns, series_row, summary, write_crack_pattern, write_force_displacement,
+    series_columns, FractureSummary, series_row, summary, write_crack_pattern, write_force_displacement,
     write_series_plot,
 };
 use crate::run::RunOptions;
@@ -236,6 +236,11 @@ impl Outputs {
 
 /// Runs a fracture scene (see [`RunOptions`]); `quiet` hides the progress bar.
 pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
+    run_with_summary(opts, quiet).map(|_| ())
+}
+
+/// [`run`], returning the run's summary (as written to `summary.json`).
+pub fn run_with_summary(opts: &RunOptions, quiet: bool) -> Result<FractureSummary, CliError> {
     let (scene, mut model) = load_model(&opts.scene)?;
     let frames = opts.out.join("frames");
     std::fs::create_dir_all(&frames).map_err(|e| {
@@ -341,6 +346,6 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
     }
     match failure {
         Some(message) => Err(CliError::Runtime(message)),
-        None => Ok(()),
+        None => Ok(s),
     }
 }
