@@ -18,6 +18,7 @@ mod model;
 mod operator;
 mod step;
 mod update;
+pub mod validation;
 
 pub use dense::{masked_spd_inverse, Mat6};
 pub use model::{
