@@ -63,7 +63,25 @@ enum Command {
     },
 }
 
+/// Restores the default action of SIGPIPE (end the process quietly), as C programs have, so
+/// that `xper check scene | head -1` does not end in a panic when `head` closes the pipe
+/// (Rust's runtime ignores SIGPIPE, which turns the closed pipe into a failed `println!`).
+#[cfg(unix)]
+fn default_sigpipe() {
+    extern "C" {
+        fn signal(signum: i32, handler: usize) -> usize;
+    }
+    const SIGPIPE: i32 = 13;
+    const SIG_DFL: usize = 0;
+    // SAFETY: setting a signal's disposition to its default has no precondition.
+    unsafe {
+        signal(SIGPIPE, SIG_DFL);
+    }
+}
+
 fn main() -> ExitCode {
+    #[cfg(unix)]
+    default_sigpipe();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Check { scene } if is_fracture(&scene) => run_fracture::check(&scene),

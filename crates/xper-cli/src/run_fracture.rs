@@ -15,8 +15,8 @@ use xper_scene::{FractureScene, MeshSource};
 
 use crate::fracture_frames::{elements_grid, interfaces_grid, is_broken};
 use crate::fracture_outputs::{
-    series_columns, FractureSummary, series_row, summary, write_crack_pattern, write_force_displacement,
-    write_series_plot,
+    series_columns, series_row, summary, write_crack_pattern, write_force_displacement,
+    write_series_plot, FractureSummary,
 };
 use crate::run::RunOptions;
 use crate::CliError;

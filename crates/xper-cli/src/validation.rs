@@ -372,7 +372,8 @@ pub fn write_report(path: &std::path::Path, full: bool) -> Result<(), CliError> 
          broad phase finds exactly the pairs of a brute-force search (`crates/xper-geometry/tests/`); the\n\
          exact 2D local solve satisfies Signorini-Coulomb on 10,000 random blocks (`xper-solver`).\n",
     );
-    let paper_failures = crate::validation_paper::paper_section(&mut md, full)?;
+    let fracture_failures = fracture_section(&mut md)?;
+    let paper_failures = crate::validation_paper::paper_section(&mut md, full)? + fracture_failures;
     let suite_failures = suite_section(&mut md)? + paper_failures;
     xper_io::write_atomic(path, md.as_bytes()).map_err(|e| CliError::Runtime(e.to_string()))?;
     match cases.iter().filter(|c| !c.passed()).count() + suite_failures {
@@ -382,6 +383,33 @@ pub fn write_report(path: &std::path::Path, full: bool) -> Result<(), CliError> 
             path.display()
         ))),
     }
+}
+
+/// The fracture engine's cases with exact answers (`xper_fracture::validation`, which the
+/// crate's tests assert too): appends their table to `md`, returns the number that failed.
+fn fracture_section(md: &mut String) -> Result<usize, CliError> {
+    let cases = xper_fracture::validation::all_cases().map_err(CliError::Runtime)?;
+    md.push_str(
+        "\n## Fracture: deformable elements and cohesive zones\n\n\
+         Exploded meshes (one body per triangle, a frictional cohesive zone on every interior \
+         edge, BRIEF.md section 3), theta-method, NLGS; the same cases are asserted by \
+         `cargo test -p xper-fracture` (`crates/xper-fracture/src/validation.rs`).\n\n\
+         | case | reference | measured | error | tolerance | result |\n|---|---|---|---|---|---|\n",
+    );
+    let mut failures = 0;
+    for c in &cases {
+        let verdict = if c.passed() { "pass" } else { "FAIL" };
+        failures += usize::from(!c.passed());
+        println!(
+            "{verdict}: {} ({:.2e} <= {:.0e})",
+            c.name, c.error, c.tolerance
+        );
+        md.push_str(&format!(
+            "| {} | {} | {} | {:.2e} | {:.0e} | {} |\n",
+            c.name, c.reference, c.measured, c.error, c.tolerance, verdict
+        ));
+    }
+    Ok(failures)
 }
 
 /// The external problem suite (`../shared/fclib`, next to the repository): appends its table
