@@ -170,7 +170,7 @@ pub fn paper_section(md: &mut String, full: bool) -> Result<usize, CliError> {
             }
         };
         md.push_str(&format!(
-            "| {name}: run | the scene's {} s | {} | - |\n",
+            "| {name}: run | the scene's {:.3e} s | {} | - |\n",
             summary.dt * scene_steps(name)? as f64,
             progress(&summary)
         ));
