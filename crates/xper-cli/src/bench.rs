@@ -63,7 +63,8 @@ pub struct BenchResult {
     wall_time_s: f64,
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
+/// Median of a sample (the upper one for an even count); NaN when empty.
+pub(crate) fn median(mut v: Vec<f64>) -> f64 {
     if v.is_empty() {
         return f64::NAN;
     }

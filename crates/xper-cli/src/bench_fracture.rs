@@ -9,6 +9,8 @@ use serde::{Deserialize, Serialize};
 use xper_fracture::{FractureModel, FractureStepper, InterfaceLaw};
 use xper_scene::MeshSource;
 
+use crate::bench::median;
+use crate::crack::{mesh_centre, midpoint};
 use crate::CliError;
 
 /// Prefix of the JSON files of fracture results in the results directory.
@@ -67,35 +69,11 @@ pub struct FractureBenchResult {
     pub energy_error: f64,
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    if v.is_empty() {
-        return f64::NAN;
-    }
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
-}
-
-/// Reference x-midpoint of each interface and the vertical mid-line of the mesh.
+/// Side of each interface: 0 left of the vertical mid-line of the mesh, 1 right of it.
 fn interface_sides(m: &FractureModel) -> Vec<usize> {
-    let (lo, hi) = m
-        .mesh
-        .nodes
-        .iter()
-        .fold((f64::MAX, f64::MIN), |(lo, hi), p| {
-            (lo.min(p[0]), hi.max(p[0]))
-        });
-    let centre = 0.5 * (lo + hi);
-    m.interfaces
-        .iter()
-        .map(|i| {
-            let e = &m.elements[i.elements[0] as usize];
-            let x: f64 = i.local_nodes[0]
-                .iter()
-                .map(|&j| m.mesh.nodes[e.mesh_nodes[j as usize] as usize][0])
-                .sum::<f64>()
-                / 2.0;
-            usize::from(x > centre)
-        })
+    let centre = mesh_centre(m);
+    (m.interfaces.iter())
+        .map(|i| usize::from(midpoint(m, i)[0] > centre[0]))
         .collect()
 }
 

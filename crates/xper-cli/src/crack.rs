@@ -36,12 +36,26 @@ pub struct CrackMetrics {
 }
 
 /// Midpoint of an interface in the reference mesh.
-fn midpoint(m: &FractureModel, i: &xper_fracture::Interface) -> [f64; 2] {
+pub(crate) fn midpoint(m: &FractureModel, i: &xper_fracture::Interface) -> [f64; 2] {
     let e = &m.elements[i.elements[0] as usize];
     let p: Vec<[f64; 2]> = (i.local_nodes[0].iter())
         .map(|&j| m.mesh.nodes[e.mesh_nodes[j as usize] as usize])
         .collect();
     [0.5 * (p[0][0] + p[1][0]), 0.5 * (p[0][1] + p[1][1])]
+}
+
+/// Centre of the bounding box of the reference mesh.
+pub(crate) fn mesh_centre(m: &FractureModel) -> [f64; 2] {
+    let (lo, hi) = m.mesh.nodes.iter().fold(
+        ([f64::MAX, f64::MAX], [f64::MIN, f64::MIN]),
+        |(lo, hi), p| {
+            (
+                [lo[0].min(p[0]), lo[1].min(p[1])],
+                [hi[0].max(p[0]), hi[1].max(p[1])],
+            )
+        },
+    );
+    [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])]
 }
 
 /// Mesh-node pairs of the edge sets that start broken.
@@ -91,16 +105,7 @@ impl PointGrid {
 /// The crack measures of `m` in its current state.
 pub fn crack_metrics(m: &FractureModel) -> CrackMetrics {
     let precrack = precrack_edges(m);
-    let (lo, hi) = m.mesh.nodes.iter().fold(
-        ([f64::MAX, f64::MAX], [f64::MIN, f64::MIN]),
-        |(lo, hi), p| {
-            (
-                [lo[0].min(p[0]), lo[1].min(p[1])],
-                [hi[0].max(p[0]), hi[1].max(p[1])],
-            )
-        },
-    );
-    let centre = [0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1])];
+    let centre = mesh_centre(m);
     let mut lengths: Vec<f64> = m.interfaces.iter().map(|i| i.length).collect();
     lengths.sort_by(f64::total_cmp);
     let edge = lengths.get(lengths.len() / 2).copied().unwrap_or(0.0);

@@ -347,21 +347,13 @@ pub fn write_report(path: &std::path::Path, full: bool) -> Result<(), CliError> 
          | case | reference | measured | error | tolerance | result |\n|---|---|---|---|---|---|\n",
     );
     for c in &cases {
-        md.push_str(&format!(
-            "| {} | {} | {} | {:.2e} | {:.0e} | {} |\n",
+        push_case_row(
+            &mut md,
             c.name,
-            c.reference,
-            c.measured,
+            &c.reference,
+            &c.measured,
             c.error,
             c.tolerance,
-            if c.passed() { "pass" } else { "FAIL" }
-        ));
-        println!(
-            "{}: {} ({:.2e} <= {:.0e})",
-            if c.passed() { "pass" } else { "FAIL" },
-            c.name,
-            c.error,
-            c.tolerance
         );
     }
     md.push_str(
@@ -398,18 +390,27 @@ fn fracture_section(md: &mut String) -> Result<usize, CliError> {
     );
     let mut failures = 0;
     for c in &cases {
-        let verdict = if c.passed() { "pass" } else { "FAIL" };
+        push_case_row(md, &c.name, &c.reference, &c.measured, c.error, c.tolerance);
         failures += usize::from(!c.passed());
-        println!(
-            "{verdict}: {} ({:.2e} <= {:.0e})",
-            c.name, c.error, c.tolerance
-        );
-        md.push_str(&format!(
-            "| {} | {} | {} | {:.2e} | {:.0e} | {} |\n",
-            c.name, c.reference, c.measured, c.error, c.tolerance, verdict
-        ));
     }
     Ok(failures)
+}
+
+/// Appends one case to a validation table and prints its verdict (pass when
+/// `error <= tolerance`, so a NaN error fails).
+fn push_case_row(
+    md: &mut String,
+    name: &str,
+    reference: &str,
+    measured: &str,
+    error: Real,
+    tolerance: Real,
+) {
+    let verdict = if error <= tolerance { "pass" } else { "FAIL" };
+    println!("{verdict}: {name} ({error:.2e} <= {tolerance:.0e})");
+    md.push_str(&format!(
+        "| {name} | {reference} | {measured} | {error:.2e} | {tolerance:.0e} | {verdict} |\n"
+    ));
 }
 
 /// The external problem suite (`../shared/fclib`, next to the repository): appends its table
