@@ -148,6 +148,18 @@ fn check(path: &std::path::Path) -> Result<(), CliError> {
         scene.steps,
         scene.dt
     );
+    if let Some(fluid) = &scene.fluid {
+        let grid = xper_cli::run_fluid::fluid_grid(fluid);
+        println!(
+            "fluid: {} x {} cells of {} m, density {} kg/m^3, viscosity {} Pa s; runs to t = {} s",
+            grid.nx,
+            grid.ny,
+            grid.h,
+            fluid.density,
+            fluid.viscosity,
+            scene.steps as f64 * scene.dt
+        );
+    }
     let n = scene.groups.len();
     for a in 0..n {
         for b in a..n {

@@ -162,6 +162,9 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
     })?;
     let scene =
         xper_scene::load_scene(&opts.scene).map_err(|e| CliError::BadInput(e.to_string()))?;
+    if scene.fluid.is_some() {
+        return crate::run_fluid::run(opts, &scene, fnv1a(&text), quiet);
+    }
     let dumps = &scene.output.dump_problems;
     if !dumps.is_empty() && !cfg!(feature = "hdf5") {
         return Err(CliError::BadInput(format!(

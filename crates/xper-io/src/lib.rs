@@ -13,6 +13,7 @@ pub mod plot;
 pub mod pvd;
 pub mod segments;
 pub mod series;
+pub mod vti;
 pub mod vtu;
 mod xml;
 
@@ -22,4 +23,5 @@ pub use plot::{plot_panels, Curve, Panel};
 pub use pvd::{PvdCollection, PvdEntry};
 pub use segments::{plot_segments, SegmentLayer};
 pub use series::SeriesTable;
+pub use vti::{write_vti, ImageGrid};
 pub use vtu::{read_vtu, write_vtu, DataArray, DataValues, UnstructuredGrid};

@@ -153,7 +153,7 @@ fn payload(raw: &[u8]) -> String {
 }
 
 /// Appends one `<DataArray>` element.
-fn push_array(
+pub(crate) fn push_array(
     out: &mut String,
     indent: &str,
     vtk_type: &str,
@@ -172,7 +172,7 @@ fn push_array(
     );
 }
 
-fn f64_bytes(v: &[f64]) -> Vec<u8> {
+pub(crate) fn f64_bytes(v: &[f64]) -> Vec<u8> {
     v.iter().flat_map(|x| x.to_le_bytes()).collect()
 }
 

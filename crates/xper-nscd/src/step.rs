@@ -152,6 +152,9 @@ pub struct MoreauJean {
     impulses: Vec<[Real; 2]>,
     u_begin: Vec<[Real; 2]>,
     v_begin: Vec<[Real; DOFS]>,
+    /// Forces applied to the bodies during each step besides gravity and drives (e.g. the
+    /// fluid's), one generalised force per body; empty when there are none.
+    external_forces: Vec<[Real; DOFS]>,
 }
 
 impl MoreauJean {
@@ -160,15 +163,41 @@ impl MoreauJean {
         Self::default()
     }
 
-    /// Advances `world` by one time step.
+    /// Sets the generalised forces (N/m and N m/m per body, translations then rotation) that
+    /// act on the bodies during the following steps, besides gravity and imposed drives: e.g.
+    /// the hydrodynamic forces of a fluid. Their work enters the energy budget as external
+    /// work. An empty vector removes them; otherwise there must be one entry per body.
+    pub fn set_external_forces(&mut self, forces: Vec<[Real; DOFS]>) {
+        self.external_forces = forces;
+    }
+
+    /// Advances `world` by one time step of `world.params.dt`; the step's times are multiples
+    /// of it (`t_i = i h`), exact over long runs.
     pub fn step(&mut self, world: &mut World) -> Result<StepReport, StepError> {
+        let h = world.params.dt;
+        let (t_begin, t_end) = (world.step as Real * h, (world.step + 1) as Real * h);
+        self.step_between(world, t_begin, t_end)
+    }
+
+    /// Advances `world` by a step of `h` from `world.time` (for time steps that change during
+    /// a run, e.g. set by a fluid's stability limit); `world.params.dt` becomes `h`.
+    pub fn step_by(&mut self, world: &mut World, h: Real) -> Result<StepReport, StepError> {
+        world.params.dt = h;
+        let t_begin = world.time;
+        self.step_between(world, t_begin, t_begin + h)
+    }
+
+    fn step_between(
+        &mut self,
+        world: &mut World,
+        t_begin: Real,
+        t_end: Real,
+    ) -> Result<StepReport, StepError> {
         let start = Instant::now();
         let mut report = StepReport {
             step: world.step + 1,
             ..Default::default()
         };
-        let h = world.params.dt;
-        let (t_begin, t_end) = (world.step as Real * h, (world.step + 1) as Real * h);
         self.prepare(world, &mut report, t_begin, t_end);
 
         // Stage: solve.
@@ -384,6 +413,11 @@ impl MoreauJean {
                 body.velocity[1] += h * g.y * (body.inv_mass[1] > 0.0) as u8 as Real;
             }
         }
+        for (body, force) in self.op.bodies.iter_mut().zip(&self.external_forces) {
+            for d in 0..DOFS {
+                body.velocity[d] += h * body.inv_mass[d] * force[d];
+            }
+        }
         for (handle, drives) in &world.bodies.driven {
             let b = handle.index();
             for (d, drive) in drives.iter().enumerate() {
@@ -428,6 +462,14 @@ impl MoreauJean {
                             - h * masses[d] * gravity * mean;
                     }
                     xper_bodies::Drive::Velocity(_) => {}
+                }
+            }
+        }
+        for (b, force) in self.external_forces.iter().enumerate() {
+            let (v0, v1) = (self.v_begin[b], self.op.bodies[b].velocity);
+            for d in 0..DOFS {
+                if self.op.bodies[b].inv_mass[d] > 0.0 {
+                    work += h * force[d] * (v0[d] + v1[d]) / 2.0;
                 }
             }
         }

@@ -19,6 +19,7 @@ pub mod rng;
 pub mod types;
 
 mod bodies;
+mod fluid;
 mod fracture;
 mod generators;
 mod geometry;
@@ -40,8 +41,8 @@ pub use generators::MAX_GENERATED;
 pub use overlap::MAX_OVERLAP_REPORTS;
 pub use rng::SplitMix64;
 pub use types::{
-    BodyDesc, ConvergenceNorm, Drive, LawDesc, OutputSettings, Scene, ShapeDesc, SolverKind,
-    SolverSettings, TimeFunction,
+    BodyDesc, ConvergenceNorm, Drive, FluidDesc, FluidSideDesc, LawDesc, OutputSettings, Scene,
+    ShapeDesc, SolverKind, SolverSettings, TimeFunction,
 };
 
 use read::{Ctx, Tbl};
@@ -51,6 +52,7 @@ use tree::{LineIndex, Pos};
 /// Top-level keys of a scene file.
 const TOP_KEYS: &[&str] = &[
     "scene",
+    "fluid",
     "solver",
     "output",
     "materials",
@@ -177,6 +179,7 @@ fn rigid_scene(ctx: &mut Ctx, root: &Tbl) -> Option<Scene> {
         overlap::check(ctx, &built);
     }
     let laws = sections::laws(ctx, root, &groups);
+    let fluid = fluid::fluid(ctx, root, &built).flatten();
 
     let steps = header.steps.unwrap_or(1);
     let alert_distance = header
@@ -205,6 +208,7 @@ fn rigid_scene(ctx: &mut Ctx, root: &Tbl) -> Option<Scene> {
         groups: groups.names,
         laws,
         bodies: built.bodies,
+        fluid,
     };
     Some(scene)
 }

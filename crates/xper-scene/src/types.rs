@@ -27,6 +27,8 @@ pub struct Scene {
     pub laws: Vec<LawDesc>,
     /// All bodies: `[[bodies]]`, then `[[walls]]`, then generated bodies, each in file order.
     pub bodies: Vec<BodyDesc>,
+    /// The fluid around the disks, when the scene has a `[fluid]` section.
+    pub fluid: Option<FluidDesc>,
 }
 
 /// Which contact solver to use for the velocity problem of each step.
@@ -182,3 +184,58 @@ pub enum Drive {
 
 /// A scalar function of time (the engine's own type: the scene builds it directly).
 pub use xper_bodies::TimeFunction;
+
+/// A viscous incompressible fluid filling a rectangle around the scene's disks (`[fluid]`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FluidDesc {
+    /// Density rho_f in kg/m^3.
+    pub density: f64,
+    /// Dynamic viscosity in Pa s.
+    pub viscosity: f64,
+    /// Lower-left corner of the domain in m.
+    pub lower: [f64; 2],
+    /// Upper-right corner of the domain in m.
+    pub upper: [f64; 2],
+    /// Side of the square grid cells in m; the domain holds a whole number of them.
+    pub cell_size: f64,
+    /// Body force per unit mass on the fluid in m/s^2 (gravity acts on grains through
+    /// buoyancy; this drives e.g. a periodic channel).
+    pub body_force: [f64; 2],
+    /// Courant number of the adaptive time step, in (0, 1].
+    pub cfl: f64,
+    /// Fraction of the explicit viscous time-step limit, in (0, 1].
+    pub viscous_safety: f64,
+    /// Donor-cell blending of the advection, in [0, 1] (0: central).
+    pub upwinding: f64,
+    /// The paper's sharp solid indicator instead of the smoothed solid fraction.
+    pub sharp_indicator: bool,
+    /// Relative residual of the pressure solve.
+    pub pressure_tolerance: f64,
+    /// Largest number of multigrid cycles per pressure solve.
+    pub pressure_max_cycles: u32,
+    /// Conditions on the left, right, bottom and top sides.
+    pub boundary: [FluidSideDesc; 4],
+}
+
+/// The condition on one side of the fluid domain.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub enum FluidSideDesc {
+    /// Fixed wall.
+    NoSlip,
+    /// Wall sliding along itself (m/s, along +x on bottom/top, +y on left/right).
+    MovingWall {
+        /// Tangential velocity in m/s.
+        velocity: f64,
+    },
+    /// Periodic with the opposite side.
+    Periodic,
+    /// Imposed inward velocity: uniform, or parabolic with `speed` at the middle.
+    Inflow {
+        /// Poiseuille profile instead of uniform.
+        parabolic: bool,
+        /// Inward speed in m/s (the maximum for a parabolic profile).
+        speed: f64,
+    },
+    /// Zero normal derivative and zero pressure.
+    Outflow,
+}

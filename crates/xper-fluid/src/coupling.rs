@@ -1,0 +1,151 @@
+//! Grains in the fluid: one coupled step advances the fluid with the grains held at their
+//! state, then moves the grains by one Moreau-Jean step of the same length under their
+//! hydrodynamic forces (BRIEF.md section 4; explicit coupling as in Uhlmann 2005 and Kempe
+//! and Froehlich 2012, with contacts by NSCD):
+//!
+//! 1. **time step**: the fluid's stability limit for the current velocities (grains included),
+//!    capped by the scene's `dt`;
+//! 2. **fluid**: predictor, forcing towards the grains' rigid velocities, projection
+//!    ([`FluidSolver::step`]), giving `F_p` and `T_p` for every immersed disk;
+//! 3. **grains**: `m_p dU/dt = F_p + (m_p - rho_f A_p) g`, `I_p dw/dt = T_p` with contacts
+//!    (grain-grain, grain-wall) by [`MoreauJean::step_by`]; gravity acts through the world's
+//!    `m_p g`, so the coupling adds `F_p - rho_f A_p g`.
+//!
+//! Immersed bodies are the world's disks (moving or fixed, e.g. an obstacle); walls only carry
+//! contacts, the fluid's walls being the sides of its domain.
+
+use crate::{FluidError, FluidParams, FluidSolver, FluidState, FluidStepReport, ImmersedDisk};
+use serde::{Deserialize, Serialize};
+use xper_bodies::Shape;
+use xper_math::{Real, DOFS};
+use xper_nscd::{MoreauJean, StepError, StepReport, World};
+
+/// Everything that evolves in a run with a fluid; serialisable for checkpoints.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CoupledState {
+    /// The fluid.
+    pub fluid: FluidState,
+    /// The grains, walls and contacts.
+    pub world: World,
+}
+
+/// What one coupled step did.
+#[derive(Clone, Debug, Default)]
+pub struct CoupledReport {
+    /// The fluid step (with the force on each immersed disk, in [`CoupledStepper::immersed`]
+    /// order).
+    pub fluid: FluidStepReport,
+    /// The grains' step.
+    pub grains: StepReport,
+}
+
+/// A coupled step that failed.
+#[derive(Debug)]
+pub enum CoupledError {
+    /// The fluid step failed.
+    Fluid(FluidError),
+    /// The grains' step failed.
+    Grains(StepError),
+}
+
+impl std::fmt::Display for CoupledError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CoupledError::Fluid(e) => write!(f, "fluid: {e}"),
+            CoupledError::Grains(e) => write!(f, "grains: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for CoupledError {}
+
+/// The coupled stepper: the fluid solver, the contact stepper, and the immersed bodies.
+pub struct CoupledStepper {
+    fluid: FluidSolver,
+    grains: MoreauJean,
+    immersed: Vec<usize>,
+    disks: Vec<ImmersedDisk>,
+    largest_dt: Real,
+}
+
+impl CoupledStepper {
+    /// A stepper for `state` (the disks of `state.world` are immersed); the scene's time step
+    /// `state.world.params.dt` becomes the largest step.
+    pub fn new(params: &FluidParams, state: &CoupledState) -> Result<Self, FluidError> {
+        let fluid = FluidSolver::new(state.fluid.grid, params)?;
+        let bodies = &state.world.bodies;
+        let immersed = (0..bodies.len())
+            .filter(|&b| matches!(bodies.shape[b], Shape::Disk { .. }))
+            .collect();
+        Ok(CoupledStepper {
+            fluid,
+            grains: MoreauJean::new(),
+            immersed,
+            disks: Vec::new(),
+            largest_dt: state.world.params.dt,
+        })
+    }
+
+    /// Body indices of the immersed disks.
+    pub fn immersed(&self) -> &[usize] {
+        &self.immersed
+    }
+
+    /// The fluid solver (e.g. for the solid fraction of the last step).
+    pub fn fluid_solver(&self) -> &FluidSolver {
+        &self.fluid
+    }
+
+    /// One coupled step.
+    pub fn step(
+        &mut self,
+        params: &FluidParams,
+        state: &mut CoupledState,
+    ) -> Result<CoupledReport, CoupledError> {
+        // Stage: the immersed disks as the fluid sees them.
+        let bodies = &state.world.bodies;
+        self.disks.clear();
+        let mut grain_speed: Real = 0.0;
+        for &b in &self.immersed {
+            let Shape::Disk { radius } = bodies.shape[b] else {
+                unreachable!("immersed bodies are disks")
+            };
+            let disk = ImmersedDisk {
+                centre: bodies.position[b],
+                radius,
+                velocity: bodies.velocity[b],
+                angular_velocity: bodies.angular_velocity[b],
+            };
+            grain_speed =
+                grain_speed.max(disk.velocity.amax() + (disk.angular_velocity * radius).abs());
+            self.disks.push(disk);
+        }
+
+        // Stage: time step.
+        let dt = self
+            .fluid
+            .stable_dt(params, &state.fluid, grain_speed)
+            .min(self.largest_dt);
+
+        // Stage: fluid.
+        let fluid = self
+            .fluid
+            .step(params, &mut state.fluid, dt, &self.disks)
+            .map_err(CoupledError::Fluid)?;
+
+        // Stage: grains under hydrodynamic forces and buoyancy.
+        let world = &mut state.world;
+        let gravity = world.params.gravity;
+        let mut forces = vec![[0.0; DOFS]; world.bodies.len()];
+        for ((&b, disk), f) in self.immersed.iter().zip(&self.disks).zip(&fluid.forces) {
+            let buoyancy = -params.density * disk.area() * gravity;
+            forces[b] = [f.force.x + buoyancy.x, f.force.y + buoyancy.y, f.torque];
+        }
+        self.grains.set_external_forces(forces);
+        let grains = self
+            .grains
+            .step_by(world, dt)
+            .map_err(CoupledError::Grains)?;
+        Ok(CoupledReport { fluid, grains })
+    }
+}

@@ -1,0 +1,231 @@
+//! Direct-forcing immersed boundary for rigid disks on the MAC grid.
+//!
+//! After the momentum predictor each velocity face is pulled towards the rigid velocity of
+//! the grain that covers it, in proportion to the solid fraction `alpha` of the face:
+//!
+//! ```text
+//! u** = u* + dt f,    f = alpha (u_s - u*) / dt,    u_s = U_p + omega_p x (x - X_p)
+//! ```
+//!
+//! (Fadlun et al., J. Comput. Phys. 161 (2000) 35; Uhlmann, J. Comput. Phys. 209 (2005) 448;
+//! with `alpha` the indicator `eta` of the paper's equation in BRIEF.md section 4). The force
+//! of the fluid on grain `p` counts the forcing and the change of momentum of the fluid inside
+//! the grain (Uhlmann 2005, eq. 18; Kempe and Froehlich, J. Comput. Phys. 231 (2012) 3663,
+//! who evaluate the inner integral numerically so that density ratios down to about 0.3 stay
+//! stable with an explicit coupling):
+//!
+//! ```text
+//! F_p = - rho_f sum_faces f h^2 + d/dt ( rho_f sum_faces alpha u h^2 ),
+//! T_p = - rho_f sum_faces r x f h^2 + d/dt ( rho_f sum_faces alpha r x u h^2 ).
+//! ```
+//!
+//! Buoyancy is added by the caller: `(m_p - rho_f V_p) g` (the fluid itself carries no
+//! hydrostatic pressure). Grains crossing a periodic side are not wrapped.
+
+use crate::boundary::FluidBoundary;
+use crate::grid::MacGrid;
+use serde::{Deserialize, Serialize};
+use xper_math::{cross, spin_velocity, Real, Vector, DIM};
+
+/// A rigid disk seen by the fluid.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ImmersedDisk {
+    /// Centre (m).
+    pub centre: Vector,
+    /// Radius (m).
+    pub radius: Real,
+    /// Velocity of the centre (m/s).
+    pub velocity: Vector,
+    /// Angular velocity (rad/s).
+    pub angular_velocity: Real,
+}
+
+impl ImmersedDisk {
+    /// Rigid velocity at `x`.
+    #[inline]
+    pub fn velocity_at(&self, x: &Vector) -> Vector {
+        self.velocity + spin_velocity(self.angular_velocity, &(x - self.centre))
+    }
+
+    /// Area per unit thickness (m^2).
+    pub fn area(&self) -> Real {
+        std::f64::consts::PI * self.radius * self.radius
+    }
+}
+
+/// How the solid fraction of a face is computed from its signed distance `d` to the surface.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SolidIndicator {
+    /// 1 inside, 0 outside: the paper's sharp `eta`.
+    Sharp,
+    /// `clamp(1/2 - d / h, 0, 1)`: a linear ramp one cell wide, the volume fraction of a face's
+    /// control cell cut by a flat surface (a smoothed `eta`).
+    #[default]
+    Smoothed,
+}
+
+impl SolidIndicator {
+    /// The solid fraction at signed distance `d` (negative inside) on a grid of step `h`.
+    #[inline]
+    pub fn fraction(&self, d: Real, h: Real) -> Real {
+        match self {
+            SolidIndicator::Sharp => (d < 0.0) as u8 as Real,
+            SolidIndicator::Smoothed => (0.5 - d / h).clamp(0.0, 1.0),
+        }
+    }
+}
+
+/// Force (N/m) and torque (N m/m) of the fluid on one grain.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct HydrodynamicForce {
+    /// Force (N per m of thickness).
+    pub force: Vector,
+    /// Torque (N m per m of thickness).
+    pub torque: Real,
+}
+
+/// Fluid momentum inside each grain, `rho_f sum alpha u h^2` and its moment.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct InnerMomentum {
+    /// Linear momentum (kg m/s per m).
+    pub linear: Vector,
+    /// Angular momentum about the grain's centre (kg m^2/s per m).
+    pub angular: Real,
+}
+
+/// The faces covered by grains: solid fraction and owning grain.
+#[derive(Default)]
+pub struct ImmersedForcing {
+    alpha: [Vec<Real>; DIM],
+    owner: [Vec<u32>; DIM],
+    touched: [Vec<usize>; DIM],
+}
+
+impl ImmersedForcing {
+    /// Workspaces for `grid`.
+    pub fn new(grid: &MacGrid) -> Self {
+        ImmersedForcing {
+            alpha: grid.zero_velocity(),
+            owner: [vec![0; grid.padded_len()], vec![0; grid.padded_len()]],
+            touched: [Vec::new(), Vec::new()],
+        }
+    }
+
+    /// Computes the solid fraction of every face near a disk (where disks overlap, the larger
+    /// fraction wins). Only faces the predictor updates are marked.
+    pub fn mark(
+        &mut self,
+        grid: &MacGrid,
+        boundary: &FluidBoundary,
+        disks: &[ImmersedDisk],
+        indicator: SolidIndicator,
+    ) {
+        for d in 0..DIM {
+            for &k in &self.touched[d] {
+                self.alpha[d][k] = 0.0;
+            }
+            self.touched[d].clear();
+        }
+        let h = grid.h;
+        for (p, disk) in disks.iter().enumerate() {
+            let reach = disk.radius + h;
+            for d in 0..DIM {
+                let faces = boundary.predicted_faces(grid, d);
+                let cells = 0..grid.cells(1 - d) as isize;
+                let range = |axis: usize, allowed: &std::ops::Range<isize>| {
+                    let offset = if axis == d { 0.0 } else { 0.5 };
+                    let lo = ((disk.centre[axis] - reach - grid.origin[axis]) / h - offset).floor();
+                    let hi = ((disk.centre[axis] + reach - grid.origin[axis]) / h - offset).ceil();
+                    (lo.max(allowed.start as Real) as isize)
+                        ..((hi + 1.0).min(allowed.end as Real) as isize)
+                };
+                let (ra, rb) = (range(d, &faces), range(1 - d, &cells));
+                for b in rb {
+                    for a in ra.clone() {
+                        let (i, j) = if d == 0 { (a, b) } else { (b, a) };
+                        let x = grid.face_position(d, i, j);
+                        let fraction =
+                            indicator.fraction((x - disk.centre).norm() - disk.radius, h);
+                        let k = grid.index(i, j);
+                        if fraction > self.alpha[d][k] {
+                            if self.alpha[d][k] == 0.0 {
+                                self.touched[d].push(k);
+                            }
+                            self.alpha[d][k] = fraction;
+                            self.owner[d][k] = p as u32;
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Applies the forcing to `u` (after the predictor) over a step `dt` and returns in
+    /// `forces` minus the forcing integral, the first part of the force on each grain.
+    pub fn apply(
+        &self,
+        grid: &MacGrid,
+        disks: &[ImmersedDisk],
+        density: Real,
+        dt: Real,
+        u: &mut [Vec<Real>; DIM],
+        forces: &mut Vec<HydrodynamicForce>,
+    ) {
+        forces.clear();
+        forces.resize(disks.len(), HydrodynamicForce::default());
+        let area = grid.h * grid.h / dt;
+        for (d, ud) in u.iter_mut().enumerate() {
+            for &k in &self.touched[d] {
+                let p = self.owner[d][k] as usize;
+                let disk = &disks[p];
+                let (i, j) = face_of(grid, k);
+                let x = grid.face_position(d, i, j);
+                let target = disk.velocity_at(&x)[d];
+                let change = self.alpha[d][k] * (target - ud[k]);
+                ud[k] += change;
+                let mut on_fluid = Vector::zeros();
+                on_fluid[d] = density * change * area;
+                forces[p].force -= on_fluid;
+                forces[p].torque -= cross(&(x - disk.centre), &on_fluid);
+            }
+        }
+    }
+
+    /// The fluid momentum inside each grain (weighted by the solid fraction).
+    pub fn inner_momentum(
+        &self,
+        grid: &MacGrid,
+        disks: &[ImmersedDisk],
+        density: Real,
+        u: &[Vec<Real>; DIM],
+        out: &mut Vec<InnerMomentum>,
+    ) {
+        out.clear();
+        out.resize(disks.len(), InnerMomentum::default());
+        let area = grid.h * grid.h;
+        for (d, ud) in u.iter().enumerate() {
+            for &k in &self.touched[d] {
+                let p = self.owner[d][k] as usize;
+                let (i, j) = face_of(grid, k);
+                let x = grid.face_position(d, i, j);
+                let mut momentum = Vector::zeros();
+                momentum[d] = density * self.alpha[d][k] * ud[k] * area;
+                out[p].linear += momentum;
+                out[p].angular += cross(&(x - disks[p].centre), &momentum);
+            }
+        }
+    }
+
+    /// Solid fraction of each face of component `d` (padded layout).
+    pub fn fraction(&self, d: usize) -> &[Real] {
+        &self.alpha[d]
+    }
+}
+
+/// The `(i, j)` of a padded index.
+#[inline]
+fn face_of(grid: &MacGrid, k: usize) -> (isize, isize) {
+    let w = grid.width();
+    ((k % w) as isize - 1, (k / w) as isize - 1)
+}

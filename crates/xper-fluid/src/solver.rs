@@ -1,0 +1,418 @@
+//! One fluid time step as a sequence of named stages (Basilisk style): boundary values,
+//! momentum predictor, immersed forcing, projection, grain forces.
+
+use crate::boundary::FluidBoundary;
+use crate::grid::MacGrid;
+use crate::immersed::{
+    HydrodynamicForce, ImmersedDisk, ImmersedForcing, InnerMomentum, SolidIndicator,
+};
+use crate::momentum::{predict, PredictorCoefficients};
+use crate::projection::Projection;
+use serde::{Deserialize, Serialize};
+use std::time::Instant;
+use xper_math::{Real, Vector, DIM};
+use xper_multigrid::{GridShape, Multigrid, MultigridParams, SolveError, SolveInfo};
+
+/// Physical and numerical parameters of the fluid (SI units).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FluidParams {
+    /// Density rho_f (kg/m^3).
+    pub density: Real,
+    /// Dynamic viscosity mu (Pa s).
+    pub viscosity: Real,
+    /// Body force per unit mass on the fluid (m/s^2); gravity on grains is buoyancy-corrected by
+    /// the coupling instead, so this is usually zero.
+    pub body_force: Vector,
+    /// Conditions on the four sides.
+    pub boundary: FluidBoundary,
+    /// Courant number of the adaptive time step: `dt <= cfl h / max |u|`.
+    pub cfl: Real,
+    /// Fraction of the explicit diffusion limit `h^2 / (2 DIM nu)` (and, for the central scheme,
+    /// of the advection-diffusion limit `2 nu / max |u|^2`) allowed as time step.
+    pub viscous_safety: Real,
+    /// Largest time step (s).
+    pub dt_max: Real,
+    /// Donor-cell blending of the advection, 0 (central, second order) to 1 (donor cell).
+    pub upwinding: Real,
+    /// Solid fraction of the faces near grains.
+    pub indicator: SolidIndicator,
+    /// Relative residual of the pressure solve, `||r|| / ||rhs||`.
+    pub pressure_tolerance: Real,
+    /// Largest number of multigrid cycles per pressure solve.
+    pub pressure_max_cycles: u32,
+}
+
+impl FluidParams {
+    /// Water-like defaults in a closed box: rho 1000, mu 1e-3, central advection, CFL 0.5.
+    pub fn new(density: Real, viscosity: Real, boundary: FluidBoundary) -> Self {
+        FluidParams {
+            density,
+            viscosity,
+            body_force: Vector::zeros(),
+            boundary,
+            cfl: 0.5,
+            viscous_safety: 0.8,
+            dt_max: Real::INFINITY,
+            upwinding: 0.0,
+            indicator: SolidIndicator::default(),
+            pressure_tolerance: 1e-8,
+            pressure_max_cycles: 50,
+        }
+    }
+
+    /// Kinematic viscosity nu = mu / rho (m^2/s).
+    pub fn kinematic_viscosity(&self) -> Real {
+        self.viscosity / self.density
+    }
+
+    /// Checks signs and ranges.
+    pub fn validate(&self) -> Result<(), String> {
+        let positive = [
+            ("density", self.density),
+            ("viscosity", self.viscosity),
+            ("cfl", self.cfl),
+            ("viscous_safety", self.viscous_safety),
+            ("dt_max", self.dt_max),
+            ("pressure_tolerance", self.pressure_tolerance),
+        ];
+        for (name, value) in positive {
+            if !(value > 0.0) {
+                return Err(format!("{name} must be positive, got {value}"));
+            }
+        }
+        if !(0.0..=1.0).contains(&self.upwinding) {
+            return Err(format!(
+                "upwinding must be in [0, 1], got {}",
+                self.upwinding
+            ));
+        }
+        if self.cfl > 1.0 || self.viscous_safety > 1.0 {
+            return Err("cfl and viscous_safety must be at most 1 (explicit stability)".into());
+        }
+        self.boundary.validate()
+    }
+}
+
+/// The evolving fluid: velocities, pressure, time. Serialisable for checkpoints.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FluidState {
+    /// The grid.
+    pub grid: MacGrid,
+    /// Velocity components on their faces (padded layout, m/s).
+    pub velocity: [Vec<Real>; DIM],
+    /// Pressure at cell centres (padded layout, Pa).
+    pub pressure: Vec<Real>,
+    /// Last pressure increment (unpadded), the warm start of the next solve.
+    pub increment: Vec<Real>,
+    /// Time (s).
+    pub time: Real,
+    /// Steps done.
+    pub step: u64,
+    /// Fluid momentum inside each grain at the end of the last step.
+    pub inner: Vec<InnerMomentum>,
+}
+
+impl FluidState {
+    /// Fluid at rest on `grid`, boundary values set.
+    pub fn at_rest(grid: MacGrid, boundary: &FluidBoundary) -> Self {
+        let mut state = FluidState {
+            grid,
+            velocity: grid.zero_velocity(),
+            pressure: grid.zeros(),
+            increment: vec![0.0; grid.num_cells()],
+            time: 0.0,
+            step: 0,
+            inner: Vec::new(),
+        };
+        boundary.fill_velocity(&grid, &mut state.velocity);
+        state
+    }
+
+    /// Sets every face velocity from `field(component, position)`, then the boundary values.
+    pub fn set_velocity(
+        &mut self,
+        boundary: &FluidBoundary,
+        mut field: impl FnMut(usize, Vector) -> Real,
+    ) {
+        let grid = self.grid;
+        for d in 0..DIM {
+            for j in -1..=grid.ny as isize + 1 {
+                for i in -1..=grid.nx as isize + 1 {
+                    self.velocity[d][grid.index(i, j)] = field(d, grid.face_position(d, i, j));
+                }
+            }
+        }
+        boundary.fill_velocity(&grid, &mut self.velocity);
+    }
+
+    /// Velocity interpolated at the centre of cell `(i, j)`.
+    pub fn cell_velocity(&self, i: usize, j: usize) -> Vector {
+        let k = self.grid.index(i as isize, j as isize);
+        let mut v = Vector::zeros();
+        for d in 0..DIM {
+            v[d] = 0.5 * (self.velocity[d][k] + self.velocity[d][k + self.grid.stride(d)]);
+        }
+        v
+    }
+
+    /// Vorticity `dv/dx - du/dy` at the centre of cell `(i, j)`, the mean of its four corners.
+    pub fn cell_vorticity(&self, i: usize, j: usize) -> Real {
+        let g = &self.grid;
+        let (u, v) = (&self.velocity[0], &self.velocity[1]);
+        let corner = |i: isize, j: isize| {
+            let k = g.index(i, j);
+            ((v[k] - v[k - 1]) - (u[k] - u[k - g.width()])) / g.h
+        };
+        let (i, j) = (i as isize, j as isize);
+        0.25 * (corner(i, j) + corner(i + 1, j) + corner(i, j + 1) + corner(i + 1, j + 1))
+    }
+
+    /// Pressure of cell `(i, j)` (Pa).
+    pub fn cell_pressure(&self, i: usize, j: usize) -> Real {
+        self.pressure[self.grid.index(i as isize, j as isize)]
+    }
+
+    /// Kinetic energy of the fluid, `rho/2 sum u^2 h^2` over the low faces of every cell
+    /// (J per m of thickness).
+    pub fn kinetic_energy(&self, density: Real) -> Real {
+        let g = &self.grid;
+        let mut sum = 0.0;
+        for ud in &self.velocity {
+            for j in 0..g.ny as isize {
+                for i in 0..g.nx as isize {
+                    sum += ud[g.index(i, j)].powi(2);
+                }
+            }
+        }
+        0.5 * density * sum * g.h * g.h
+    }
+
+    /// Largest speed component on any face (m/s).
+    pub fn max_speed(&self) -> Real {
+        self.velocity
+            .iter()
+            .flatten()
+            .fold(0.0, |m: Real, &x| m.max(x.abs()))
+    }
+}
+
+/// What one fluid step did.
+#[derive(Clone, Debug, Default)]
+pub struct FluidStepReport {
+    /// Time step used (s).
+    pub dt: Real,
+    /// Time at the end of the step (s).
+    pub time: Real,
+    /// The pressure solve.
+    pub pressure: SolveInfo,
+    /// Norm of the divergence before and after the projection (1/s).
+    pub divergence: [Real; 2],
+    /// Largest velocity component after the step (m/s).
+    pub max_speed: Real,
+    /// Force and torque of the fluid on each grain.
+    pub forces: Vec<HydrodynamicForce>,
+    /// Wall time of the stages: predictor, forcing, projection, total (s).
+    pub times: [f64; 4],
+}
+
+/// A fluid step that failed.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FluidError {
+    /// Parameters or grid refused.
+    Setup(String),
+    /// The pressure solve failed.
+    Pressure(SolveError),
+    /// The velocity became NaN or infinite.
+    NonFinite {
+        /// Step that produced it.
+        step: u64,
+    },
+}
+
+impl std::fmt::Display for FluidError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FluidError::Setup(m) => write!(f, "fluid set-up: {m}"),
+            FluidError::Pressure(e) => write!(f, "pressure solve: {e}"),
+            FluidError::NonFinite { step } => {
+                write!(
+                    f,
+                    "the fluid velocity became non-finite at step {step} (time step too large?)"
+                )
+            }
+        }
+    }
+}
+
+impl std::error::Error for FluidError {}
+
+/// The fluid stepper and its workspaces.
+pub struct FluidSolver {
+    grid: MacGrid,
+    projection: Projection,
+    forcing: ImmersedForcing,
+    predicted: [Vec<Real>; DIM],
+    inner: Vec<InnerMomentum>,
+}
+
+impl FluidSolver {
+    /// A solver for `grid` (checks the parameters, builds the multigrid hierarchy).
+    pub fn new(grid: MacGrid, params: &FluidParams) -> Result<Self, FluidError> {
+        params.validate().map_err(FluidError::Setup)?;
+        if grid.nx < 2 || grid.ny < 2 || !(grid.h > 0.0) {
+            return Err(FluidError::Setup(format!(
+                "the grid needs at least 2 x 2 cells of positive size, got {} x {} of {}",
+                grid.nx, grid.ny, grid.h
+            )));
+        }
+        let shape = GridShape {
+            nx: grid.nx,
+            ny: grid.ny,
+            hx: grid.h,
+            hy: grid.h,
+        };
+        let multigrid_params = MultigridParams {
+            relative_tolerance: params.pressure_tolerance,
+            max_cycles: params.pressure_max_cycles,
+            ..MultigridParams::default()
+        };
+        let multigrid =
+            Multigrid::new(shape, params.boundary.pressure_boundary(), multigrid_params)
+                .map_err(|e| FluidError::Setup(e.to_string()))?;
+        Ok(FluidSolver {
+            grid,
+            projection: Projection::new(&grid, multigrid),
+            forcing: ImmersedForcing::new(&grid),
+            predicted: grid.zero_velocity(),
+            inner: Vec::new(),
+        })
+    }
+
+    /// The largest stable time step for the current velocities and grains moving at up to
+    /// `grain_speed` (m/s).
+    pub fn stable_dt(&self, params: &FluidParams, state: &FluidState, grain_speed: Real) -> Real {
+        let h = self.grid.h;
+        let nu = params.kinematic_viscosity();
+        let speed = state.max_speed().max(grain_speed);
+        let mut dt = params
+            .dt_max
+            .min(params.viscous_safety * h * h / (2.0 * DIM as Real * nu));
+        if speed > 0.0 {
+            dt = dt.min(params.cfl * h / speed);
+            if params.upwinding < 1.0 {
+                dt = dt.min(params.viscous_safety * 2.0 * nu / (DIM as Real * speed * speed));
+            }
+        }
+        dt
+    }
+
+    /// Advances the fluid by `dt` with the grains `disks` held at their current state.
+    pub fn step(
+        &mut self,
+        params: &FluidParams,
+        state: &mut FluidState,
+        dt: Real,
+        disks: &[ImmersedDisk],
+    ) -> Result<FluidStepReport, FluidError> {
+        let start = Instant::now();
+        let grid = self.grid;
+        let boundary = &params.boundary;
+        let mut report = FluidStepReport {
+            dt,
+            ..Default::default()
+        };
+
+        // Stage: boundary values and the grains' footprint.
+        boundary.fill_velocity(&grid, &mut state.velocity);
+        boundary.fill_pressure(&grid, &mut state.pressure);
+        self.forcing.mark(&grid, boundary, disks, params.indicator);
+        if state.inner.len() != disks.len() {
+            self.forcing.inner_momentum(
+                &grid,
+                disks,
+                params.density,
+                &state.velocity,
+                &mut state.inner,
+            );
+        }
+
+        // Stage: momentum predictor.
+        let coefficients = PredictorCoefficients {
+            dt,
+            kinematic_viscosity: params.kinematic_viscosity(),
+            density: params.density,
+            body_force: params.body_force,
+            upwinding: params.upwinding,
+        };
+        predict(
+            &grid,
+            boundary,
+            &coefficients,
+            &state.velocity,
+            &state.pressure,
+            &mut self.predicted,
+        );
+        boundary.extrapolate_outflow(&grid, &mut self.predicted);
+        report.times[0] = start.elapsed().as_secs_f64();
+
+        // Stage: immersed forcing.
+        let t_forcing = Instant::now();
+        self.forcing.apply(
+            &grid,
+            disks,
+            params.density,
+            dt,
+            &mut self.predicted,
+            &mut report.forces,
+        );
+        report.times[1] = t_forcing.elapsed().as_secs_f64();
+
+        // Stage: projection.
+        let t_projection = Instant::now();
+        let info = self
+            .projection
+            .project(
+                &grid,
+                boundary,
+                dt,
+                params.density,
+                &mut self.predicted,
+                &mut state.pressure,
+                &mut state.increment,
+            )
+            .map_err(FluidError::Pressure)?;
+        std::mem::swap(&mut state.velocity, &mut self.predicted);
+        report.times[2] = t_projection.elapsed().as_secs_f64();
+
+        // Stage: grain forces, with the change of the fluid momentum inside each grain.
+        self.forcing.inner_momentum(
+            &grid,
+            disks,
+            params.density,
+            &state.velocity,
+            &mut self.inner,
+        );
+        for ((force, new), old) in report.forces.iter_mut().zip(&self.inner).zip(&state.inner) {
+            force.force += (new.linear - old.linear) / dt;
+            force.torque += (new.angular - old.angular) / dt;
+        }
+        std::mem::swap(&mut state.inner, &mut self.inner);
+
+        state.time += dt;
+        state.step += 1;
+        report.time = state.time;
+        report.pressure = info.solve;
+        report.divergence = [info.divergence_before, info.divergence_after];
+        report.max_speed = state.max_speed();
+        if !report.max_speed.is_finite() {
+            return Err(FluidError::NonFinite { step: state.step });
+        }
+        report.times[3] = start.elapsed().as_secs_f64();
+        Ok(report)
+    }
+
+    /// Solid fraction of each face of component `d` at the last step (padded layout).
+    pub fn solid_fraction(&self, d: usize) -> &[Real] {
+        self.forcing.fraction(d)
+    }
+}

@@ -1,0 +1,293 @@
+//! Validation cases of the fluid solver, each comparison a [`Case`] (name, reference with its
+//! source, measured value, error, tolerance) for the integration tests (which assert
+//! [`Case::passed`]) and for the rows of VALIDATION.md. Every case takes its resolution as an
+//! argument: the tests run reduced grids, `xper validate --full` the finest this machine runs.
+//!
+//! - [`taylor_green`]: the decaying Taylor-Green vortex (exact solution in BRIEF.md section 7)
+//!   on three grids; the observed order of the velocity error in space.
+//! - [`lid_driven_cavity`]: steady centreline velocities against Ghia, Ghia and Shin, J. Comput.
+//!   Phys. 48 (1982) 387, Tables I and II (`../shared/validation_refs/Ghia1982`).
+//! - [`projection_divergence`]: after a projection the divergence is the pressure solve's
+//!   residual scaled by `dt / rho`, so its norm relative to the divergence before is at most
+//!   the solve's relative tolerance.
+
+use crate::{FluidBoundary, FluidParams, FluidSolver, FluidState, MacGrid, SideCondition};
+use std::path::Path;
+use xper_math::{Real, Vector};
+
+/// One comparison of a measured value with its reference.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Case {
+    /// What is tested.
+    pub name: String,
+    /// The reference value and where it comes from.
+    pub reference: String,
+    /// The measured value, as printed.
+    pub measured: String,
+    /// The deviation compared with the tolerance (NaN fails).
+    pub error: f64,
+    /// Largest acceptable error.
+    pub tolerance: f64,
+}
+
+impl Case {
+    /// Whether the error is within the tolerance (false when the error is NaN).
+    pub fn passed(&self) -> bool {
+        self.error <= self.tolerance
+    }
+}
+
+/// Largest velocity error of the Taylor-Green vortex on an `n x n` periodic grid of
+/// `[0, 2 pi]^2` at `t = 1` s with `nu = 0.05` m^2/s, relative to the amplitude `F(t)`.
+///
+/// The time step is `h^2 / 4` (s, with h in m), so the first-order time error of explicit
+/// Euler scales as `h^2` like the space error and the observed order is the spatial one.
+pub fn taylor_green_error(n: usize) -> Result<Real, String> {
+    let two_pi = 2.0 * std::f64::consts::PI;
+    let grid = MacGrid {
+        nx: n,
+        ny: n,
+        h: two_pi / n as Real,
+        origin: Vector::zeros(),
+    };
+    let nu = 0.05;
+    let params = FluidParams::new(1.0, nu, FluidBoundary::periodic());
+    let mut solver = FluidSolver::new(grid, &params).map_err(|e| e.to_string())?;
+    let mut state = FluidState::at_rest(grid, &params.boundary);
+    let exact = |d: usize, x: Vector, f: Real| {
+        if d == 0 {
+            x.x.sin() * x.y.cos() * f
+        } else {
+            -x.x.cos() * x.y.sin() * f
+        }
+    };
+    state.set_velocity(&params.boundary, |d, x| exact(d, x, 1.0));
+    for j in 0..n {
+        for i in 0..n {
+            let x = grid.cell_centre(i, j);
+            let k = grid.index(i as isize, j as isize);
+            state.pressure[k] = 0.25 * ((2.0 * x.x).cos() + (2.0 * x.y).cos());
+        }
+    }
+    let end = 1.0;
+    let steps = (end / (0.25 * grid.h * grid.h)).ceil() as usize;
+    let dt = end / steps as Real;
+    for _ in 0..steps {
+        solver
+            .step(&params, &mut state, dt, &[])
+            .map_err(|e| e.to_string())?;
+    }
+    let f = (-2.0 * nu * state.time).exp();
+    let mut error: Real = 0.0;
+    for d in 0..2 {
+        for j in 0..n as isize {
+            for i in 0..n as isize {
+                let x = grid.face_position(d, i, j);
+                let value = state.velocity[d][grid.index(i, j)];
+                error = error.max((value - exact(d, x, f)).abs() / f);
+            }
+        }
+    }
+    Ok(error)
+}
+
+/// Observed order of the Taylor-Green error over the grids `n, 2n, 4n`: the least-squares
+/// slope of log(error) against log(h), compared with 2 (tolerance 0.2: the pre-asymptotic
+/// spread seen on 16 to 64 cells).
+pub fn taylor_green(n: usize) -> Result<Case, String> {
+    let errors = [
+        taylor_green_error(n)?,
+        taylor_green_error(2 * n)?,
+        taylor_green_error(4 * n)?,
+    ];
+    let order = ((errors[0] / errors[2]).ln() / 4f64.ln()).abs();
+    Ok(Case {
+        name: format!(
+            "Taylor-Green vortex, order of the velocity error in space ({n}, {}, {} cells)",
+            2 * n,
+            4 * n
+        ),
+        reference: "2 (second-order MAC stencils), exact solution u = sin x cos y F".into(),
+        measured: format!(
+            "errors {:.2e}, {:.2e}, {:.2e}; order {order:.3}",
+            errors[0], errors[1], errors[2]
+        ),
+        error: (order - 2.0).abs(),
+        tolerance: 0.2,
+    })
+}
+
+/// Reads one column of a Ghia et al. table: `(coordinate, value)` pairs for `re`.
+pub fn ghia_column(path: &Path, re: u32) -> Result<Vec<(Real, Real)>, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let header = lines
+        .next()
+        .ok_or_else(|| format!("{}: empty", path.display()))?;
+    let column = header
+        .split(',')
+        .position(|c| c.trim() == format!("Re{re}"))
+        .ok_or_else(|| format!("{}: no column Re{re}", path.display()))?;
+    lines
+        .enumerate()
+        .map(|(row, line)| {
+            let fields: Vec<&str> = line.split(',').collect();
+            let parse = |k: usize| {
+                fields
+                    .get(k)
+                    .and_then(|s| s.trim().parse::<Real>().ok())
+                    .ok_or_else(|| {
+                        format!(
+                            "{}: data row {}: field {} is not a number",
+                            path.display(),
+                            row + 1,
+                            k + 1
+                        )
+                    })
+            };
+            Ok((parse(0)?, parse(column)?))
+        })
+        .collect()
+}
+
+/// The lid-driven unit cavity at Reynolds number `re` on `n x n` cells, run to steady state
+/// (the largest velocity change over one time unit below 1e-4 lid velocities), against Ghia et
+/// al.'s centreline velocities: largest absolute deviation over their points, in units of the
+/// lid velocity, with `tolerance` (the stated agreement for that grid).
+pub fn lid_driven_cavity(
+    re: u32,
+    n: usize,
+    refs: &Path,
+    tolerance: Real,
+) -> Result<[Case; 2], String> {
+    let boundary = FluidBoundary {
+        top: SideCondition::MovingWall { velocity: 1.0 },
+        ..FluidBoundary::closed_box()
+    };
+    let grid = MacGrid {
+        nx: n,
+        ny: n,
+        h: 1.0 / n as Real,
+        origin: Vector::zeros(),
+    };
+    let params = FluidParams::new(1.0, 1.0 / re as Real, boundary);
+    let mut solver = FluidSolver::new(grid, &params).map_err(|e| e.to_string())?;
+    let mut state = FluidState::at_rest(grid, &params.boundary);
+    let mut previous = state.velocity.clone();
+    let mut next_check = 1.0;
+    loop {
+        let dt = solver.stable_dt(&params, &state, 1.0);
+        solver
+            .step(&params, &mut state, dt, &[])
+            .map_err(|e| e.to_string())?;
+        if state.time >= next_check {
+            let change = previous
+                .iter()
+                .flatten()
+                .zip(state.velocity.iter().flatten())
+                .fold(0.0, |m: Real, (a, b)| m.max((a - b).abs()));
+            if change < 1e-4 {
+                break;
+            }
+            if state.time > 400.0 {
+                return Err(format!(
+                    "cavity Re {re} on {n} cells: no steady state by t = 400 (change {change:.2e})"
+                ));
+            }
+            previous.clone_from(&state.velocity);
+            next_check += 1.0;
+        }
+    }
+    let u_line = ghia_column(&refs.join("u_vertical_centerline.csv"), re)?;
+    let v_line = ghia_column(&refs.join("v_horizontal_centerline.csv"), re)?;
+    // Linear interpolation between faces; the ghost values beyond the walls make it exact at
+    // the walls (0, and 1 at the lid).
+    let sample = |d: usize, s: Real| {
+        let along = s * n as Real - 0.5;
+        let lo = (along.floor() as isize).clamp(-1, n as isize - 1);
+        let w = along - lo as Real;
+        let mid = n as isize / 2;
+        let at = |m: isize| {
+            let k = if d == 0 {
+                grid.index(mid, m)
+            } else {
+                grid.index(m, mid)
+            };
+            state.velocity[d][k]
+        };
+        (1.0 - w) * at(lo) + w * at(lo + 1)
+    };
+    let worst = |d: usize, line: &[(Real, Real)]| {
+        line.iter()
+            .fold((0.0, 0.0), |(m, at): (Real, Real), &(s, reference)| {
+                let e = (sample(d, s) - reference).abs();
+                if e > m {
+                    (e, s)
+                } else {
+                    (m, at)
+                }
+            })
+    };
+    let (eu, su) = worst(0, &u_line);
+    let (ev, sv) = worst(1, &v_line);
+    let case = |what: &str, e: Real, s: Real, count: usize| Case {
+        name: format!("lid-driven cavity Re {re}, {n} x {n} cells, {what}"),
+        reference: format!("Ghia, Ghia & Shin 1982, {count} points"),
+        measured: format!(
+            "largest deviation {e:.4} (lid velocities) at {s}, steady at t = {:.0} s",
+            state.time
+        ),
+        error: e,
+        tolerance,
+    };
+    Ok([
+        case("u on the vertical centreline", eu, su, u_line.len()),
+        case("v on the horizontal centreline", ev, sv, v_line.len()),
+    ])
+}
+
+/// One projection of a random velocity field on an `n x (n + n/2)` grid with a moving lid and
+/// an outflow: the divergence after, relative to before, against the pressure tolerance.
+pub fn projection_divergence(n: usize) -> Result<Case, String> {
+    let boundary = FluidBoundary {
+        top: SideCondition::Outflow,
+        bottom: SideCondition::MovingWall { velocity: 0.3 },
+        ..FluidBoundary::closed_box()
+    };
+    let grid = MacGrid {
+        nx: n,
+        ny: n + n / 2,
+        h: 0.01,
+        origin: Vector::zeros(),
+    };
+    let params = FluidParams::new(1000.0, 1e-3, boundary);
+    let mut solver = FluidSolver::new(grid, &params).map_err(|e| e.to_string())?;
+    let mut state = FluidState::at_rest(grid, &params.boundary);
+    let mut seed = 0x2545_f491_4f6c_dd1d_u64;
+    state.set_velocity(&params.boundary, |_, _| {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as Real / (1u64 << 53) as Real - 0.5
+    });
+    let report = solver
+        .step(&params, &mut state, 1e-3, &[])
+        .map_err(|e| e.to_string())?;
+    let ratio = report.divergence[1] / report.divergence[0];
+    Ok(Case {
+        name: format!(
+            "projection of a random field, {} x {} cells, outflow on top",
+            grid.nx, grid.ny
+        ),
+        reference: format!(
+            "|div u| after / before <= pressure tolerance {:.0e}",
+            params.pressure_tolerance
+        ),
+        measured: format!(
+            "{:.2e} (|div| {:.2e} -> {:.2e} 1/s, {} cycles)",
+            ratio, report.divergence[0], report.divergence[1], report.pressure.cycles
+        ),
+        error: ratio,
+        tolerance: params.pressure_tolerance,
+    })
+}
