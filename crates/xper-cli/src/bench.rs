@@ -32,6 +32,10 @@ pub struct BenchArgs {
     /// (e.g. ../shared/fclib); without `--scene`, only the suite runs.
     #[arg(long)]
     fclib: Option<PathBuf>,
+    /// Run the fluid benchmarks (multigrid, fluid step, two-grain scene); without `--scene`,
+    /// only these run.
+    #[arg(long)]
+    fluid: bool,
     /// Run exactly one scene in this process (used by the parent process).
     #[arg(long, hide = true)]
     single: bool,
@@ -170,6 +174,14 @@ pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
             return write_report(&args.out, &args.report);
         }
     }
+    if args.fluid {
+        std::fs::create_dir_all(&args.out)
+            .map_err(|e| CliError::BadInput(format!("{}: {e}", args.out.display())))?;
+        crate::bench_fluid::bench_fluid(&args.out, machine())?;
+        if args.scenes.is_empty() {
+            return write_report(&args.out, &args.report);
+        }
+    }
     let scenes = if args.scenes.is_empty() {
         vec![
             PathBuf::from("scenes/box10k/scene.toml"),
@@ -249,7 +261,11 @@ fn read_results<T: serde::de::DeserializeOwned>(
             name.ends_with(".json")
                 && match prefix {
                     Some(prefix) => name.starts_with(prefix),
-                    None => !fracture && name != crate::bench_solvers::RESULTS_FILE,
+                    None => {
+                        !fracture
+                            && name != crate::bench_solvers::RESULTS_FILE
+                            && name != crate::bench_fluid::RESULTS_FILE
+                    }
                 }
         })
         .collect();
@@ -309,6 +325,15 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
         .and_then(|s| serde_json::from_str(&s).ok())
     {
         md.push_str(&crate::bench_solvers::markdown(&suite));
+    }
+    let fluid_file = dir.join(crate::bench_fluid::RESULTS_FILE);
+    if fluid_file.exists() {
+        let text = std::fs::read_to_string(&fluid_file)
+            .map_err(|e| CliError::Runtime(format!("{}: {e}", fluid_file.display())))?;
+        let fluid = serde_json::from_str(&text).map_err(|e| {
+            CliError::Runtime(format!("{}: not a fluid benchmark result of this version ({e})", fluid_file.display()))
+        })?;
+        md.push_str(&crate::bench_fluid::markdown(&fluid));
     }
     if let Ok(extra) = std::fs::read_to_string(dir.join("NOTES.md")) {
         md.push('\n');

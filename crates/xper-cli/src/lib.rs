@@ -2,6 +2,7 @@
 //! scenes and fracture scenes) with their outputs, benchmarks and validation cases.
 
 pub mod bench;
+pub mod bench_fluid;
 pub mod bench_fracture;
 pub mod bench_solvers;
 pub mod crack;
@@ -13,6 +14,7 @@ pub mod run_fluid;
 pub mod run_fracture;
 pub mod solve;
 pub mod validation;
+pub mod validation_fluid;
 pub mod validation_paper;
 pub mod world_from_scene;
 

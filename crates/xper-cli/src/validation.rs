@@ -364,7 +364,8 @@ pub fn write_report(path: &std::path::Path, full: bool) -> Result<(), CliError> 
          broad phase finds exactly the pairs of a brute-force search (`crates/xper-geometry/tests/`); the\n\
          exact 2D local solve satisfies Signorini-Coulomb on 10,000 random blocks (`xper-solver`).\n",
     );
-    let fracture_failures = fracture_section(&mut md)?;
+    let fracture_failures =
+        fracture_section(&mut md)? + crate::validation_fluid::fluid_section(&mut md, full)?;
     let paper_failures = crate::validation_paper::paper_section(&mut md, full)? + fracture_failures;
     let suite_failures = suite_section(&mut md)? + paper_failures;
     xper_io::write_atomic(path, md.as_bytes()).map_err(|e| CliError::Runtime(e.to_string()))?;
@@ -398,7 +399,7 @@ fn fracture_section(md: &mut String) -> Result<usize, CliError> {
 
 /// Appends one case to a validation table and prints its verdict (pass when
 /// `error <= tolerance`, so a NaN error fails).
-fn push_case_row(
+pub(crate) fn push_case_row(
     md: &mut String,
     name: &str,
     reference: &str,

@@ -29,3 +29,5 @@ pub use solver::{FluidError, FluidParams, FluidSolver, FluidState, FluidStepRepo
 pub mod coupling;
 pub mod validation;
 pub use coupling::{CoupledError, CoupledReport, CoupledState, CoupledStepper};
+#[path = "validation_grains.rs"]
+pub mod validation_grains;

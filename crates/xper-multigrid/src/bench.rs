@@ -1,11 +1,11 @@
 //! Figures of the multigrid solver on one grid (for `xper bench --fluid` and BENCHMARKS.md).
 
 use crate::{Boundary, GridShape, Multigrid, MultigridParams};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
 /// Measured figures of one grid and boundary.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct BenchFigures {
     /// Cells along x and y.
     pub cells: [usize; 2],

@@ -1,0 +1,163 @@
+//! `xper bench --fluid`: the multigrid pressure solver (convergence factor, work units per
+//! decade, smoother throughput), the whole fluid step with and without immersed grains, and
+//! the paper's two-grain scene; saved as `fluid.json`, reported in BENCHMARKS.md.
+
+use crate::CliError;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+use std::time::Instant;
+use xper_fluid::{FluidBoundary, FluidParams, FluidSolver, FluidState, ImmersedDisk, MacGrid, SideCondition};
+use xper_math::{Real, Vector};
+use xper_multigrid::bench::{run_benchmark, BenchFigures};
+use xper_multigrid::{Boundary, SideCondition as Pressure};
+
+/// File of the results in the benchmark directory.
+pub const RESULTS_FILE: &str = "fluid.json";
+
+/// One timed fluid step configuration.
+#[derive(Serialize, Deserialize)]
+pub struct StepFigures {
+    cells: [usize; 2],
+    grains: usize,
+    steps: usize,
+    mean_step_s: f64,
+    cells_per_second: f64,
+    mean_pressure_cycles: f64,
+    share_projection: f64,
+}
+
+/// Everything `--fluid` measures.
+#[derive(Serialize, Deserialize)]
+pub struct FluidBench {
+    machine: String,
+    multigrid: Vec<(String, BenchFigures)>,
+    steps: Vec<StepFigures>,
+    two_grains_wall_s_per_simulated_s: f64,
+    two_grains_simulated_s: f64,
+    two_grains_steps: u64,
+}
+
+/// Mean of `steps` lid-driven steps on `n x n` cells of a unit box, after 5 warm-up steps,
+/// with `grains` disks of 8 cells diameter on a lattice moving at 0.1 m/s.
+fn time_steps(n: usize, grains: usize, steps: usize) -> Result<StepFigures, CliError> {
+    let boundary = FluidBoundary { top: SideCondition::MovingWall { velocity: 1.0 }, ..FluidBoundary::closed_box() };
+    let grid = MacGrid { nx: n, ny: n, h: 1.0 / n as Real, origin: Vector::zeros() };
+    let params = FluidParams::new(1.0, 1e-3, boundary);
+    let mut solver = FluidSolver::new(grid, &params).map_err(|e| CliError::Runtime(e.to_string()))?;
+    let mut state = FluidState::at_rest(grid, &params.boundary);
+    let side = (grains as f64).sqrt().ceil() as usize;
+    let disks: Vec<ImmersedDisk> = (0..grains)
+        .map(|k| ImmersedDisk {
+            centre: Vector::new(((k % side) as Real + 0.5) / side as Real, ((k / side) as Real + 0.5) / side as Real),
+            radius: 4.0 * grid.h,
+            velocity: Vector::new(0.1, 0.0),
+            angular_velocity: 0.0,
+        })
+        .collect();
+    let (mut total, mut projection, mut cycles) = (0.0, 0.0, 0.0);
+    for k in 0..steps + 5 {
+        let dt = solver.stable_dt(&params, &state, 0.1);
+        let start = Instant::now();
+        let report = solver.step(&params, &mut state, dt, &disks).map_err(|e| CliError::Runtime(e.to_string()))?;
+        if k >= 5 {
+            total += start.elapsed().as_secs_f64();
+            projection += report.times[2];
+            cycles += report.pressure.cycles as f64;
+        }
+    }
+    let mean = total / steps as f64;
+    Ok(StepFigures {
+        cells: [n, n],
+        grains,
+        steps,
+        mean_step_s: mean,
+        cells_per_second: (n * n) as f64 / mean,
+        mean_pressure_cycles: cycles / steps as f64,
+        share_projection: projection / total,
+    })
+}
+
+/// Runs the fluid benchmarks and writes `fluid.json` into `out`.
+pub fn bench_fluid(out: &Path, machine: String) -> Result<(), CliError> {
+    let families = [
+        ("Neumann (closed box)", Boundary::all(Pressure::Neumann)),
+        ("periodic", Boundary::all(Pressure::Periodic)),
+        ("Dirichlet top (outflow)", Boundary { top: Pressure::Dirichlet, ..Boundary::all(Pressure::Neumann) }),
+    ];
+    let mut multigrid = Vec::new();
+    for n in [512, 1024] {
+        for (name, boundary) in families {
+            let figures = run_benchmark(n, n, boundary).map_err(CliError::Runtime)?;
+            println!("multigrid {n}^2 {name}: {figures:?}");
+            multigrid.push((name.to_string(), figures));
+        }
+    }
+    let mut steps = Vec::new();
+    for (n, grains) in [(512, 0), (512, 300), (1024, 0), (1024, 300)] {
+        let figures = time_steps(n, grains, if n == 512 { 40 } else { 15 })?;
+        println!("fluid step {n}^2 with {grains} grains: {:.1} ms, {:.3e} cells/s", figures.mean_step_s * 1e3, figures.cells_per_second);
+        steps.push(figures);
+    }
+    let scene = Path::new("scenes/two_grains_sedimentation/scene.toml");
+    let (wall, simulated, count) = two_grains(scene, 0.2)?;
+    println!("two grains: {:.2} s of wall time per simulated second ({count} steps to {simulated} s)", wall / simulated);
+    let bench = FluidBench {
+        machine,
+        multigrid,
+        steps,
+        two_grains_wall_s_per_simulated_s: wall / simulated,
+        two_grains_simulated_s: simulated,
+        two_grains_steps: count,
+    };
+    xper_io::write_json_atomic(&out.join(RESULTS_FILE), &bench).map_err(|e| CliError::Runtime(e.to_string()))
+}
+
+/// Runs the first `until` seconds of the two-grain scene without outputs.
+fn two_grains(scene: &Path, until: Real) -> Result<(f64, Real, u64), CliError> {
+    let scene = xper_scene::load_scene(scene).map_err(|e| CliError::BadInput(e.to_string()))?;
+    let desc = scene.fluid.as_ref().ok_or_else(|| CliError::BadInput("the two-grain scene has no [fluid]".into()))?;
+    let params = crate::run_fluid::fluid_params(desc, scene.dt);
+    let mut state = crate::run_fluid::coupled_state(&scene, desc, &params);
+    let mut stepper = xper_fluid::CoupledStepper::new(&params, &state).map_err(|e| CliError::Runtime(e.to_string()))?;
+    let start = Instant::now();
+    while state.world.time < until {
+        stepper.step(&params, &mut state).map_err(|e| CliError::Runtime(e.to_string()))?;
+    }
+    Ok((start.elapsed().as_secs_f64(), state.world.time, state.world.step))
+}
+
+/// The BENCHMARKS.md section of `fluid.json`.
+pub fn markdown(b: &FluidBench) -> String {
+    let mut md = String::from(
+        "\n## Fluid (issue 5; `xper bench --fluid`, one thread)\n\n\
+         Multigrid V(2,2) cycles, red-black Gauss-Seidel, random right-hand side reduced by 1e-8 from zero. \
+         Targets: factor <= 0.1, <= 6 work units per decade, smoother >= 3e8 cells/s.\n\n\
+         | grid | pressure condition | levels | cycles | factor per cycle | work units / decade | smoother (cells/s) | solve (s) |\n\
+         |---|---|---|---|---|---|---|---|\n",
+    );
+    for (name, f) in &b.multigrid {
+        md.push_str(&format!(
+            "| {} x {} | {name} | {} | {} | {:.3} | {:.2} | {:.2e} | {:.3} |\n",
+            f.cells[0], f.cells[1], f.levels, f.cycles, f.convergence_factor, f.work_units_per_decade,
+            f.smoother_cells_per_second, f.solve_seconds
+        ));
+    }
+    md.push_str(
+        "\nWhole fluid step (predictor, forcing, projection to 1e-8 relative residual), lid-driven box, grains \
+         of 8 cells diameter moving through it. Target >= 1e7 cells/s.\n\n\
+         | grid | grains | mean step (ms) | cells/s | pressure cycles per step | projection share |\n|---|---|---|---|---|---|\n",
+    );
+    for s in &b.steps {
+        md.push_str(&format!(
+            "| {} x {} | {} | {:.1} | {:.2e} | {:.1} | {:.0} % |\n",
+            s.cells[0], s.cells[1], s.grains, s.mean_step_s * 1e3, s.cells_per_second, s.mean_pressure_cycles,
+            100.0 * s.share_projection
+        ));
+    }
+    md.push_str(&format!(
+        "\nTwo-grain sedimentation at the paper's parameters (`scenes/two_grains_sedimentation`, 64 x 640 cells, \
+         16 per diameter): {:.1} s of wall time per simulated second ({} steps to {:.2} s).\n\nMachine: {}.\n",
+        b.two_grains_wall_s_per_simulated_s, b.two_grains_steps, b.two_grains_simulated_s, b.machine
+    ));
+    md
+}
