@@ -331,7 +331,10 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
         let text = std::fs::read_to_string(&fluid_file)
             .map_err(|e| CliError::Runtime(format!("{}: {e}", fluid_file.display())))?;
         let fluid = serde_json::from_str(&text).map_err(|e| {
-            CliError::Runtime(format!("{}: not a fluid benchmark result of this version ({e})", fluid_file.display()))
+            CliError::Runtime(format!(
+                "{}: not a fluid benchmark result of this version ({e})",
+                fluid_file.display()
+            ))
         })?;
         md.push_str(&crate::bench_fluid::markdown(&fluid));
     }

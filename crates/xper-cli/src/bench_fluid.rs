@@ -6,7 +6,9 @@ use crate::CliError;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::time::Instant;
-use xper_fluid::{FluidBoundary, FluidParams, FluidSolver, FluidState, ImmersedDisk, MacGrid, SideCondition};
+use xper_fluid::{
+    FluidBoundary, FluidParams, FluidSolver, FluidState, ImmersedDisk, MacGrid, SideCondition,
+};
 use xper_math::{Real, Vector};
 use xper_multigrid::bench::{run_benchmark, BenchFigures};
 use xper_multigrid::{Boundary, SideCondition as Pressure};
@@ -40,15 +42,27 @@ pub struct FluidBench {
 /// Mean of `steps` lid-driven steps on `n x n` cells of a unit box, after 5 warm-up steps,
 /// with `grains` disks of 8 cells diameter on a lattice moving at 0.1 m/s.
 fn time_steps(n: usize, grains: usize, steps: usize) -> Result<StepFigures, CliError> {
-    let boundary = FluidBoundary { top: SideCondition::MovingWall { velocity: 1.0 }, ..FluidBoundary::closed_box() };
-    let grid = MacGrid { nx: n, ny: n, h: 1.0 / n as Real, origin: Vector::zeros() };
+    let boundary = FluidBoundary {
+        top: SideCondition::MovingWall { velocity: 1.0 },
+        ..FluidBoundary::closed_box()
+    };
+    let grid = MacGrid {
+        nx: n,
+        ny: n,
+        h: 1.0 / n as Real,
+        origin: Vector::zeros(),
+    };
     let params = FluidParams::new(1.0, 1e-3, boundary);
-    let mut solver = FluidSolver::new(grid, &params).map_err(|e| CliError::Runtime(e.to_string()))?;
+    let mut solver =
+        FluidSolver::new(grid, &params).map_err(|e| CliError::Runtime(e.to_string()))?;
     let mut state = FluidState::at_rest(grid, &params.boundary);
     let side = (grains as f64).sqrt().ceil() as usize;
     let disks: Vec<ImmersedDisk> = (0..grains)
         .map(|k| ImmersedDisk {
-            centre: Vector::new(((k % side) as Real + 0.5) / side as Real, ((k / side) as Real + 0.5) / side as Real),
+            centre: Vector::new(
+                ((k % side) as Real + 0.5) / side as Real,
+                ((k / side) as Real + 0.5) / side as Real,
+            ),
             radius: 4.0 * grid.h,
             velocity: Vector::new(0.1, 0.0),
             angular_velocity: 0.0,
@@ -58,7 +72,9 @@ fn time_steps(n: usize, grains: usize, steps: usize) -> Result<StepFigures, CliE
     for k in 0..steps + 5 {
         let dt = solver.stable_dt(&params, &state, 0.1);
         let start = Instant::now();
-        let report = solver.step(&params, &mut state, dt, &disks).map_err(|e| CliError::Runtime(e.to_string()))?;
+        let report = solver
+            .step(&params, &mut state, dt, &disks)
+            .map_err(|e| CliError::Runtime(e.to_string()))?;
         if k >= 5 {
             total += start.elapsed().as_secs_f64();
             projection += report.times[2];
@@ -82,7 +98,13 @@ pub fn bench_fluid(out: &Path, machine: String) -> Result<(), CliError> {
     let families = [
         ("Neumann (closed box)", Boundary::all(Pressure::Neumann)),
         ("periodic", Boundary::all(Pressure::Periodic)),
-        ("Dirichlet top (outflow)", Boundary { top: Pressure::Dirichlet, ..Boundary::all(Pressure::Neumann) }),
+        (
+            "Dirichlet top (outflow)",
+            Boundary {
+                top: Pressure::Dirichlet,
+                ..Boundary::all(Pressure::Neumann)
+            },
+        ),
     ];
     let mut multigrid = Vec::new();
     for n in [512, 1024] {
@@ -95,12 +117,19 @@ pub fn bench_fluid(out: &Path, machine: String) -> Result<(), CliError> {
     let mut steps = Vec::new();
     for (n, grains) in [(512, 0), (512, 300), (1024, 0), (1024, 300)] {
         let figures = time_steps(n, grains, if n == 512 { 40 } else { 15 })?;
-        println!("fluid step {n}^2 with {grains} grains: {:.1} ms, {:.3e} cells/s", figures.mean_step_s * 1e3, figures.cells_per_second);
+        println!(
+            "fluid step {n}^2 with {grains} grains: {:.1} ms, {:.3e} cells/s",
+            figures.mean_step_s * 1e3,
+            figures.cells_per_second
+        );
         steps.push(figures);
     }
     let scene = Path::new("scenes/two_grains_sedimentation/scene.toml");
     let (wall, simulated, count) = two_grains(scene, 0.2)?;
-    println!("two grains: {:.2} s of wall time per simulated second ({count} steps to {simulated} s)", wall / simulated);
+    println!(
+        "two grains: {:.2} s of wall time per simulated second ({count} steps to {simulated} s)",
+        wall / simulated
+    );
     let bench = FluidBench {
         machine,
         multigrid,
@@ -109,21 +138,32 @@ pub fn bench_fluid(out: &Path, machine: String) -> Result<(), CliError> {
         two_grains_simulated_s: simulated,
         two_grains_steps: count,
     };
-    xper_io::write_json_atomic(&out.join(RESULTS_FILE), &bench).map_err(|e| CliError::Runtime(e.to_string()))
+    xper_io::write_json_atomic(&out.join(RESULTS_FILE), &bench)
+        .map_err(|e| CliError::Runtime(e.to_string()))
 }
 
 /// Runs the first `until` seconds of the two-grain scene without outputs.
 fn two_grains(scene: &Path, until: Real) -> Result<(f64, Real, u64), CliError> {
     let scene = xper_scene::load_scene(scene).map_err(|e| CliError::BadInput(e.to_string()))?;
-    let desc = scene.fluid.as_ref().ok_or_else(|| CliError::BadInput("the two-grain scene has no [fluid]".into()))?;
+    let desc = scene
+        .fluid
+        .as_ref()
+        .ok_or_else(|| CliError::BadInput("the two-grain scene has no [fluid]".into()))?;
     let params = crate::run_fluid::fluid_params(desc, scene.dt);
     let mut state = crate::run_fluid::coupled_state(&scene, desc, &params);
-    let mut stepper = xper_fluid::CoupledStepper::new(&params, &state).map_err(|e| CliError::Runtime(e.to_string()))?;
+    let mut stepper = xper_fluid::CoupledStepper::new(&params, &state)
+        .map_err(|e| CliError::Runtime(e.to_string()))?;
     let start = Instant::now();
     while state.world.time < until {
-        stepper.step(&params, &mut state).map_err(|e| CliError::Runtime(e.to_string()))?;
+        stepper
+            .step(&params, &mut state)
+            .map_err(|e| CliError::Runtime(e.to_string()))?;
     }
-    Ok((start.elapsed().as_secs_f64(), state.world.time, state.world.step))
+    Ok((
+        start.elapsed().as_secs_f64(),
+        state.world.time,
+        state.world.step,
+    ))
 }
 
 /// The BENCHMARKS.md section of `fluid.json`.
@@ -138,8 +178,14 @@ pub fn markdown(b: &FluidBench) -> String {
     for (name, f) in &b.multigrid {
         md.push_str(&format!(
             "| {} x {} | {name} | {} | {} | {:.3} | {:.2} | {:.2e} | {:.3} |\n",
-            f.cells[0], f.cells[1], f.levels, f.cycles, f.convergence_factor, f.work_units_per_decade,
-            f.smoother_cells_per_second, f.solve_seconds
+            f.cells[0],
+            f.cells[1],
+            f.levels,
+            f.cycles,
+            f.convergence_factor,
+            f.work_units_per_decade,
+            f.smoother_cells_per_second,
+            f.solve_seconds
         ));
     }
     md.push_str(
@@ -150,7 +196,12 @@ pub fn markdown(b: &FluidBench) -> String {
     for s in &b.steps {
         md.push_str(&format!(
             "| {} x {} | {} | {:.1} | {:.2e} | {:.1} | {:.0} % |\n",
-            s.cells[0], s.cells[1], s.grains, s.mean_step_s * 1e3, s.cells_per_second, s.mean_pressure_cycles,
+            s.cells[0],
+            s.cells[1],
+            s.grains,
+            s.mean_step_s * 1e3,
+            s.cells_per_second,
+            s.mean_pressure_cycles,
             100.0 * s.share_projection
         ));
     }

@@ -41,7 +41,14 @@ pub fn fluid_section(md: &mut String, full: bool) -> Result<usize, CliError> {
     ));
     let mut failures = 0;
     for c in &cases {
-        crate::validation::push_case_row(md, &c.name, &c.reference, &c.measured, c.error, c.tolerance);
+        crate::validation::push_case_row(
+            md,
+            &c.name,
+            &c.reference,
+            &c.measured,
+            c.error,
+            c.tolerance,
+        );
         failures += usize::from(!c.passed());
     }
     if !refs.exists() {

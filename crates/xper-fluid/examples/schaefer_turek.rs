@@ -1,8 +1,14 @@
 //! Prints the Schaefer-Turek 2D-1 coefficients for a cell size and end time given on the
 //! command line: `cargo run --release -p xper-fluid --example schaefer_turek -- 0.005 8`.
 fn main() {
-    let args: Vec<f64> = std::env::args().skip(1).filter_map(|a| a.parse().ok()).collect();
-    let (h, end) = (args.first().copied().unwrap_or(0.005), args.get(1).copied().unwrap_or(8.0));
+    let args: Vec<f64> = std::env::args()
+        .skip(1)
+        .filter_map(|a| a.parse().ok())
+        .collect();
+    let (h, end) = (
+        args.first().copied().unwrap_or(0.005),
+        args.get(1).copied().unwrap_or(8.0),
+    );
     match xper_fluid::validation::schaefer_turek(h, end) {
         Ok(case) => println!("{}: {} (error {:.3})", case.name, case.measured, case.error),
         Err(e) => eprintln!("{e}"),

@@ -241,7 +241,7 @@ impl FluidBoundary {
     /// Gives each outflow face the value of the face next inside (zero normal derivative), the
     /// predicted value that the projection then corrects.
     pub fn extrapolate_outflow(&self, grid: &MacGrid, u: &mut [Vec<Real>; DIM]) {
-        for a in 0..DIM {
+        for (a, normal) in u.iter_mut().enumerate() {
             let n = grid.cells(a) as isize;
             let m = grid.cells(1 - a) as isize;
             for (side, condition) in self.sides(a).into_iter().enumerate() {
@@ -255,7 +255,7 @@ impl FluidBoundary {
                     } else {
                         (grid.index(k, face), grid.index(k, next))
                     };
-                    u[a][f] = u[a][x];
+                    normal[f] = normal[x];
                 }
             }
         }

@@ -69,8 +69,8 @@ pub struct CoupledStepper {
 }
 
 impl CoupledStepper {
-    /// A stepper for `state` (the disks of `state.world` are immersed); the scene's time step
-    /// `state.world.params.dt` becomes the largest step.
+    /// A stepper for `state` (the disks of `state.world` are immersed); `params.dt_max` is the
+    /// largest step (the world's `dt` is overwritten by each step's).
     pub fn new(params: &FluidParams, state: &CoupledState) -> Result<Self, FluidError> {
         let fluid = FluidSolver::new(state.fluid.grid, params)?;
         let bodies = &state.world.bodies;
@@ -82,7 +82,7 @@ impl CoupledStepper {
             grains: MoreauJean::new(),
             immersed,
             disks: Vec::new(),
-            largest_dt: state.world.params.dt,
+            largest_dt: params.dt_max,
         })
     }
 

@@ -76,7 +76,7 @@ impl FluidParams {
             ("pressure_tolerance", self.pressure_tolerance),
         ];
         for (name, value) in positive {
-            if !(value > 0.0) {
+            if value.is_nan() || value <= 0.0 {
                 return Err(format!("{name} must be positive, got {value}"));
             }
         }
@@ -259,7 +259,7 @@ impl FluidSolver {
     /// A solver for `grid` (checks the parameters, builds the multigrid hierarchy).
     pub fn new(grid: MacGrid, params: &FluidParams) -> Result<Self, FluidError> {
         params.validate().map_err(FluidError::Setup)?;
-        if grid.nx < 2 || grid.ny < 2 || !(grid.h > 0.0) {
+        if grid.nx < 2 || grid.ny < 2 || grid.h.is_nan() || grid.h <= 0.0 {
             return Err(FluidError::Setup(format!(
                 "the grid needs at least 2 x 2 cells of positive size, got {} x {} of {}",
                 grid.nx, grid.ny, grid.h

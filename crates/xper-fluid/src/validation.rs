@@ -300,12 +300,19 @@ pub fn projection_divergence(n: usize) -> Result<Case, String> {
 pub fn schaefer_turek_coefficients(h: Real, end: Real) -> Result<(Real, Real), String> {
     use crate::{ImmersedDisk, InflowProfile};
     let boundary = FluidBoundary {
-        left: SideCondition::Inflow { profile: InflowProfile::Parabolic { max_speed: 0.3 } },
+        left: SideCondition::Inflow {
+            profile: InflowProfile::Parabolic { max_speed: 0.3 },
+        },
         right: SideCondition::Outflow,
         ..FluidBoundary::closed_box()
     };
     let n = |length: Real| (length / h).round() as usize;
-    let grid = MacGrid { nx: n(2.2), ny: n(0.41), h, origin: Vector::zeros() };
+    let grid = MacGrid {
+        nx: n(2.2),
+        ny: n(0.41),
+        h,
+        origin: Vector::zeros(),
+    };
     let params = FluidParams::new(1.0, 1e-3, boundary);
     let mut solver = FluidSolver::new(grid, &params).map_err(|e| e.to_string())?;
     let mut state = FluidState::at_rest(grid, &params.boundary);
@@ -318,7 +325,9 @@ pub fn schaefer_turek_coefficients(h: Real, end: Real) -> Result<(Real, Real), S
     let mut force = Vector::zeros();
     while state.time < end {
         let dt = solver.stable_dt(&params, &state, 0.0).min(end - state.time);
-        let report = solver.step(&params, &mut state, dt, &disk).map_err(|e| e.to_string())?;
+        let report = solver
+            .step(&params, &mut state, dt, &disk)
+            .map_err(|e| e.to_string())?;
         force = report.forces[0].force;
     }
     let scale = 2.0 / (1.0 * 0.2 * 0.2 * 0.1);
@@ -330,7 +339,10 @@ pub fn schaefer_turek_coefficients(h: Real, end: Real) -> Result<(Real, Real), S
 pub fn schaefer_turek(h: Real, end: Real) -> Result<Case, String> {
     let (drag, lift) = schaefer_turek_coefficients(h, end)?;
     Ok(Case {
-        name: format!("Schaefer-Turek 2D-1 cylinder, h = {h} m ({:.0} cells per diameter), t = {end} s", 0.1 / h),
+        name: format!(
+            "Schaefer-Turek 2D-1 cylinder, h = {h} m ({:.0} cells per diameter), t = {end} s",
+            0.1 / h
+        ),
         reference: "C_D 5.57-5.59, C_L 0.0104-0.0110 (Schaefer and Turek 1996)".into(),
         measured: format!("C_D {drag:.4}, C_L {lift:.4}"),
         error: (drag / 5.58 - 1.0).abs(),

@@ -32,11 +32,22 @@ fn grain_in_box(
     let mut bodies = BodySet::new();
     bodies.insert(Body::disk(0.5 * d, ratio * RHO_F, centre).in_group(0));
     let [w, h] = size;
-    for (a, b) in [((0.0, 0.0), (w, 0.0)), ((0.0, h), (0.0, 0.0)), ((w, 0.0), (w, h))] {
+    for (a, b) in [
+        ((0.0, 0.0), (w, 0.0)),
+        ((0.0, h), (0.0, 0.0)),
+        ((w, 0.0), (w, h)),
+    ] {
         bodies.insert(Body::wall(Vector::new(a.0, a.1), Vector::new(b.0, b.1)).in_group(1));
     }
     let mut laws = LawTable::new(2);
-    laws.set(0, 1, InteractionLaw::SignoriniCoulomb(SignoriniCoulomb { friction: 0.5, restitution: 0.0 }));
+    laws.set(
+        0,
+        1,
+        InteractionLaw::SignoriniCoulomb(SignoriniCoulomb {
+            friction: 0.5,
+            restitution: 0.0,
+        }),
+    );
     let params = StepParams {
         dt: 1e-3,
         theta: 0.5,
@@ -54,22 +65,37 @@ fn grain_in_box(
     };
     let cell = d / cells_per_diameter as Real;
     let n = |length: Real| (length / cell).round() as usize;
-    let grid = MacGrid { nx: n(w), ny: n(h), h: cell, origin: Vector::zeros() };
+    let grid = MacGrid {
+        nx: n(w),
+        ny: n(h),
+        h: cell,
+        origin: Vector::zeros(),
+    };
     let fluid = FluidParams::new(RHO_F, mu, FluidBoundary::closed_box());
-    let state = CoupledState { fluid: FluidState::at_rest(grid, &fluid.boundary), world: World::new(bodies, laws, params) };
+    let state = CoupledState {
+        fluid: FluidState::at_rest(grid, &fluid.boundary),
+        world: World::new(bodies, laws, params),
+    };
     Ok((fluid, state))
 }
 
 /// Runs to `end` (s); returns the largest speed of the grain and its final centre and velocity.
-fn run(fluid: &FluidParams, state: &mut CoupledState, end: Real) -> Result<(Real, Vector, Vector), String> {
+fn run(
+    fluid: &FluidParams,
+    state: &mut CoupledState,
+    end: Real,
+) -> Result<(Real, Vector, Vector), String> {
     let mut stepper = CoupledStepper::new(fluid, state).map_err(|e| e.to_string())?;
-    state.world.params.dt = 1e-3;
     let mut fastest: Real = 0.0;
     while state.world.time < end * (1.0 - 1e-12) {
         stepper.step(fluid, state).map_err(|e| e.to_string())?;
         fastest = fastest.max(state.world.bodies.velocity[0].norm());
     }
-    Ok((fastest, state.world.bodies.position[0], state.world.bodies.velocity[0]))
+    Ok((
+        fastest,
+        state.world.bodies.position[0],
+        state.world.bodies.velocity[0],
+    ))
 }
 
 /// A disk of d = 2 mm, density 1.5 rho_f, resting on the floor of an 8d x 4d box of water
@@ -77,7 +103,14 @@ fn run(fluid: &FluidParams, state: &mut CoupledState, end: Real) -> Result<(Real
 /// fall speed `g t` it would reach without the floor, tolerance 1e-4.
 pub fn resting_grain() -> Result<Case, String> {
     let d = 2e-3;
-    let (fluid, mut state) = grain_in_box(d, 1.5, 1e-3, [8.0 * d, 4.0 * d], Vector::new(4.0 * d, 0.5 * d), 16)?;
+    let (fluid, mut state) = grain_in_box(
+        d,
+        1.5,
+        1e-3,
+        [8.0 * d, 4.0 * d],
+        Vector::new(4.0 * d, 0.5 * d),
+        16,
+    )?;
     let end = 0.05;
     let (fastest, centre, _) = run(&fluid, &mut state, end)?;
     let ratio = fastest / (G * end);
@@ -102,15 +135,28 @@ pub fn settling_convergence(cells: usize) -> Result<Case, String> {
     let mut velocities = Vec::new();
     for k in 0..3 {
         let cpd = cells << k;
-        let (fluid, mut state) =
-            grain_in_box(d, 1.5, 1e-2, [8.0 * d, 16.0 * d], Vector::new(4.0 * d, 12.0 * d), cpd)?;
+        let (fluid, mut state) = grain_in_box(
+            d,
+            1.5,
+            1e-2,
+            [8.0 * d, 16.0 * d],
+            Vector::new(4.0 * d, 12.0 * d),
+            cpd,
+        )?;
         let (_, _, velocity) = run(&fluid, &mut state, 0.1)?;
         velocities.push(velocity.y);
     }
-    let (a, b) = ((velocities[0] - velocities[1]).abs(), (velocities[1] - velocities[2]).abs());
+    let (a, b) = (
+        (velocities[0] - velocities[1]).abs(),
+        (velocities[1] - velocities[2]).abs(),
+    );
     let order = (a / b).log2();
     Ok(Case {
-        name: format!("settling velocity of one grain at t = 0.1 s, {cells}, {}, {} cells per diameter", 2 * cells, 4 * cells),
+        name: format!(
+            "settling velocity of one grain at t = 0.1 s, {cells}, {}, {} cells per diameter",
+            2 * cells,
+            4 * cells
+        ),
         reference: "converges under refinement (observed order reported)".into(),
         measured: format!(
             "v = {:.5}, {:.5}, {:.5} m/s; order {order:.2}",

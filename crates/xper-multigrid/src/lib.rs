@@ -212,7 +212,8 @@ impl Multigrid {
                 "a periodic side needs a periodic opposite side".into(),
             ));
         }
-        if !(params.relative_tolerance > 0.0)
+        if params.relative_tolerance.is_nan()
+            || params.relative_tolerance <= 0.0
             || params.max_cycles == 0
             || params.pre_smoothing + params.post_smoothing == 0
         {

@@ -35,10 +35,11 @@ fn dense_solve(mg: &Multigrid, rhs: &[f64], singular: bool) -> Vec<f64> {
             .max_by(|&x, &y| a[x][k].abs().total_cmp(&a[y][k].abs()))
             .unwrap();
         a.swap(k, p);
-        for r in k + 1..n {
-            let f = a[r][k] / a[k][k];
-            for c in k..=n {
-                a[r][c] -= f * a[k][c];
+        let pivot = a[k].clone();
+        for row in a.iter_mut().skip(k + 1) {
+            let f = row[k] / pivot[k];
+            for (x, p) in row.iter_mut().zip(&pivot).skip(k) {
+                *x -= f * p;
             }
         }
     }
@@ -156,7 +157,8 @@ fn discretisation_error(
 #[test]
 fn discretisation_error_is_second_order() {
     use std::f64::consts::PI;
-    let cases: [(Boundary, fn(f64, f64) -> f64, fn(f64, f64) -> f64); 3] = [
+    type Field = fn(f64, f64) -> f64;
+    let cases: [(Boundary, Field, Field); 3] = [
         (
             boundary(N, N),
             |x, y| (PI * x).cos() * (PI * y).cos(),

@@ -414,8 +414,8 @@ impl MoreauJean {
             }
         }
         for (body, force) in self.op.bodies.iter_mut().zip(&self.external_forces) {
-            for d in 0..DOFS {
-                body.velocity[d] += h * body.inv_mass[d] * force[d];
+            for ((v, m), f) in body.velocity.iter_mut().zip(body.inv_mass).zip(force) {
+                *v += h * m * f;
             }
         }
         for (handle, drives) in &world.bodies.driven {

@@ -1,0 +1,123 @@
+//! A scene with `[fluid]` through the command: its outputs, `--resume` ending bit-identical to
+//! an uninterrupted run, and a bad `[fluid]` section reported with its place and exit code 2.
+
+mod common;
+use common::{temp_dir, xper};
+
+fn scene(duration: f64, viscosity: &str) -> String {
+    format!(
+        r#"[scene]
+name = "grain_in_box"
+dt = 1e-3
+duration = {duration}
+gravity = [0.0, -9.81]
+
+[output]
+frame_every = 20
+checkpoint_every = 25
+
+[[materials]]
+name = "grain"
+density = 1500.0
+
+[[laws]]
+between = ["grain", "wall"]
+kind = "signorini_coulomb"
+friction = 0.5
+
+[[bodies]]
+shape = "disk"
+center = [0.008, 0.012]
+radius = 0.001
+material = "grain"
+group = "grain"
+
+[[walls]]
+from = [0.0, 0.0]
+to = [0.016, 0.0]
+group = "wall"
+
+[fluid]
+density = 1000.0
+viscosity = {viscosity}
+domain = [[0.0, 0.0], [0.016, 0.016]]
+cells_per_diameter = 8
+"#
+    )
+}
+
+#[test]
+fn fluid_scene_writes_its_outputs_and_resumes_exactly() {
+    let dir = temp_dir("fluid_run");
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, scene(0.05, "1e-2")).unwrap();
+    let s = path.to_str().unwrap();
+    let (straight, split) = (dir.join("straight"), dir.join("split"));
+    let out = xper(&["run", s, "--out", straight.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for file in [
+        "result.pvd",
+        "series.csv",
+        "particles.csv",
+        "series.png",
+        "particles.png",
+        "summary.json",
+    ] {
+        assert!(straight.join(file).exists(), "{file} missing");
+    }
+    let vti = std::fs::read_to_string(straight.join("frames/fluid_00000000.vti")).unwrap();
+    assert!(
+        vti.contains("WholeExtent=\"0 64 0 64 0 0\"") && vti.contains("Name=\"vorticity\""),
+        "{vti}"
+    );
+    let particles = xper_io::SeriesTable::read_csv(&straight.join("particles.csv")).unwrap();
+    let vy = particles.column("vy").unwrap();
+    assert!(
+        vy.last().copied().unwrap() < -1e-3,
+        "the grain does not settle: {vy:?}"
+    );
+
+    let out = xper(&[
+        "run",
+        s,
+        "--out",
+        split.to_str().unwrap(),
+        "--stop-at-step",
+        "60",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = xper(&["run", s, "--out", split.to_str().unwrap(), "--resume"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let a = std::fs::read(straight.join("checkpoint.bin")).unwrap();
+    let b = std::fs::read(split.join("checkpoint.bin")).unwrap();
+    assert!(a == b, "final states differ after a resume");
+    let pa = std::fs::read_to_string(straight.join("particles.csv")).unwrap();
+    let pb = std::fs::read_to_string(split.join("particles.csv")).unwrap();
+    assert_eq!(pa, pb);
+}
+
+#[test]
+fn bad_fluid_section_is_reported_with_its_place() {
+    let dir = temp_dir("fluid_bad");
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, scene(0.05, "-1.0")).unwrap();
+    let out = xper(&["check", path.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("scene.toml:34:13:") && err.contains("fluid.viscosity") && err.contains("> 0"),
+        "{err}"
+    );
+}
