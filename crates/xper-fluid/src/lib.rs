@@ -9,7 +9,7 @@
 //! explicit Euler momentum predictor ([`momentum`]), a direct forcing towards the grains'
 //! rigid velocities weighted by their solid fraction `eta` ([`immersed`]) and an incremental
 //! pressure-correction projection whose Poisson equation is solved by geometric multigrid
-//! ([`projection`], `xper_multigrid`). [`FluidSolver::step`] runs the stages in that order; the
+//! ([`projection`], `xper_poisson`). [`FluidSolver::step`] runs the stages in that order; the
 //! force of the fluid on each grain comes out of the step for the contact dynamics to use.
 //!
 //! The grid is 2D (the `DIM` of `xper_math`); the stencils are written per component with

@@ -12,7 +12,7 @@
 use crate::boundary::FluidBoundary;
 use crate::grid::MacGrid;
 use xper_math::{Real, DIM};
-use xper_multigrid::{Multigrid, SolveError, SolveInfo};
+use xper_poisson::{Multigrid, SolveError, SolveInfo};
 
 /// Discrete divergence of cell `(i, j)` (1/s).
 #[inline]

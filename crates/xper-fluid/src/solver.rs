@@ -11,7 +11,7 @@ use crate::projection::Projection;
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 use xper_math::{Real, Vector, DIM};
-use xper_multigrid::{GridShape, Multigrid, MultigridParams, SolveError, SolveInfo};
+use xper_poisson::{GridShape, Multigrid, MultigridParams, SolveError, SolveInfo};
 
 /// Physical and numerical parameters of the fluid (SI units).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
