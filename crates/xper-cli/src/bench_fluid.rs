@@ -6,9 +6,7 @@ use crate::CliError;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::time::Instant;
-use xper_fluid::{
-    FluidBoundary, FluidParams, FluidSolver, FluidState, ImmersedDisk, MacGrid, SideCondition,
-};
+use xper_fluid::{FluidBoundary, FluidParams, FluidSolver, FluidState, ImmersedDisk, MacGrid};
 use xper_math::{Real, Vector};
 use xper_poisson::bench::{run_benchmark, BenchFigures};
 use xper_poisson::{Boundary, SideCondition as Pressure};
@@ -42,16 +40,8 @@ pub struct FluidBench {
 /// Mean of `steps` lid-driven steps on `n x n` cells of a unit box, after 5 warm-up steps,
 /// with `grains` disks of 8 cells diameter on a lattice moving at 0.1 m/s.
 fn time_steps(n: usize, grains: usize, steps: usize) -> Result<StepFigures, CliError> {
-    let boundary = FluidBoundary {
-        top: SideCondition::MovingWall { velocity: 1.0 },
-        ..FluidBoundary::closed_box()
-    };
-    let grid = MacGrid {
-        nx: n,
-        ny: n,
-        h: 1.0 / n as Real,
-        origin: Vector::zeros(),
-    };
+    let boundary = FluidBoundary::lid_driven(1.0);
+    let grid = MacGrid::square(n, 1.0);
     let params = FluidParams::new(1.0, 1e-3, boundary);
     let mut solver =
         FluidSolver::new(grid, &params).map_err(|e| CliError::Runtime(e.to_string()))?;

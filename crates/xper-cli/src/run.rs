@@ -139,20 +139,35 @@ impl Outputs {
     }
 }
 
-fn read_checkpoint(dir: &Path, scene_hash: u64) -> Result<World, CliError> {
+/// Reads `dir/checkpoint.bin`, written as `(scene hash, state)` by bincode, for the scene whose
+/// text hashes to `scene_hash`; `what` names the kind of state in the error message.
+pub(crate) fn read_checkpoint<T: serde::de::DeserializeOwned>(
+    dir: &Path,
+    scene_hash: u64,
+    what: &str,
+) -> Result<T, CliError> {
     let path = dir.join("checkpoint.bin");
     let bytes = std::fs::read(&path)
         .map_err(|e| CliError::BadInput(format!("{}: cannot resume: {e}", path.display())))?;
-    let (hash, world): (u64, Vec<u8>) = bincode::deserialize(&bytes).map_err(|e| {
-        CliError::BadInput(format!("{}: not an xper checkpoint: {e}", path.display()))
-    })?;
+    let (hash, state): (u64, T) = bincode::deserialize(&bytes)
+        .map_err(|e| CliError::BadInput(format!("{}: not {what}: {e}", path.display())))?;
     if hash != scene_hash {
         return Err(CliError::BadInput(format!(
             "{}: the checkpoint was written for a different scene file (the scene changed since)",
             path.display()
         )));
     }
-    World::from_bytes(&world).map_err(|e| CliError::BadInput(format!("{}: {e}", path.display())))
+    Ok(state)
+}
+
+/// Creates an output directory (and its parents), a bad-input error naming it otherwise.
+pub(crate) fn create_output_dir(dir: &Path) -> Result<(), CliError> {
+    std::fs::create_dir_all(dir).map_err(|e| {
+        CliError::BadInput(format!(
+            "{}: cannot create output directory: {e}",
+            dir.display()
+        ))
+    })
 }
 
 /// Runs a scene; see [`RunOptions`].
@@ -177,12 +192,7 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
         dirs.push(opts.out.join("problems"));
     }
     for dir in dirs {
-        std::fs::create_dir_all(&dir).map_err(|e| {
-            CliError::BadInput(format!(
-                "{}: cannot create output directory: {e}",
-                dir.display()
-            ))
-        })?;
+        create_output_dir(&dir)?;
     }
     let mut out = Outputs {
         dir: opts.out.clone(),
@@ -191,7 +201,13 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
         scene_hash: fnv1a(&text),
     };
     let mut world = if opts.resume {
-        let world = read_checkpoint(&opts.out, out.scene_hash)?;
+        let bytes: Vec<u8> = read_checkpoint(&opts.out, out.scene_hash, "an xper checkpoint")?;
+        let world = World::from_bytes(&bytes).map_err(|e| {
+            CliError::BadInput(format!(
+                "{}: {e}",
+                opts.out.join("checkpoint.bin").display()
+            ))
+        })?;
         let series_path = opts.out.join("series.csv");
         out.series =
             SeriesTable::read_csv(&series_path).map_err(|e| CliError::BadInput(e.to_string()))?;
@@ -257,7 +273,7 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
             .write_csv(&opts.out.join("series.csv"))
             .map_err(io_err)?;
     }
-    let status = run_status(failure.is_some(), world.step, scene.steps);
+    let status = run_status(failure.is_some(), world.step == scene.steps);
     write_summary(
         &out,
         &scene,
@@ -437,9 +453,9 @@ pub fn write_plot(series: &SeriesTable, path: &Path, title: &str) -> Result<(), 
     plot_panels(path, title, &panels, 1000, 300).map_err(io_err)
 }
 
-/// The status of a run in its summary: `failed`, `completed` (all its steps) or `stopped`.
-pub(crate) fn run_status(failed: bool, step: u64, steps: u64) -> &'static str {
-    match (failed, step == steps) {
+/// The status of a run in its summary: `failed`, `completed` (it reached its end) or `stopped`.
+pub(crate) fn run_status(failed: bool, complete: bool) -> &'static str {
+    match (failed, complete) {
         (true, _) => "failed",
         (false, true) => "completed",
         (false, false) => "stopped",

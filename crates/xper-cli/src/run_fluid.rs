@@ -5,7 +5,7 @@
 //! `particles.png`, `summary.json` and checkpoints (`--resume`).
 
 use crate::frames::{bodies_grid, contacts_grid};
-use crate::run::{progress_bar, run_status, RunOptions};
+use crate::run::{create_output_dir, progress_bar, read_checkpoint, run_status, RunOptions};
 use crate::world_from_scene::world_from_scene;
 use crate::CliError;
 use serde::Serialize;
@@ -286,25 +286,6 @@ fn fluid_image(fluid: &FluidState, stepper: &CoupledStepper) -> ImageGrid {
     }
 }
 
-fn read_checkpoint(dir: &Path, scene_hash: u64) -> Result<CoupledState, CliError> {
-    let path = dir.join("checkpoint.bin");
-    let bytes = std::fs::read(&path)
-        .map_err(|e| CliError::BadInput(format!("{}: cannot resume: {e}", path.display())))?;
-    let (hash, state): (u64, CoupledState) = bincode::deserialize(&bytes).map_err(|e| {
-        CliError::BadInput(format!(
-            "{}: not a checkpoint of a fluid scene: {e}",
-            path.display()
-        ))
-    })?;
-    if hash != scene_hash {
-        return Err(CliError::BadInput(format!(
-            "{}: the checkpoint was written for a different scene file (the scene changed since)",
-            path.display()
-        )));
-    }
-    Ok(state)
-}
-
 /// Runs a fluid scene (already loaded and validated) to `scene.steps x scene.dt` seconds.
 pub fn run(opts: &RunOptions, scene: &Scene, scene_hash: u64, quiet: bool) -> Result<(), CliError> {
     let desc = scene
@@ -312,13 +293,7 @@ pub fn run(opts: &RunOptions, scene: &Scene, scene_hash: u64, quiet: bool) -> Re
         .as_ref()
         .ok_or_else(|| CliError::BadInput("not a fluid scene".into()))?;
     let params = fluid_params(desc, scene.dt);
-    let frames = opts.out.join("frames");
-    std::fs::create_dir_all(&frames).map_err(|e| {
-        CliError::BadInput(format!(
-            "{}: cannot create output directory: {e}",
-            frames.display()
-        ))
-    })?;
+    create_output_dir(&opts.out.join("frames"))?;
     let mut out = Outputs {
         dir: &opts.out,
         series: SeriesTable::new(&FLUID_SERIES_COLUMNS),
@@ -327,7 +302,8 @@ pub fn run(opts: &RunOptions, scene: &Scene, scene_hash: u64, quiet: bool) -> Re
         scene_hash,
     };
     let mut state = if opts.resume {
-        let state = read_checkpoint(&opts.out, scene_hash)?;
+        let state: CoupledState =
+            read_checkpoint(&opts.out, scene_hash, "a checkpoint of a fluid scene")?;
         let read = |name: &str| {
             let mut t = SeriesTable::read_csv(&opts.out.join(name))
                 .map_err(|e| CliError::BadInput(e.to_string()))?;
@@ -391,7 +367,7 @@ pub fn run(opts: &RunOptions, scene: &Scene, scene_hash: u64, quiet: bool) -> Re
     } else {
         out.write_tables()?;
     }
-    let status = run_status(failure.is_some(), end_reached(state.world.time) as u64, 1);
+    let status = run_status(failure.is_some(), end_reached(state.world.time));
     write_summary(
         &out,
         scene,

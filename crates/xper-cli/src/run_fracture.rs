@@ -242,13 +242,7 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
 /// [`run`], returning the run's summary (as written to `summary.json`).
 pub fn run_with_summary(opts: &RunOptions, quiet: bool) -> Result<FractureSummary, CliError> {
     let (scene, mut model) = load_model(&opts.scene)?;
-    let frames = opts.out.join("frames");
-    std::fs::create_dir_all(&frames).map_err(|e| {
-        CliError::BadInput(format!(
-            "{}: cannot create output directory: {e}",
-            frames.display()
-        ))
-    })?;
+    crate::run::create_output_dir(&opts.out.join("frames"))?;
     let names: Vec<String> = model.spec.loads.iter().map(|l| l.name.clone()).collect();
     let columns = series_columns(&names);
     let columns: Vec<&str> = columns.iter().map(String::as_str).collect();
@@ -319,7 +313,7 @@ pub fn run_with_summary(opts: &RunOptions, quiet: bool) -> Result<FractureSummar
             .write_csv(&opts.out.join("series.csv"))
             .map_err(io_err)?;
     }
-    let status = crate::run::run_status(failure.is_some(), model.step, scene.steps);
+    let status = crate::run::run_status(failure.is_some(), model.step == scene.steps);
     let message = failure.clone().unwrap_or_default();
     let s = summary(
         &model,

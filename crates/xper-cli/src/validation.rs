@@ -389,17 +389,20 @@ fn fracture_section(md: &mut String) -> Result<usize, CliError> {
          `cargo test -p xper-fracture` (`crates/xper-fracture/src/validation.rs`).\n\n\
          | case | reference | measured | error | tolerance | result |\n|---|---|---|---|---|---|\n",
     );
-    let mut failures = 0;
-    for c in &cases {
+    Ok(push_cases(md, &cases))
+}
+
+/// Appends the rows of `cases` to a validation table; returns how many failed.
+pub(crate) fn push_cases(md: &mut String, cases: &[xper_math::validation::Case]) -> usize {
+    for c in cases {
         push_case_row(md, &c.name, &c.reference, &c.measured, c.error, c.tolerance);
-        failures += usize::from(!c.passed());
     }
-    Ok(failures)
+    cases.iter().filter(|c| !c.passed()).count()
 }
 
 /// Appends one case to a validation table and prints its verdict (pass when
 /// `error <= tolerance`, so a NaN error fails).
-pub(crate) fn push_case_row(
+fn push_case_row(
     md: &mut String,
     name: &str,
     reference: &str,

@@ -39,18 +39,7 @@ pub fn fluid_section(md: &mut String, full: bool) -> Result<usize, CliError> {
          | case | reference | measured | error | tolerance | result |\n|---|---|---|---|---|---|\n",
         if full { "Full resolution (`xper validate --full`)." } else { "Reduced resolution (`xper validate`; `--full` refines)." }
     ));
-    let mut failures = 0;
-    for c in &cases {
-        crate::validation::push_case_row(
-            md,
-            &c.name,
-            &c.reference,
-            &c.measured,
-            c.error,
-            c.tolerance,
-        );
-        failures += usize::from(!c.passed());
-    }
+    let failures = crate::validation::push_cases(md, &cases);
     if !refs.exists() {
         md.push_str("\nThe lid-driven cavity was not run: `../shared/validation_refs/Ghia1982` is absent.\n");
     }

@@ -87,6 +87,14 @@ impl FluidBoundary {
         }
     }
 
+    /// The lid-driven cavity: no-slip walls, the top sliding at `speed` (m/s) along +x.
+    pub fn lid_driven(speed: Real) -> Self {
+        FluidBoundary {
+            top: SideCondition::MovingWall { velocity: speed },
+            ..Self::closed_box()
+        }
+    }
+
     /// Periodic in both directions.
     pub fn periodic() -> Self {
         FluidBoundary {

@@ -65,6 +65,7 @@ pub struct CoupledStepper {
     grains: MoreauJean,
     immersed: Vec<usize>,
     disks: Vec<ImmersedDisk>,
+    forces: Vec<[Real; DOFS]>,
     largest_dt: Real,
 }
 
@@ -82,6 +83,7 @@ impl CoupledStepper {
             grains: MoreauJean::new(),
             immersed,
             disks: Vec::new(),
+            forces: Vec::new(),
             largest_dt: params.dt_max,
         })
     }
@@ -136,12 +138,13 @@ impl CoupledStepper {
         // Stage: grains under hydrodynamic forces and buoyancy.
         let world = &mut state.world;
         let gravity = world.params.gravity;
-        let mut forces = vec![[0.0; DOFS]; world.bodies.len()];
+        self.forces.clear();
+        self.forces.resize(world.bodies.len(), [0.0; DOFS]);
         for ((&b, disk), f) in self.immersed.iter().zip(&self.disks).zip(&fluid.forces) {
             let buoyancy = -params.density * disk.area() * gravity;
-            forces[b] = [f.force.x + buoyancy.x, f.force.y + buoyancy.y, f.torque];
+            self.forces[b] = [f.force.x + buoyancy.x, f.force.y + buoyancy.y, f.torque];
         }
-        self.grains.set_external_forces(forces);
+        self.grains.set_external_forces(&self.forces);
         let grains = self
             .grains
             .step_by(world, dt)

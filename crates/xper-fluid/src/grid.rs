@@ -28,6 +28,16 @@ pub struct MacGrid {
 }
 
 impl MacGrid {
+    /// `n x n` cells covering the square `[0, side]^2` (m).
+    pub fn square(n: usize, side: Real) -> Self {
+        MacGrid {
+            nx: n,
+            ny: n,
+            h: side / n as Real,
+            origin: Vector::zeros(),
+        }
+    }
+
     /// Cells along axis `d`.
     #[inline]
     pub fn cells(&self, d: usize) -> usize {

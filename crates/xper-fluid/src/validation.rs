@@ -15,27 +15,7 @@ use crate::{FluidBoundary, FluidParams, FluidSolver, FluidState, MacGrid, SideCo
 use std::path::Path;
 use xper_math::{Real, Vector};
 
-/// One comparison of a measured value with its reference.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct Case {
-    /// What is tested.
-    pub name: String,
-    /// The reference value and where it comes from.
-    pub reference: String,
-    /// The measured value, as printed.
-    pub measured: String,
-    /// The deviation compared with the tolerance (NaN fails).
-    pub error: f64,
-    /// Largest acceptable error.
-    pub tolerance: f64,
-}
-
-impl Case {
-    /// Whether the error is within the tolerance (false when the error is NaN).
-    pub fn passed(&self) -> bool {
-        self.error <= self.tolerance
-    }
-}
+pub use xper_math::validation::Case;
 
 /// Largest velocity error of the Taylor-Green vortex on an `n x n` periodic grid of
 /// `[0, 2 pi]^2` at `t = 1` s with `nu = 0.05` m^2/s, relative to the amplitude `F(t)`.
@@ -160,16 +140,8 @@ pub fn lid_driven_cavity(
     refs: &Path,
     tolerance: Real,
 ) -> Result<[Case; 2], String> {
-    let boundary = FluidBoundary {
-        top: SideCondition::MovingWall { velocity: 1.0 },
-        ..FluidBoundary::closed_box()
-    };
-    let grid = MacGrid {
-        nx: n,
-        ny: n,
-        h: 1.0 / n as Real,
-        origin: Vector::zeros(),
-    };
+    let boundary = FluidBoundary::lid_driven(1.0);
+    let grid = MacGrid::square(n, 1.0);
     let params = FluidParams::new(1.0, 1.0 / re as Real, boundary);
     let mut solver = FluidSolver::new(grid, &params).map_err(|e| e.to_string())?;
     let mut state = FluidState::at_rest(grid, &params.boundary);

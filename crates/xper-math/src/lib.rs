@@ -14,6 +14,8 @@
 
 use serde::{Deserialize, Serialize};
 
+pub mod validation;
+
 /// Floating-point type of every physical quantity.
 pub type Real = f64;
 /// Number of space dimensions.

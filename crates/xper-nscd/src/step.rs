@@ -166,9 +166,10 @@ impl MoreauJean {
     /// Sets the generalised forces (N/m and N m/m per body, translations then rotation) that
     /// act on the bodies during the following steps, besides gravity and imposed drives: e.g.
     /// the hydrodynamic forces of a fluid. Their work enters the energy budget as external
-    /// work. An empty vector removes them; otherwise there must be one entry per body.
-    pub fn set_external_forces(&mut self, forces: Vec<[Real; DOFS]>) {
-        self.external_forces = forces;
+    /// work. An empty slice removes them; otherwise there must be one entry per body.
+    pub fn set_external_forces(&mut self, forces: &[[Real; DOFS]]) {
+        self.external_forces.clear();
+        self.external_forces.extend_from_slice(forces);
     }
 
     /// Advances `world` by one time step of `world.params.dt`; the step's times are multiples
