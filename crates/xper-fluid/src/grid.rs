@@ -106,6 +106,22 @@ impl MacGrid {
         )
     }
 
+    /// The padded index ranges, one contiguous run per grid row, of the entries `(i, j)` of a
+    /// component-`d` array with the index along `d` in `along` and the other in `0..cells`:
+    /// loops over these runs visit memory in order whatever the component.
+    pub fn face_rows(
+        &self,
+        d: usize,
+        along: std::ops::Range<isize>,
+    ) -> impl Iterator<Item = std::ops::Range<usize>> + '_ {
+        let (columns, rows) = if d == 0 {
+            (along, 0..self.ny as isize)
+        } else {
+            (0..self.nx as isize, along)
+        };
+        rows.map(move |j| self.index(columns.start, j)..self.index(columns.end, j))
+    }
+
     /// A zero padded array.
     pub fn zeros(&self) -> Vec<Real> {
         vec![0.0; self.padded_len()]

@@ -51,33 +51,43 @@ pub fn predict(
         let (ud, ue) = (&u[d], &u[e]);
         u_star[d].copy_from_slice(ud);
         let out = &mut u_star[d];
-        let along = boundary.predicted_faces(grid, d);
-        let across = 0..grid.cells(e) as isize;
         let force = coefficients.body_force[d];
-        for b in across {
-            for a in along.clone() {
-                let k = if d == 0 {
-                    grid.index(a, b)
-                } else {
-                    grid.index(b, a)
-                };
-                let c = ud[k];
-                let (dp, dm, ep, em) = (ud[k + sd], ud[k - sd], ud[k + se], ud[k - se]);
+        for run in grid.face_rows(d, boundary.predicted_faces(grid, d)) {
+            let (r, n) = (run.start, run.len());
+            let window = |field, offset| window(field, r, offset, n);
+            let (sd_i, se_i) = (sd as isize, se as isize);
+            let centre = window(ud, 0);
+            let (plus_d, minus_d) = (window(ud, sd_i), window(ud, -sd_i));
+            let (plus_e, minus_e) = (window(ud, se_i), window(ud, -se_i));
+            let (upper_back, upper) = (window(ue, se_i - sd_i), window(ue, se_i));
+            let (lower_back, lower) = (window(ue, -sd_i), window(ue, 0));
+            let (p_here, p_back) = (window(p, 0), window(p, -sd_i));
+            let out = &mut out[r..r + n];
+            for k in 0..n {
+                let c = centre[k];
+                let (dp, dm, ep, em) = (plus_d[k], minus_d[k], plus_e[k], minus_e[k]);
                 let right = 0.5 * (c + dp);
                 let left = 0.5 * (dm + c);
                 let flux_d = right * right + gamma * right.abs() * 0.5 * (c - dp)
                     - left * left
                     - gamma * left.abs() * 0.5 * (dm - c);
-                let upper = 0.5 * (ue[k + se - sd] + ue[k + se]);
-                let lower = 0.5 * (ue[k - sd] + ue[k]);
-                let flux_e = upper * 0.5 * (c + ep) + gamma * upper.abs() * 0.5 * (c - ep)
-                    - lower * 0.5 * (em + c)
-                    - gamma * lower.abs() * 0.5 * (em - c);
+                let up = 0.5 * (upper_back[k] + upper[k]);
+                let low = 0.5 * (lower_back[k] + lower[k]);
+                let flux_e = up * 0.5 * (c + ep) + gamma * up.abs() * 0.5 * (c - ep)
+                    - low * 0.5 * (em + c)
+                    - gamma * low.abs() * 0.5 * (em - c);
                 let advection = (flux_d + flux_e) * inv_h;
                 let diffusion = nu_h2 * (dp + dm + ep + em - 4.0 * c);
-                let pressure = (p[k] - p[k - sd]) * pressure_factor;
+                let pressure = (p_here[k] - p_back[k]) * pressure_factor;
                 out[k] = c + dt * (diffusion - advection - pressure + force);
             }
         }
     }
+}
+
+/// The `n` entries of `field` from `start + offset`.
+#[inline]
+fn window(field: &[Real], start: usize, offset: isize, n: usize) -> &[Real] {
+    let from = (start as isize + offset) as usize;
+    &field[from..from + n]
 }

@@ -14,26 +14,25 @@ use crate::grid::MacGrid;
 use xper_math::{Real, DIM};
 use xper_poisson::{Multigrid, SolveError, SolveInfo};
 
-/// Discrete divergence of cell `(i, j)` (1/s).
-#[inline]
-pub fn cell_divergence(grid: &MacGrid, u: &[Vec<Real>; DIM], i: usize, j: usize) -> Real {
-    let k = grid.index(i as isize, j as isize);
-    let mut div = 0.0;
-    for (d, ud) in u.iter().enumerate() {
-        div += ud[k + grid.stride(d)] - ud[k];
-    }
-    div / grid.h
-}
-
 /// Writes the divergence of every cell into `out` (row-major, unpadded) and returns its
 /// Euclidean norm.
 pub fn divergence(grid: &MacGrid, u: &[Vec<Real>; DIM], out: &mut [Real]) -> Real {
+    let (nx, inv_h) = (grid.nx, 1.0 / grid.h);
     let mut sum = 0.0;
     for j in 0..grid.ny {
-        for i in 0..grid.nx {
-            let div = cell_divergence(grid, u, i, j);
-            out[grid.cell_index(i, j)] = div;
-            sum += div * div;
+        let r = grid.index(0, j as isize);
+        let row = &mut out[nx * j..nx * (j + 1)];
+        row.fill(0.0);
+        for (d, ud) in u.iter().enumerate() {
+            let sd = grid.stride(d);
+            let (low, high) = (&ud[r..r + nx], &ud[r + sd..r + sd + nx]);
+            for ((div, lo), hi) in row.iter_mut().zip(low).zip(high) {
+                *div += hi - lo;
+            }
+        }
+        for div in row.iter_mut() {
+            *div *= inv_h;
+            sum += *div * *div;
         }
     }
     sum.sqrt()
@@ -91,22 +90,19 @@ impl Projection {
         let factor = dt / (density * grid.h);
         let c = &self.correction;
         for (d, ud) in u.iter_mut().enumerate() {
-            let e = 1 - d;
             let sd = grid.stride(d);
-            for b in 0..grid.cells(e) as isize {
-                for a in boundary.projected_faces(grid, d) {
-                    let k = if d == 0 {
-                        grid.index(a, b)
-                    } else {
-                        grid.index(b, a)
-                    };
-                    ud[k] -= factor * (c[k] - c[k - sd]);
+            for run in grid.face_rows(d, boundary.projected_faces(grid, d)) {
+                let (here, back) = (&c[run.clone()], &c[run.start - sd..run.end - sd]);
+                for ((v, c_here), c_back) in ud[run].iter_mut().zip(here).zip(back) {
+                    *v -= factor * (c_here - c_back);
                 }
             }
         }
+        let nx = grid.nx;
         for j in 0..grid.ny {
-            for i in 0..grid.nx {
-                p[grid.index(i as isize, j as isize)] += phi[grid.cell_index(i, j)];
+            let r = grid.index(0, j as isize);
+            for (pk, phik) in p[r..r + nx].iter_mut().zip(&phi[nx * j..nx * (j + 1)]) {
+                *pk += phik;
             }
         }
         boundary.fill_velocity(grid, u);
@@ -123,10 +119,10 @@ impl Projection {
     /// `-phi` beyond a Dirichlet (outflow) side, `phi` beyond a Neumann side.
     fn fill_correction(&mut self, grid: &MacGrid, boundary: &FluidBoundary, phi: &[Real]) {
         let c = &mut self.correction;
+        let nx = grid.nx;
         for j in 0..grid.ny {
-            for i in 0..grid.nx {
-                c[grid.index(i as isize, j as isize)] = phi[grid.cell_index(i, j)];
-            }
+            let r = grid.index(0, j as isize);
+            c[r..r + nx].copy_from_slice(&phi[nx * j..nx * (j + 1)]);
         }
         for a in 0..DIM {
             let n = grid.cells(a) as isize;
