@@ -36,6 +36,6 @@ mod step;
 mod world;
 
 pub use assemble::assemble_problem;
-pub use operator::{ContactRow, RigidContactOperator, SolverBody};
+pub use operator::{ContactRow, RigidContactOperator, RigidProblem, SolverBody};
 pub use step::{normal_shift, MoreauJean, StageTimes, StepError, StepReport};
 pub use world::{EnergyBudget, StepParams, VelocitySolver, World};

@@ -33,6 +33,46 @@ pub struct ContactRow {
     pub block: Block2,
 }
 
+impl ContactRow {
+    /// Recomputes `W_aa = G_i^T M_i^-1 G_i + G_j^T M_j^-1 G_j` from the inverse masses of
+    /// `bodies` (e.g. after a domain decomposition has split the mass of shared bodies).
+    pub fn refresh_block(&mut self, bodies: &[SolverBody]) {
+        let n = Vector::new(self.normal[0], self.normal[1]);
+        let t = tangent(&n);
+        let [i, j] = [self.bodies[0] as usize, self.bodies[1] as usize];
+        let arms = self.arms;
+        let mut block = [0.0; 4];
+        for (m, an, at) in [
+            (bodies[i].inv_mass, arms[0], arms[1]),
+            (bodies[j].inv_mass, arms[2], arms[3]),
+        ] {
+            let nt = m[0] * n.x * t.x + m[1] * n.y * t.y + m[2] * an * at;
+            block[0] += m[0] * n.x * n.x + m[1] * n.y * n.y + m[2] * an * an;
+            block[1] += nt;
+            block[2] += nt;
+            block[3] += m[0] * t.x * t.x + m[1] * t.y * t.y + m[2] * at * at;
+        }
+        self.block = block;
+    }
+}
+
+/// A velocity problem in factorised form: the bodies at their free velocities, the active
+/// contact rows, friction coefficients, normal shifts and warm start. What a step solves,
+/// without the geometry; a domain decomposition splits it among processes.
+#[derive(Clone, Debug, Default)]
+pub struct RigidProblem {
+    /// Working state per body (free velocity, inverse masses).
+    pub bodies: Vec<SolverBody>,
+    /// One row per active contact.
+    pub rows: Vec<ContactRow>,
+    /// Friction coefficient per row.
+    pub mu: Vec<Real>,
+    /// Normal shift per row (see [`crate::normal_shift`]).
+    pub shift: Vec<Real>,
+    /// Warm-start impulse per row.
+    pub impulses: Vec<[Real; 2]>,
+}
+
 /// Rigid-body contact operator: the body working states and the contact rows.
 #[derive(Clone, Debug, Default)]
 pub struct RigidContactOperator {
@@ -64,23 +104,14 @@ impl RigidContactOperator {
             cross(&rj, &n),
             cross(&rj, &t),
         ];
-        let mut block = [0.0; 4];
-        for (m, an, at) in [
-            (inv_mass[i].inv_mass, arms[0], arms[1]),
-            (inv_mass[j].inv_mass, arms[2], arms[3]),
-        ] {
-            let nt = m[0] * n.x * t.x + m[1] * n.y * t.y + m[2] * an * at;
-            block[0] += m[0] * n.x * n.x + m[1] * n.y * n.y + m[2] * an * an;
-            block[1] += nt;
-            block[2] += nt;
-            block[3] += m[0] * t.x * t.x + m[1] * t.y * t.y + m[2] * at * at;
-        }
-        ContactRow {
+        let mut row = ContactRow {
             bodies: c.bodies,
             normal: [n.x, n.y],
             arms,
-            block,
-        }
+            block: [0.0; 4],
+        };
+        row.refresh_block(inv_mass);
+        row
     }
 
     /// Generalised impulses `(on body i, on body j)` of a local impulse `r` at a row.

@@ -3,7 +3,7 @@
 //! update, project.
 
 use crate::assemble::assemble_problem;
-use crate::operator::{ContactRow, RigidContactOperator};
+use crate::operator::{ContactRow, RigidContactOperator, RigidProblem};
 use crate::world::{VelocitySolver, World};
 use std::time::Instant;
 use xper_geometry::Detector;
@@ -287,6 +287,23 @@ impl MoreauJean {
         let (t_begin, t_end) = (world.step as Real * h, (world.step + 1) as Real * h);
         self.prepare(&mut world, &mut report, t_begin, t_end);
         assemble_problem(&self.op, &self.mu, &self.shift).map_err(problem_error)
+    }
+
+    /// The next step's velocity problem of `world` in factorised form (bodies at their free
+    /// velocities, active rows), without changing `world`, as [`MoreauJean::next_problem`].
+    pub fn next_rigid_problem(&mut self, world: &World) -> RigidProblem {
+        let mut world = world.clone();
+        let mut report = StepReport::default();
+        let h = world.params.dt;
+        let (t_begin, t_end) = (world.step as Real * h, (world.step + 1) as Real * h);
+        self.prepare(&mut world, &mut report, t_begin, t_end);
+        RigidProblem {
+            bodies: self.op.bodies.clone(),
+            rows: self.op.rows.clone(),
+            mu: self.mu.clone(),
+            shift: self.shift.clone(),
+            impulses: self.impulses.clone(),
+        }
     }
 
     /// Stages detect, assemble, free velocity and select: leaves the operator in its state of

@@ -39,7 +39,9 @@ pub use error::{natural_map_error, project_on_cone, ConvergenceNorms};
 pub use lemke::{lemke, LemkeParams};
 pub use local::solve_one_contact;
 pub use newton::{newton, NewtonParams, RhoStrategy};
-pub use nlgs::{nlgs, nlgs_with_cohesion, ConvergenceNorm, NlgsParams, SolveError, SolveInfo};
+pub use nlgs::{
+    nlgs, nlgs_with_cohesion, ConvergenceNorm, NlgsParams, NlgsSweeper, SolveError, SolveInfo,
+};
 pub use nsgs::{nsgs, NsgsParams};
 pub use operator::{Block2, ContactOperator, DenseProblem};
 pub use problem::{

@@ -128,104 +128,188 @@ pub fn nlgs_with_cohesion<O: ContactOperator>(
     impulses: &mut [[f64; 2]],
     params: &NlgsParams,
 ) -> Result<SolveInfo, SolveError> {
-    let n = op.contact_count();
-    if mu.len() != n
-        || normal_shift.len() != n
-        || impulses.len() != n
-        || !(cohesion.is_empty() || cohesion.len() == n)
-    {
-        return Err(SolveError::SizeMismatch {
-            what: format!(
-                "{n} contacts, {} mu, {} shifts, {} cohesive terms, {} impulses",
-                mu.len(),
-                normal_shift.len(),
-                cohesion.len(),
-                impulses.len()
-            ),
-        });
-    }
-    if params.tolerance.is_nan()
-        || params.tolerance <= 0.0
-        || params.max_iterations == 0
-        || params.check_every == 0
-    {
-        return Err(SolveError::InvalidParams(format!("{params:?}")));
-    }
-    if params.relaxation.is_nan() || params.relaxation <= 0.0 || params.relaxation >= 2.0 {
-        return Err(SolveError::InvalidParams(format!(
-            "relaxation {} not in (0, 2)",
-            params.relaxation
-        )));
-    }
-    let mut q_norm2 = 0.0;
-    for a in 0..n {
-        let w = op.diagonal_block(a);
-        let u = op.local_velocity(a);
-        if !(mu[a] >= 0.0 && mu[a].is_finite()) {
-            return Err(SolveError::InvalidData {
-                contact: a,
-                what: format!("friction coefficient {}", mu[a]),
-            });
-        }
-        if !w
-            .iter()
-            .chain(&u)
-            .chain(impulses[a].iter())
-            .all(|x| x.is_finite())
-            || !normal_shift[a].is_finite()
-        {
-            return Err(SolveError::InvalidData {
-                contact: a,
-                what: "non-finite W, q, shift or warm start".into(),
-            });
-        }
-        if w[0] <= 0.0 {
-            return Err(SolveError::InvalidData {
-                contact: a,
-                what: format!("W_nn = {} is not positive", w[0]),
-            });
-        }
-        q_norm2 += (u[0] + normal_shift[a]).powi(2) + u[1] * u[1];
-    }
-    let adhesive = |a: usize| !cohesion.is_empty() && !cohesion[a].is_zero();
-    for (a, r) in impulses.iter_mut().enumerate() {
-        if !adhesive(a) {
-            *r = crate::error::project_on_cone(*r, mu[a]);
-        }
-        if r[0] != 0.0 || r[1] != 0.0 {
-            op.apply_impulse(a, *r);
-        }
-    }
+    let sweeper = NlgsSweeper::new(op, mu, normal_shift, cohesion, impulses, params)?;
     let mut info = SolveInfo::default();
-    if n == 0 {
+    if op.contact_count() == 0 {
         info.converged = true;
         return Ok(info);
     }
-    let omega = params.relaxation;
-    let proximal: Vec<f64> = (0..n)
-        .map(|a| proximal_weight(&op.diagonal_block(a)))
-        .collect();
-    let is_adhesive: Vec<bool> = (0..n).map(adhesive).collect();
-    let prepared: Vec<PreparedCohesiveContact> = (0..n)
-        .map(|a| {
-            if !is_adhesive[a] {
-                return PreparedCohesiveContact::default();
-            }
-            let (w, eps) = (op.diagonal_block(a), proximal[a]);
-            PreparedCohesiveContact::new(&[w[0] + eps, w[1], w[2], w[3] + eps], &cohesion[a])
-        })
-        .collect();
     for sweep in 1..=params.max_iterations {
         let check = sweep % params.check_every == 0 || sweep == params.max_iterations;
         let mut acc = NormAccumulator::default();
+        sweeper.sweep_accumulating(op, impulses, check.then_some(&mut acc));
+        if check {
+            info.iterations = sweep;
+            info.norms = acc.norms(params.tolerance);
+            let (residual, converged) = match params.norm {
+                ConvergenceNorm::Quad | ConvergenceNorm::Maxm => {
+                    let m = info.norms.worst(params.norm == ConvergenceNorm::Maxm);
+                    (m * params.tolerance, m < 1.0)
+                }
+                ConvergenceNorm::NaturalMap => {
+                    let e =
+                        scaled_natural_map_error(op, mu, normal_shift, impulses, sweeper.q_norm());
+                    (e, e < params.tolerance)
+                }
+            };
+            info.residual = residual;
+            if !residual.is_finite() {
+                return Ok(info);
+            }
+            if converged {
+                info.converged = true;
+                return Ok(info);
+            }
+        }
+    }
+    info.iterations = params.max_iterations;
+    Ok(info)
+}
+
+/// What NLGS prepares once per solve (checked data, proximal weights of singular blocks,
+/// factorised cohesive contacts) and one Gauss-Seidel sweep over the contacts. [`nlgs`] loops
+/// the sweep with its convergence checks; a domain-decomposition solver interleaves sweeps
+/// with exchanges between processes.
+pub struct NlgsSweeper<'a> {
+    mu: &'a [f64],
+    normal_shift: &'a [f64],
+    omega: f64,
+    proximal: Vec<f64>,
+    is_adhesive: Vec<bool>,
+    prepared: Vec<PreparedCohesiveContact>,
+    q_norm: f64,
+}
+
+impl<'a> NlgsSweeper<'a> {
+    /// Checks the data, projects the warm start `impulses` on the cones (where not adhesive) and
+    /// applies it to `op`, which must be in the state of zero impulses.
+    pub fn new<O: ContactOperator>(
+        op: &mut O,
+        mu: &'a [f64],
+        normal_shift: &'a [f64],
+        cohesion: &[CohesiveTerm],
+        impulses: &mut [[f64; 2]],
+        params: &NlgsParams,
+    ) -> Result<Self, SolveError> {
+        let n = op.contact_count();
+        if mu.len() != n
+            || normal_shift.len() != n
+            || impulses.len() != n
+            || !(cohesion.is_empty() || cohesion.len() == n)
+        {
+            return Err(SolveError::SizeMismatch {
+                what: format!(
+                    "{n} contacts, {} mu, {} shifts, {} cohesive terms, {} impulses",
+                    mu.len(),
+                    normal_shift.len(),
+                    cohesion.len(),
+                    impulses.len()
+                ),
+            });
+        }
+        if params.tolerance.is_nan()
+            || params.tolerance <= 0.0
+            || params.max_iterations == 0
+            || params.check_every == 0
+        {
+            return Err(SolveError::InvalidParams(format!("{params:?}")));
+        }
+        if params.relaxation.is_nan() || params.relaxation <= 0.0 || params.relaxation >= 2.0 {
+            return Err(SolveError::InvalidParams(format!(
+                "relaxation {} not in (0, 2)",
+                params.relaxation
+            )));
+        }
+        let mut q_norm2 = 0.0;
         for a in 0..n {
             let w = op.diagonal_block(a);
+            let u = op.local_velocity(a);
+            if !(mu[a] >= 0.0 && mu[a].is_finite()) {
+                return Err(SolveError::InvalidData {
+                    contact: a,
+                    what: format!("friction coefficient {}", mu[a]),
+                });
+            }
+            if !w
+                .iter()
+                .chain(&u)
+                .chain(impulses[a].iter())
+                .all(|x| x.is_finite())
+                || !normal_shift[a].is_finite()
+            {
+                return Err(SolveError::InvalidData {
+                    contact: a,
+                    what: "non-finite W, q, shift or warm start".into(),
+                });
+            }
+            if w[0] <= 0.0 {
+                return Err(SolveError::InvalidData {
+                    contact: a,
+                    what: format!("W_nn = {} is not positive", w[0]),
+                });
+            }
+            q_norm2 += (u[0] + normal_shift[a]).powi(2) + u[1] * u[1];
+        }
+        let is_adhesive: Vec<bool> = (0..n)
+            .map(|a| !cohesion.is_empty() && !cohesion[a].is_zero())
+            .collect();
+        for (a, r) in impulses.iter_mut().enumerate() {
+            if !is_adhesive[a] {
+                *r = crate::error::project_on_cone(*r, mu[a]);
+            }
+            if r[0] != 0.0 || r[1] != 0.0 {
+                op.apply_impulse(a, *r);
+            }
+        }
+        let proximal: Vec<f64> = (0..n)
+            .map(|a| proximal_weight(&op.diagonal_block(a)))
+            .collect();
+        let prepared: Vec<PreparedCohesiveContact> = (0..n)
+            .map(|a| {
+                if !is_adhesive[a] {
+                    return PreparedCohesiveContact::default();
+                }
+                let (w, eps) = (op.diagonal_block(a), proximal[a]);
+                PreparedCohesiveContact::new(&[w[0] + eps, w[1], w[2], w[3] + eps], &cohesion[a])
+            })
+            .collect();
+        Ok(NlgsSweeper {
+            mu,
+            normal_shift,
+            omega: params.relaxation,
+            proximal,
+            is_adhesive,
+            prepared,
+            q_norm: q_norm2.sqrt(),
+        })
+    }
+
+    /// `|q + shift|` at zero impulses, the scale of the natural-map error.
+    pub fn q_norm(&self) -> f64 {
+        self.q_norm
+    }
+
+    /// One sweep over the contacts in order.
+    pub fn sweep<O: ContactOperator>(&self, op: &mut O, impulses: &mut [[f64; 2]]) {
+        self.sweep_accumulating(op, impulses, None);
+    }
+
+    /// One sweep, adding each contact's update to `acc` when given.
+    pub(crate) fn sweep_accumulating<O: ContactOperator>(
+        &self,
+        op: &mut O,
+        impulses: &mut [[f64; 2]],
+        mut acc: Option<&mut NormAccumulator>,
+    ) {
+        let (mu, omega) = (self.mu, self.omega);
+        for a in 0..op.contact_count() {
+            let w = op.diagonal_block(a);
             let mut u = op.local_velocity(a);
-            u[0] += normal_shift[a];
+            u[0] += self.normal_shift[a];
             let r = impulses[a];
             let wr = block_mul(&w, r);
             let mut u_free = [u[0] - wr[0], u[1] - wr[1]];
-            let eps = proximal[a];
+            let eps = self.proximal[a];
             let mut w_local = w;
             if eps > 0.0 {
                 // A singular block: proximal step, exact at convergence (see proximal_weight).
@@ -233,9 +317,9 @@ pub fn nlgs_with_cohesion<O: ContactOperator>(
                 w_local[3] += eps;
                 u_free = [u_free[0] - eps * r[0], u_free[1] - eps * r[1]];
             }
-            let adhesive = is_adhesive[a];
+            let adhesive = self.is_adhesive[a];
             let local = if adhesive {
-                prepared[a].solve(u_free, mu[a])
+                self.prepared[a].solve(u_free, mu[a])
             } else {
                 solve_one_contact(&w_local, u_free, mu[a])
             };
@@ -255,37 +339,12 @@ pub fn nlgs_with_cohesion<O: ContactOperator>(
                 op.apply_impulse(a, delta);
                 impulses[a] = r_new;
             }
-            if check {
+            if let Some(acc) = acc.as_deref_mut() {
                 let wd = block_mul(&w, delta);
                 acc.add(&w, r, r_new, [-wd[0], -wd[1]]);
             }
         }
-        if check {
-            info.iterations = sweep;
-            info.norms = acc.norms(params.tolerance);
-            let (residual, converged) = match params.norm {
-                ConvergenceNorm::Quad | ConvergenceNorm::Maxm => {
-                    let m = info.norms.worst(params.norm == ConvergenceNorm::Maxm);
-                    (m * params.tolerance, m < 1.0)
-                }
-                ConvergenceNorm::NaturalMap => {
-                    let e =
-                        scaled_natural_map_error(op, mu, normal_shift, impulses, q_norm2.sqrt());
-                    (e, e < params.tolerance)
-                }
-            };
-            info.residual = residual;
-            if !residual.is_finite() {
-                return Ok(info);
-            }
-            if converged {
-                info.converged = true;
-                return Ok(info);
-            }
-        }
     }
-    info.iterations = params.max_iterations;
-    Ok(info)
 }
 
 /// Natural-map error of the current state, divided by `max(|q|, |U|, |R|)`

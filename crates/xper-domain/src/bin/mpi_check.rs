@@ -1,0 +1,87 @@
+//! `mpirun -np N xper-domain-mpi-check [--tolerance T] [--fail-on-rank R]`: the distributed contact solve of
+//! the deposit fixture over MPI, compared on every rank with the undivided solve. Prints one
+//! line per rank and exits 0 when every body's velocity is within the spread of the solver
+//! (two undivided solves with opposite sweep orders); 1 otherwise. With `--fail-on-rank R`,
+//! rank R panics before the solve, which must end the whole job (the panic hook's MPI_Abort).
+
+use xper_domain::fixtures::{deposit, serial_velocities, solver_params};
+use xper_domain::MpiCommunicator;
+use xper_domain::{distributed_nlgs, split_problem, Bisection, Communicator, InterfaceMap};
+
+fn main() {
+    let Some(comm) = MpiCommunicator::init() else {
+        eprintln!("xper-domain-mpi-check: MPI was already initialised");
+        std::process::exit(2);
+    };
+    let args: Vec<String> = std::env::args().collect();
+    let option = |name: &str| {
+        args.iter().position(|a| a == name).map(|k| {
+            args.get(k + 1)
+                .and_then(|v| v.parse::<f64>().ok())
+                .filter(|v| v.is_finite() && *v >= 0.0)
+                .unwrap_or_else(|| comm.abort(&format!("{name} needs a non-negative number"), 2))
+        })
+    };
+    let fail_on = option("--fail-on-rank").map(|r| r as usize);
+    let tolerance = option("--tolerance").unwrap_or(1e-7);
+    let (rank, size) = (comm.rank(), comm.size());
+    let (world, problem) = deposit();
+    let serial = serial_velocities(&problem, tolerance);
+    let mut reversed = problem.clone();
+    reversed.rows.reverse();
+    reversed.mu.reverse();
+    reversed.shift.reverse();
+    reversed.impulses.reverse();
+    let spread = serial_velocities(&reversed, tolerance)
+        .iter()
+        .zip(&serial)
+        .flat_map(|(a, b)| [(a[0] - b[0]).abs(), (a[1] - b[1]).abs()])
+        .fold(0.0, f64::max);
+    if fail_on == Some(rank) {
+        panic!("failure injected on rank {rank} (--fail-on-rank)");
+    }
+    let owners = Bisection::new(&world.bodies.position, size).assign(&world.bodies.position);
+    let local = split_problem(&problem, &owners, rank as u32);
+    let interface = InterfaceMap::build(&comm, &local.global_ids, &local.owners, &local.shared());
+    let mut op = local.operator(&interface);
+    let mut impulses = local.problem.impulses.clone();
+    let info = distributed_nlgs(
+        &comm,
+        &mut op,
+        &interface,
+        &local.problem.mu,
+        &local.problem.shift,
+        &mut impulses,
+        &solver_params(tolerance),
+    )
+    .unwrap_or_else(|e| comm.abort(&format!("distributed solve: {e}"), 1));
+    let worst = local
+        .global_ids
+        .iter()
+        .zip(&op.bodies)
+        .flat_map(|(&id, b)| {
+            let s = serial[id as usize];
+            [(b.velocity[0] - s[0]).abs(), (b.velocity[1] - s[1]).abs()]
+        })
+        .fold(0.0, f64::max);
+    let stats = comm.stats();
+    let ok = info.converged && worst <= spread;
+    println!(
+        "rank {rank} of {size}: {} contacts, {} shared bodies, {} sweeps, converged {}, \
+         largest velocity difference {worst:.2e} (serial spread {spread:.2e}), \
+         {} messages, {} bytes, {:.3} s communicating: {}",
+        local.problem.rows.len(),
+        interface.shared_count(),
+        info.iterations,
+        info.converged,
+        stats.messages,
+        stats.bytes,
+        stats.time.as_secs_f64(),
+        if ok { "ok" } else { "MISMATCH" }
+    );
+    let mut failures = [if ok { 0.0 } else { 1.0 }];
+    comm.all_reduce_sum(&mut failures);
+    if failures[0] > 0.0 {
+        std::process::exit(1);
+    }
+}

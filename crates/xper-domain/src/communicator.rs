@@ -1,0 +1,87 @@
+//! What the distributed algorithms need from a group of processes.
+
+use std::time::Duration;
+
+/// Traffic and time spent communicating, per process.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CommStats {
+    /// Messages sent.
+    pub messages: u64,
+    /// Bytes sent.
+    pub bytes: u64,
+    /// Wall time inside communication calls, waiting included.
+    pub time: Duration,
+}
+
+/// A group of `size` processes, this one being `rank`.
+///
+/// Every collective call (`all_to_all`, `exchange`, `all_reduce_*`) must be made by all ranks
+/// in the same order. Reductions are computed in rank order on every rank, so every rank gets
+/// bit-identical results and a run is reproducible for a given number of processes.
+pub trait Communicator {
+    /// This process, `0..size`.
+    fn rank(&self) -> usize;
+    /// Number of processes.
+    fn size(&self) -> usize;
+    /// Sends `sends[r]` to each rank `r` (empty vectors allowed, `sends[rank]` is kept) and
+    /// returns what each rank sent here, indexed by rank.
+    fn all_to_all(&self, sends: &[Vec<f64>]) -> Vec<Vec<f64>>;
+    /// Neighbour exchange: sends each `(rank, data)` of `sends` and receives one message from
+    /// each rank of `sources`, returned in the order of `sources`.
+    fn exchange(&self, sends: &[(usize, Vec<f64>)], sources: &[usize]) -> Vec<Vec<f64>>;
+    /// Replaces each value by its sum over the ranks.
+    fn all_reduce_sum(&self, values: &mut [f64]) {
+        let gathered = self.all_gather(values);
+        for (k, v) in values.iter_mut().enumerate() {
+            *v = gathered.iter().map(|g| g[k]).sum();
+        }
+    }
+    /// Replaces each value by its maximum over the ranks.
+    fn all_reduce_max(&self, values: &mut [f64]) {
+        let gathered = self.all_gather(values);
+        for (k, v) in values.iter_mut().enumerate() {
+            *v = gathered
+                .iter()
+                .map(|g| g[k])
+                .fold(f64::NEG_INFINITY, f64::max);
+        }
+    }
+    /// Every rank's `values` (all of the same length), indexed by rank.
+    fn all_gather(&self, values: &[f64]) -> Vec<Vec<f64>> {
+        let sends = vec![values.to_vec(); self.size()];
+        self.all_to_all(&sends)
+    }
+    /// Traffic and time so far.
+    fn stats(&self) -> CommStats;
+}
+
+/// The group of one process: every collective returns its input.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SingleProcess;
+
+impl Communicator for SingleProcess {
+    fn rank(&self) -> usize {
+        0
+    }
+    fn size(&self) -> usize {
+        1
+    }
+    fn all_to_all(&self, sends: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        sends.to_vec()
+    }
+    fn exchange(&self, sends: &[(usize, Vec<f64>)], sources: &[usize]) -> Vec<Vec<f64>> {
+        sources
+            .iter()
+            .map(|&s| {
+                sends
+                    .iter()
+                    .find(|(r, _)| *r == s)
+                    .map(|(_, d)| d.clone())
+                    .unwrap_or_default()
+            })
+            .collect()
+    }
+    fn stats(&self) -> CommStats {
+        CommStats::default()
+    }
+}

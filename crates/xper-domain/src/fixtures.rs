@@ -1,0 +1,100 @@
+//! A disk deposit and its velocity problem, shared by the tests and the MPI check binary: the
+//! distributed solve is compared with the undivided one on it.
+
+use xper_bodies::{Body, BodySet};
+use xper_laws::{InteractionLaw, LawTable, SignoriniCoulomb};
+use xper_math::{Real, Vector};
+use xper_nscd::{MoreauJean, RigidContactOperator, RigidProblem, StepParams, World};
+use xper_solver::{nlgs, ConvergenceNorm, NlgsParams};
+
+/// SplitMix64 uniform numbers in [-1, 1).
+struct Rng(u64);
+
+impl Rng {
+    /// The next number.
+    fn next(&mut self) -> Real {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        2.0 * ((z >> 11) as Real * (1.0 / (1u64 << 53) as Real)) - 1.0
+    }
+}
+
+/// NLGS to a scaled natural-map error of `tolerance`, checked every 5 sweeps.
+pub fn solver_params(tolerance: Real) -> NlgsParams {
+    NlgsParams {
+        tolerance,
+        max_iterations: 200_000,
+        check_every: 5,
+        relaxation: 1.0,
+        norm: ConvergenceNorm::NaturalMap,
+    }
+}
+
+/// 240 disks (radius 1 cm +- 10 %) dropped in a 0.4 m wide box and left to pile up for 0.25 s,
+/// friction 0.3: a dense pile with several hundred contacts.
+pub fn deposit() -> (World, RigidProblem) {
+    let width = 0.4;
+    let mut set = BodySet::new();
+    set.insert(Body::wall(Vector::new(0.0, 0.0), Vector::new(width, 0.0)));
+    set.insert(Body::wall(Vector::new(0.0, 1.0), Vector::new(0.0, 0.0)));
+    set.insert(Body::wall(Vector::new(width, 0.0), Vector::new(width, 1.0)));
+    let mut rng = Rng(7);
+    for k in 0..240 {
+        let (i, j) = (k % 16, k / 16);
+        let centre = Vector::new(0.0125 + 0.025 * i as Real, 0.0125 + 0.026 * j as Real);
+        set.insert(
+            Body::disk(0.01 * (1.0 + 0.1 * rng.next()), 1000.0, centre)
+                .with_velocity(Vector::new(0.1 * rng.next(), 0.1 * rng.next())),
+        );
+    }
+    let mut laws = LawTable::new(1);
+    laws.set(
+        0,
+        0,
+        InteractionLaw::SignoriniCoulomb(SignoriniCoulomb {
+            friction: 0.3,
+            restitution: 0.0,
+        }),
+    );
+    let params = StepParams {
+        dt: 1e-3,
+        theta: 0.5,
+        gravity: Vector::new(0.0, -9.81),
+        alert_distance: 1e-3,
+        nlgs: solver_params(1e-6),
+        solver: xper_nscd::VelocitySolver::Nlgs,
+        projection_tolerance: Some(1e-6),
+    };
+    let mut world = World::new(set, laws, params);
+    let mut stepper = MoreauJean::new();
+    for _ in 0..250 {
+        stepper.step(&mut world).unwrap();
+    }
+    let problem = stepper.next_rigid_problem(&world);
+    (world, problem)
+}
+
+/// Velocities after the undivided NLGS solve.
+///
+/// # Panics
+/// If the solve does not converge (the fixture is built so that it does).
+pub fn serial_velocities(problem: &RigidProblem, tolerance: Real) -> Vec<[Real; 3]> {
+    let mut op = RigidContactOperator {
+        bodies: problem.bodies.clone(),
+        rows: problem.rows.clone(),
+    };
+    let mut impulses = problem.impulses.clone();
+    let info = nlgs(
+        &mut op,
+        &problem.mu,
+        &problem.shift,
+        &mut impulses,
+        &solver_params(tolerance),
+    )
+    .unwrap();
+    assert!(info.converged, "serial solve: {info:?}");
+    op.bodies.iter().map(|b| b.velocity).collect()
+}

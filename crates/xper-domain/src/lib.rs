@@ -1,0 +1,33 @@
+//! Distributed runs by domain decomposition.
+//!
+//! Space is partitioned among processes ([`partition::Bisection`], recursive coordinate
+//! bisection); each process solves the contacts it owns by Gauss-Seidel on its copies of the
+//! bodies, and the bodies touched by contacts of several processes (the interface,
+//! [`interface::InterfaceMap`]) have their mass split among the copies and their velocities
+//! averaged after each sweep ([`nscdd::distributed_nlgs`]): the non-smooth contact domain
+//! decomposition of Visseq, Martin, Iceta, Azema, Dureisseix and Alart, "Dense granular
+//! dynamics analysis by a domain decomposition approach", Comput. Mech. 49 (2012) 709, which
+//! follows Renouf, Dubois and Alart, J. Comput. Appl. Math. 168 (2004) 375.
+//!
+//! Processes talk through the [`Communicator`] trait: [`ThreadCommunicator`] runs the ranks as
+//! threads of one process (tests, no MPI needed), `MpiCommunicator` (cargo feature `mpi`) over
+//! Open MPI. The algorithms are tested on the first and run unchanged on the second.
+
+pub mod communicator;
+pub mod fixtures;
+pub mod interface;
+#[cfg(feature = "mpi")]
+pub mod mpi_communicator;
+pub mod nscdd;
+pub mod partition;
+pub mod split;
+mod threads;
+
+pub use communicator::{CommStats, Communicator, SingleProcess};
+pub use interface::InterfaceMap;
+#[cfg(feature = "mpi")]
+pub use mpi_communicator::MpiCommunicator;
+pub use nscdd::{distributed_nlgs, DistributedSolveInfo};
+pub use partition::Bisection;
+pub use split::{contact_owner, split_problem, LocalProblem};
+pub use threads::{run_on_threads, ThreadCommunicator};

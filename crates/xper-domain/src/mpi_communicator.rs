@@ -1,0 +1,113 @@
+//! [`Communicator`] over MPI (Open MPI through rsmpi; cargo feature `mpi`).
+
+use crate::communicator::{CommStats, Communicator};
+use mpi::request::WaitGuard;
+use mpi::topology::SimpleCommunicator;
+use mpi::traits::{Communicator as _, Destination, Source};
+use std::cell::Cell;
+use std::time::Instant;
+
+/// The processes of `MPI_COMM_WORLD`.
+pub struct MpiCommunicator {
+    world: SimpleCommunicator,
+    stats: Cell<CommStats>,
+    _universe: mpi::environment::Universe,
+}
+
+impl MpiCommunicator {
+    /// Initialises MPI (once per process: `None` the second time) and installs a panic hook
+    /// that prints the message and calls `MPI_Abort`, so that a failure on one rank ends the
+    /// whole job instead of leaving the others waiting for it.
+    pub fn init() -> Option<Self> {
+        let universe = mpi::initialize()?;
+        let world = universe.world();
+        let rank = world.rank();
+        let default_hook = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            eprintln!("xper: rank {rank} failed; aborting every rank");
+            default_hook(info);
+            SimpleCommunicator::world().abort(70);
+        }));
+        Some(MpiCommunicator {
+            world,
+            stats: Cell::new(CommStats::default()),
+            _universe: universe,
+        })
+    }
+
+    /// Ends the job on every rank with exit code `code` (after printing `message` here).
+    pub fn abort(&self, message: &str, code: i32) -> ! {
+        eprintln!("xper: rank {}: {message}", self.world.rank());
+        self.world.abort(code)
+    }
+
+    fn count(&self, sends: &[(usize, &[f64])], start: Instant) {
+        let mut s = self.stats.get();
+        s.messages += sends.len() as u64;
+        s.bytes += sends
+            .iter()
+            .map(|(_, d)| std::mem::size_of_val(*d) as u64)
+            .sum::<u64>();
+        s.time += start.elapsed();
+        self.stats.set(s);
+    }
+
+    fn send_receive(&self, sends: &[(usize, &[f64])], sources: &[usize]) -> Vec<Vec<f64>> {
+        let start = Instant::now();
+        let received = mpi::request::scope(|scope| {
+            let _guards: Vec<WaitGuard<[f64], _>> = sends
+                .iter()
+                .map(|(rank, data)| {
+                    WaitGuard::from(
+                        self.world
+                            .process_at_rank(*rank as i32)
+                            .immediate_send(scope, *data),
+                    )
+                })
+                .collect();
+            sources
+                .iter()
+                .map(|&s| self.world.process_at_rank(s as i32).receive_vec::<f64>().0)
+                .collect()
+        });
+        self.count(sends, start);
+        received
+    }
+}
+
+impl Communicator for MpiCommunicator {
+    fn rank(&self) -> usize {
+        self.world.rank() as usize
+    }
+
+    fn size(&self) -> usize {
+        self.world.size() as usize
+    }
+
+    fn all_to_all(&self, sends: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        let me = self.rank();
+        let others: Vec<usize> = (0..self.size()).filter(|&r| r != me).collect();
+        let outgoing: Vec<(usize, &[f64])> =
+            others.iter().map(|&r| (r, sends[r].as_slice())).collect();
+        let mut received = self.send_receive(&outgoing, &others).into_iter();
+        (0..self.size())
+            .map(|r| {
+                if r == me {
+                    sends[r].clone()
+                } else {
+                    received.next().unwrap_or_default()
+                }
+            })
+            .collect()
+    }
+
+    fn exchange(&self, sends: &[(usize, Vec<f64>)], sources: &[usize]) -> Vec<Vec<f64>> {
+        let outgoing: Vec<(usize, &[f64])> =
+            sends.iter().map(|(r, d)| (*r, d.as_slice())).collect();
+        self.send_receive(&outgoing, sources)
+    }
+
+    fn stats(&self) -> CommStats {
+        self.stats.get()
+    }
+}

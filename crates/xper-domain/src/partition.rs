@@ -1,0 +1,157 @@
+//! Recursive coordinate bisection (Berger and Bokhari, IEEE Trans. Comput. 36 (1987) 570):
+//! the set of points is cut across its longest extent so that the two halves hold numbers of
+//! points proportional to the numbers of parts they receive, and each half is cut again. The
+//! cuts are kept, so any point (a body that moved, a fluid cell) finds its part in
+//! O(log parts).
+
+use xper_math::{Real, Vector, DIM};
+
+/// A node of the bisection tree.
+#[derive(Clone, Debug, PartialEq)]
+enum Node {
+    /// Points with `x[axis] < cut` go to `below`, the others to `above`.
+    Cut {
+        axis: usize,
+        cut: Real,
+        below: Box<Node>,
+        above: Box<Node>,
+    },
+    Part(u32),
+}
+
+/// A partition of the plane into `parts` regions by recursive coordinate bisection.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bisection {
+    root: Node,
+    parts: usize,
+}
+
+impl Bisection {
+    /// Cuts `points` into `parts` groups of sizes differing by at most one (ties on a cut
+    /// coordinate are broken by index, so the result depends only on the input).
+    ///
+    /// # Panics
+    /// If `parts` is 0.
+    pub fn new(points: &[Vector], parts: usize) -> Self {
+        assert!(parts > 0, "a partition needs at least one part");
+        let mut order: Vec<u32> = (0..points.len() as u32).collect();
+        let root = build(points, &mut order, 0, parts);
+        Bisection { root, parts }
+    }
+
+    /// Number of parts.
+    pub fn parts(&self) -> usize {
+        self.parts
+    }
+
+    /// The part of a point.
+    pub fn part_of(&self, x: &Vector) -> u32 {
+        let mut node = &self.root;
+        loop {
+            match node {
+                Node::Part(p) => return *p,
+                Node::Cut {
+                    axis,
+                    cut,
+                    below,
+                    above,
+                } => node = if x[*axis] < *cut { below } else { above },
+            }
+        }
+    }
+
+    /// The part of each point.
+    pub fn assign(&self, points: &[Vector]) -> Vec<u32> {
+        points.iter().map(|x| self.part_of(x)).collect()
+    }
+}
+
+fn build(points: &[Vector], ids: &mut [u32], first_part: u32, parts: usize) -> Node {
+    if parts == 1 || ids.is_empty() {
+        return Node::Part(first_part);
+    }
+    let (mut lo, mut hi) = (
+        Vector::repeat(Real::INFINITY),
+        Vector::repeat(Real::NEG_INFINITY),
+    );
+    for &i in ids.iter() {
+        lo = lo.inf(&points[i as usize]);
+        hi = hi.sup(&points[i as usize]);
+    }
+    let extent = hi - lo;
+    let axis = (0..DIM)
+        .max_by(|&a, &b| extent[a].total_cmp(&extent[b]).then(b.cmp(&a)))
+        .unwrap_or(0);
+    let below_parts = parts / 2;
+    let target = ids.len() * below_parts / parts;
+    let coordinate = |i: u32| points[i as usize][axis];
+    ids.sort_unstable_by(|&a, &b| coordinate(a).total_cmp(&coordinate(b)).then(a.cmp(&b)));
+    // Cut between two distinct coordinates, at the boundary of the group of equal coordinates
+    // nearest the target count, so that `part_of` puts every point back where it was counted.
+    let c = coordinate(ids[target.min(ids.len() - 1)]);
+    let first_equal = ids.partition_point(|&i| coordinate(i) < c);
+    let after_equal = ids.partition_point(|&i| coordinate(i) <= c);
+    let split = if (first_equal > 0 && target - first_equal <= after_equal - target)
+        || after_equal == ids.len()
+    {
+        first_equal
+    } else {
+        after_equal
+    };
+    if split == 0 || split == ids.len() {
+        return Node::Part(first_part);
+    }
+    let (below_ids, above_ids) = ids.split_at_mut(split);
+    let cut = 0.5 * (coordinate(below_ids[split - 1]) + coordinate(above_ids[0]));
+    Node::Cut {
+        axis,
+        cut,
+        below: Box::new(build(points, below_ids, first_part, below_parts)),
+        above: Box::new(build(
+            points,
+            above_ids,
+            first_part + below_parts as u32,
+            parts - below_parts,
+        )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lattice(n: usize, jitter: Real) -> Vec<Vector> {
+        (0..n * n)
+            .map(|k| {
+                let wobble = jitter * (((k * 7919) % 101) as Real / 101.0 - 0.5);
+                Vector::new((k % n) as Real * 1.3 + wobble, (k / n) as Real - wobble)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn parts_are_balanced_and_found_again_from_the_cuts() {
+        let points = lattice(37, 0.3);
+        for parts in [1, 2, 3, 4, 7, 16] {
+            let b = Bisection::new(&points, parts);
+            let owner = b.assign(&points);
+            let mut count = vec![0usize; parts];
+            for &p in &owner {
+                count[p as usize] += 1;
+            }
+            let (min, max) = (count.iter().min().unwrap(), count.iter().max().unwrap());
+            assert!(max - min <= 2, "parts {parts}: sizes {count:?}");
+            assert!(*min > 0, "parts {parts}: an empty part");
+        }
+    }
+
+    #[test]
+    fn two_parts_cut_the_longest_side_in_half() {
+        let points = lattice(10, 0.0);
+        let b = Bisection::new(&points, 2);
+        for x in &points {
+            let expected = if x.x < 4.5 * 1.3 { 0 } else { 1 };
+            assert_eq!(b.part_of(x), expected, "{x:?}");
+        }
+    }
+}
