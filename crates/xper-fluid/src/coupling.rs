@@ -17,7 +17,7 @@
 use crate::{FluidError, FluidParams, FluidSolver, FluidState, FluidStepReport, ImmersedDisk};
 use serde::{Deserialize, Serialize};
 use xper_bodies::Shape;
-use xper_math::{Real, DOFS};
+use xper_math::{Real, DIM, DOFS};
 use xper_nscd::{MoreauJean, StepError, StepReport, World};
 
 /// Everything that evolves in a run with a fluid; serialisable for checkpoints.
@@ -46,6 +46,17 @@ pub enum CoupledError {
     Fluid(FluidError),
     /// The grains' step failed.
     Grains(StepError),
+    /// A grain's footprint (radius plus one cell) reached a periodic side: grains are not
+    /// wrapped across periodic sides (nor their contacts and forcing), so the run stops rather
+    /// than continue with a cut forcing.
+    GrainAtPeriodicSide {
+        /// Body index.
+        body: usize,
+        /// Its centre (m).
+        centre: [Real; 2],
+        /// Step at which it left.
+        step: u64,
+    },
 }
 
 impl std::fmt::Display for CoupledError {
@@ -53,6 +64,13 @@ impl std::fmt::Display for CoupledError {
         match self {
             CoupledError::Fluid(e) => write!(f, "fluid: {e}"),
             CoupledError::Grains(e) => write!(f, "grains: {e}"),
+            CoupledError::GrainAtPeriodicSide { body, centre, step } => write!(
+                f,
+                "grain (body {body}) reached a periodic side of the fluid domain at step \
+                 {step}, centre ({:.6e}, {:.6e}) m: grains are not wrapped across periodic \
+                 sides yet; keep them one radius plus one cell away, or use walls",
+                centre[0], centre[1]
+            ),
         }
     }
 }
@@ -123,6 +141,24 @@ impl CoupledStepper {
             self.disks.push(disk);
         }
 
+        // Stage: grains reaching a periodic side stop the run (their footprint would be cut).
+        let grid = &state.fluid.grid;
+        let (low, high) = (grid.origin, grid.origin + grid.extent());
+        for (&b, disk) in self.immersed.iter().zip(&self.disks) {
+            let reach = disk.radius + grid.h;
+            let x = disk.centre;
+            let outside = (0..DIM).any(|a| {
+                params.boundary.is_periodic(a) && (x[a] - reach < low[a] || x[a] + reach > high[a])
+            });
+            if outside {
+                return Err(CoupledError::GrainAtPeriodicSide {
+                    body: b,
+                    centre: [x.x, x.y],
+                    step: state.world.step,
+                });
+            }
+        }
+
         // Stage: time step.
         let dt = self
             .fluid
@@ -150,5 +186,62 @@ impl CoupledStepper {
             .step_by(world, dt)
             .map_err(CoupledError::Grains)?;
         Ok(CoupledReport { fluid, grains })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{FluidBoundary, MacGrid};
+    use xper_bodies::{Body, BodySet};
+    use xper_laws::LawTable;
+    use xper_math::Vector;
+    use xper_nscd::StepParams;
+
+    #[test]
+    fn a_grain_reaching_a_periodic_side_stops_the_run_with_its_position() {
+        let mut bodies = BodySet::new();
+        bodies.insert(
+            Body::disk(0.05, 2000.0, Vector::new(0.9, 0.5)).with_velocity(Vector::new(1.0, 0.0)),
+        );
+        let world_params = StepParams {
+            dt: 1e-3,
+            theta: 0.5,
+            gravity: Vector::zeros(),
+            alert_distance: 1e-3,
+            nlgs: Default::default(),
+            solver: xper_nscd::VelocitySolver::Nlgs,
+            projection_tolerance: None,
+        };
+        let mut params = FluidParams::new(1000.0, 1.0, FluidBoundary::periodic());
+        params.dt_max = 1e-3;
+        let grid = MacGrid::square(32, 1.0);
+        let mut state = CoupledState {
+            fluid: FluidState::at_rest(grid, &params.boundary),
+            world: World::new(bodies, LawTable::new(1), world_params),
+        };
+        let mut stepper = CoupledStepper::new(&params, &state).unwrap();
+        let mut outcome = Ok(());
+        for _ in 0..400 {
+            if let Err(e) = stepper.step(&params, &mut state) {
+                outcome = Err(e);
+                break;
+            }
+        }
+        match outcome {
+            Err(CoupledError::GrainAtPeriodicSide { body, centre, .. }) => {
+                // Stopped as soon as x + r + h passes 1, before the forcing is cut.
+                assert_eq!(body, 0);
+                let reach = 0.05 + 1.0 / 32.0;
+                assert!(
+                    centre[0] + reach > 1.0 && centre[0] + reach < 1.01,
+                    "{centre:?}"
+                );
+            }
+            other => panic!(
+                "expected the grain to be reported, got {other:?} at {:?}, velocity {:?}",
+                state.world.bodies.position[0], state.world.bodies.velocity[0]
+            ),
+        }
     }
 }

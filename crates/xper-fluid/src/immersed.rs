@@ -20,7 +20,8 @@
 //! ```
 //!
 //! Buoyancy is added by the caller: `(m_p - rho_f V_p) g` (the fluid itself carries no
-//! hydrostatic pressure). Grains crossing a periodic side are not wrapped.
+//! hydrostatic pressure). Grains are not wrapped across periodic sides: a grain reaching one stops
+//! the run (`CoupledError::GrainAtPeriodicSide`).
 
 use crate::boundary::FluidBoundary;
 use crate::grid::MacGrid;

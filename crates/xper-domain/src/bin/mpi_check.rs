@@ -45,6 +45,7 @@ fn main() {
     let interface = InterfaceMap::build(&comm, &local.global_ids, &local.owners, &local.shared());
     let mut op = local.operator(&interface);
     let mut impulses = local.problem.impulses.clone();
+    let start = std::time::Instant::now();
     let info = distributed_nlgs(
         &comm,
         &mut op,
@@ -55,6 +56,7 @@ fn main() {
         &solver_params(tolerance),
     )
     .unwrap_or_else(|e| comm.abort(&format!("distributed solve: {e}"), 1));
+    let solve_seconds = start.elapsed().as_secs_f64();
     let worst = local
         .global_ids
         .iter()
@@ -69,11 +71,13 @@ fn main() {
     println!(
         "rank {rank} of {size}: {} contacts, {} shared bodies, {} sweeps, converged {}, \
          largest velocity difference {worst:.2e} (serial spread {spread:.2e}), \
-         {} messages, {} bytes, {:.3} s communicating: {}",
+         solve {solve_seconds:.3} s ({:.2} us per sweep), {} messages, {} bytes, \
+         {:.3} s communicating: {}",
         local.problem.rows.len(),
         interface.shared_count(),
         info.iterations,
         info.converged,
+        1e6 * solve_seconds / info.iterations.max(1) as f64,
         stats.messages,
         stats.bytes,
         stats.time.as_secs_f64(),
