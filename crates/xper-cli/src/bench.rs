@@ -67,6 +67,15 @@ pub struct BenchResult {
     wall_time_s: f64,
 }
 
+/// Mean of a sample; 0 when empty (summaries of runs that stopped before their first step).
+pub(crate) fn mean(v: &[f64]) -> f64 {
+    if v.is_empty() {
+        0.0
+    } else {
+        v.iter().sum::<f64>() / v.len() as f64
+    }
+}
+
 /// Median of a sample (the upper one for an even count); NaN when empty.
 pub(crate) fn median(mut v: Vec<f64>) -> f64 {
     if v.is_empty() {

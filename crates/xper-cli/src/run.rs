@@ -353,13 +353,6 @@ fn write_summary(
     file: &Path,
 ) -> Result<(), CliError> {
     let col = |name: &str| out.series.column(name).unwrap_or_default();
-    let mean = |v: &[f64]| {
-        if v.is_empty() {
-            0.0
-        } else {
-            v.iter().sum::<f64>() / v.len() as f64
-        }
-    };
     let max = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
     let (iterations, contacts) = (col("iterations"), col("contacts"));
     let summary = Summary {
@@ -377,10 +370,10 @@ fn write_summary(
         steps: world.step,
         simulated_time: world.time,
         wall_time_s: col("wall_time").iter().sum(),
-        average_iterations: mean(&iterations),
+        average_iterations: crate::bench::mean(&iterations),
         max_iterations: max(&iterations),
         non_converged_steps: col("converged").iter().filter(|&&c| c == 0.0).count(),
-        average_contacts: mean(&contacts),
+        average_contacts: crate::bench::mean(&contacts),
         max_contacts: max(&contacts),
         peak_memory_bytes: xper_io::peak_memory_bytes(),
         xper_version: env!("CARGO_PKG_VERSION"),

@@ -403,13 +403,6 @@ fn write_summary(
     file: &Path,
 ) -> Result<(), CliError> {
     let col = |name: &str| out.series.column(name).unwrap_or_default();
-    let mean = |v: &[f64]| {
-        if v.is_empty() {
-            0.0
-        } else {
-            v.iter().sum::<f64>() / v.len() as f64
-        }
-    };
     let (cycles, fluid_time) = (
         col("pressure_cycles"),
         col("fluid_time").iter().sum::<f64>(),
@@ -427,8 +420,8 @@ fn write_summary(
         steps: state.world.step,
         simulated_time: state.world.time,
         wall_time_s: col("wall_time").iter().sum(),
-        average_dt: mean(&col("dt")),
-        average_pressure_cycles: mean(&cycles),
+        average_dt: crate::bench::mean(&col("dt")),
+        average_pressure_cycles: crate::bench::mean(&cycles),
         max_pressure_cycles: cycles.iter().copied().fold(0.0, f64::max),
         fluid_cells_per_second: grid.num_cells() as f64 * cycles.len() as f64
             / fluid_time.max(1e-300),

@@ -98,3 +98,20 @@ pub fn serial_velocities(problem: &RigidProblem, tolerance: Real) -> Vec<[Real; 
     assert!(info.converged, "serial solve: {info:?}");
     op.bodies.iter().map(|b| b.velocity).collect()
 }
+
+/// The spread of the undivided solver itself on `problem`: the largest difference of a
+/// translational velocity between `serial` (from [`serial_velocities`]) and a second solve of
+/// the same problem with the contacts swept in reverse order. Two solutions within the
+/// tolerance differ by this much, so a decomposition is judged against it.
+pub fn serial_spread(problem: &RigidProblem, tolerance: Real, serial: &[[Real; 3]]) -> Real {
+    let mut reversed = problem.clone();
+    reversed.rows.reverse();
+    reversed.mu.reverse();
+    reversed.shift.reverse();
+    reversed.impulses.reverse();
+    serial_velocities(&reversed, tolerance)
+        .iter()
+        .zip(serial)
+        .flat_map(|(a, b)| [(a[0] - b[0]).abs(), (a[1] - b[1]).abs()])
+        .fold(0.0, Real::max)
+}

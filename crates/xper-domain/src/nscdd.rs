@@ -61,11 +61,12 @@ pub fn distributed_nlgs<C: Communicator + ?Sized>(
     let mut q_norm2 = [sweeper.q_norm().powi(2)];
     comm.all_reduce_sum(&mut q_norm2);
     let q_norm = q_norm2[0].sqrt();
-    glue(comm, op, interface);
+    let mut glue = Glue::new(interface, comm.rank());
+    glue.apply(comm, op, interface);
     let mut info = DistributedSolveInfo::default();
     for sweep in 1..=params.max_iterations {
         sweeper.sweep(op, impulses);
-        glue(comm, op, interface);
+        glue.apply(comm, op, interface);
         if sweep % params.check_every == 0 || sweep == params.max_iterations {
             info.iterations = sweep;
             info.residual = global_error(comm, op, mu, normal_shift, impulses, q_norm);
@@ -81,63 +82,101 @@ pub fn distributed_nlgs<C: Communicator + ?Sized>(
     Ok(info)
 }
 
-/// Step 2: the copies of every shared body take the average of their velocities, summed in
-/// rank order so that every copy gets the same bits.
-fn glue<C: Communicator + ?Sized>(
-    comm: &C,
-    op: &mut RigidContactOperator,
-    interface: &InterfaceMap,
-) {
-    if interface.neighbours.is_empty() {
-        return;
-    }
-    let sends: Vec<(usize, Vec<f64>)> = interface
-        .neighbours
-        .iter()
-        .map(|(rank, list)| {
-            let data = list
+/// Step 2, prepared once per solve: the copies of every shared body take the average of their
+/// velocities, summed in rank order so that every copy gets the same bits.
+struct Glue {
+    /// Local indices of the shared bodies.
+    shared: Vec<u32>,
+    /// For each neighbour of the interface, the slots in `shared` of its list.
+    slots: Vec<Vec<u32>>,
+    /// Neighbours of lower rank than this process: this copy is added after them.
+    below: usize,
+    sources: Vec<usize>,
+    sums: Vec<[f64; 3]>,
+}
+
+impl Glue {
+    fn new(interface: &InterfaceMap, rank: usize) -> Self {
+        let shared: Vec<u32> = (0..interface.multiplicity.len() as u32)
+            .filter(|&b| interface.multiplicity[b as usize] > 1)
+            .collect();
+        let mut slot_of = vec![u32::MAX; interface.multiplicity.len()];
+        for (slot, &b) in shared.iter().enumerate() {
+            slot_of[b as usize] = slot as u32;
+        }
+        Glue {
+            slots: interface
+                .neighbours
                 .iter()
-                .flat_map(|&b| op.bodies[b as usize].velocity)
-                .collect();
-            (*rank, data)
-        })
-        .collect();
-    let sources: Vec<usize> = interface.neighbours.iter().map(|(r, _)| *r).collect();
-    let received = comm.exchange(&sends, &sources);
-    let me = comm.rank();
-    let own: Vec<[f64; 3]> = op.bodies.iter().map(|b| b.velocity).collect();
-    let mut sum: Vec<Option<[f64; 3]>> = vec![None; op.bodies.len()];
-    let mut add = |b: usize, v: [f64; 3]| {
-        let s = sum[b].get_or_insert([0.0; 3]);
-        for d in 0..3 {
-            s[d] += v[d];
-        }
-    };
-    let mut own_added = false;
-    for ((rank, list), data) in interface.neighbours.iter().zip(&received) {
-        if *rank > me && !own_added {
-            add_own(&mut add, interface, &own);
-            own_added = true;
-        }
-        for (k, &b) in list.iter().enumerate() {
-            add(b as usize, [data[3 * k], data[3 * k + 1], data[3 * k + 2]]);
+                .map(|(_, list)| list.iter().map(|&b| slot_of[b as usize]).collect())
+                .collect(),
+            below: interface
+                .neighbours
+                .iter()
+                .filter(|(r, _)| *r < rank)
+                .count(),
+            sources: interface.neighbours.iter().map(|(r, _)| *r).collect(),
+            sums: vec![[0.0; 3]; shared.len()],
+            shared,
         }
     }
-    if !own_added {
-        add_own(&mut add, interface, &own);
-    }
-    for (b, s) in sum.iter().enumerate() {
-        if let Some(s) = s {
-            let m = interface.multiplicity[b] as f64;
-            op.bodies[b].velocity = [s[0] / m, s[1] / m, s[2] / m];
+
+    fn apply<C: Communicator + ?Sized>(
+        &mut self,
+        comm: &C,
+        op: &mut RigidContactOperator,
+        interface: &InterfaceMap,
+    ) {
+        if self.shared.is_empty() {
+            return;
+        }
+        let sends: Vec<(usize, Vec<f64>)> = interface
+            .neighbours
+            .iter()
+            .map(|(rank, list)| {
+                let data = list
+                    .iter()
+                    .flat_map(|&b| op.bodies[b as usize].velocity)
+                    .collect();
+                (*rank, data)
+            })
+            .collect();
+        let received = comm.exchange(&sends, &self.sources);
+        let Glue {
+            shared,
+            slots,
+            below,
+            sums,
+            ..
+        } = self;
+        sums.fill([0.0; 3]);
+        for (k, (slots, data)) in slots.iter().zip(&received).enumerate() {
+            if k == *below {
+                add_own(shared, sums, op);
+            }
+            for (&slot, v) in slots.iter().zip(data.chunks_exact(3)) {
+                let sum = &mut sums[slot as usize];
+                for d in 0..3 {
+                    sum[d] += v[d];
+                }
+            }
+        }
+        if *below == slots.len() {
+            add_own(shared, sums, op);
+        }
+        for (&b, sum) in self.shared.iter().zip(&self.sums) {
+            let m = interface.multiplicity[b as usize] as f64;
+            op.bodies[b as usize].velocity = [sum[0] / m, sum[1] / m, sum[2] / m];
         }
     }
 }
 
-fn add_own(add: &mut impl FnMut(usize, [f64; 3]), interface: &InterfaceMap, own: &[[f64; 3]]) {
-    for (b, &m) in interface.multiplicity.iter().enumerate() {
-        if m > 1 {
-            add(b, own[b]);
+/// Adds this process's copy of each shared body to its sum.
+fn add_own(shared: &[u32], sums: &mut [[f64; 3]], op: &RigidContactOperator) {
+    for (&b, sum) in shared.iter().zip(sums) {
+        let v = op.bodies[b as usize].velocity;
+        for d in 0..3 {
+            sum[d] += v[d];
         }
     }
 }

@@ -2,7 +2,7 @@
 //! velocities within the solver tolerance on 1 to 4 ranks (threads), the interface built
 //! collectively against a direct count, copies glued bit-identically, runs reproducible.
 
-use xper_domain::fixtures::{deposit, serial_velocities, solver_params};
+use xper_domain::fixtures::{deposit, serial_spread, serial_velocities, solver_params};
 use xper_domain::{
     distributed_nlgs, run_on_threads, split_problem, Bisection, Communicator, InterfaceMap,
 };
@@ -51,16 +51,7 @@ fn distributed_solve_matches_the_undivided_one_on_1_to_4_ranks() {
     let tolerance = 1e-7;
     let serial = serial_velocities(&problem, tolerance);
     // The spread of the solver itself: the same problem with the contacts swept in reverse.
-    let mut reversed = problem.clone();
-    reversed.rows.reverse();
-    reversed.mu.reverse();
-    reversed.shift.reverse();
-    reversed.impulses.reverse();
-    let spread = serial_velocities(&reversed, tolerance)
-        .iter()
-        .zip(&serial)
-        .flat_map(|(a, b)| [(a[0] - b[0]).abs(), (a[1] - b[1]).abs()])
-        .fold(0.0, Real::max);
+    let spread = serial_spread(&problem, tolerance, &serial);
     let scale = serial
         .iter()
         .flat_map(|v| v.iter().take(2))

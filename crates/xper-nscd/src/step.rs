@@ -281,22 +281,14 @@ impl MoreauJean {
     /// velocities, selection and shifts), without changing `world`; the stepper's buffers are
     /// rebuilt by the next step, which is unaffected.
     pub fn next_problem(&mut self, world: &World) -> Result<FrictionProblem, StepError> {
-        let mut world = world.clone();
-        let mut report = StepReport::default();
-        let h = world.params.dt;
-        let (t_begin, t_end) = (world.step as Real * h, (world.step + 1) as Real * h);
-        self.prepare(&mut world, &mut report, t_begin, t_end);
+        self.prepare_next(world);
         assemble_problem(&self.op, &self.mu, &self.shift).map_err(problem_error)
     }
 
     /// The next step's velocity problem of `world` in factorised form (bodies at their free
     /// velocities, active rows), without changing `world`, as [`MoreauJean::next_problem`].
     pub fn next_rigid_problem(&mut self, world: &World) -> RigidProblem {
-        let mut world = world.clone();
-        let mut report = StepReport::default();
-        let h = world.params.dt;
-        let (t_begin, t_end) = (world.step as Real * h, (world.step + 1) as Real * h);
-        self.prepare(&mut world, &mut report, t_begin, t_end);
+        self.prepare_next(world);
         RigidProblem {
             bodies: self.op.bodies.clone(),
             rows: self.op.rows.clone(),
@@ -304,6 +296,15 @@ impl MoreauJean {
             shift: self.shift.clone(),
             impulses: self.impulses.clone(),
         }
+    }
+
+    /// [`MoreauJean::prepare`] for the next step of a copy of `world`.
+    fn prepare_next(&mut self, world: &World) {
+        let mut world = world.clone();
+        let mut report = StepReport::default();
+        let h = world.params.dt;
+        let (t_begin, t_end) = (world.step as Real * h, (world.step + 1) as Real * h);
+        self.prepare(&mut world, &mut report, t_begin, t_end);
     }
 
     /// Stages detect, assemble, free velocity and select: leaves the operator in its state of

@@ -4,7 +4,7 @@
 //! (two undivided solves with opposite sweep orders); 1 otherwise. With `--fail-on-rank R`,
 //! rank R panics before the solve, which must end the whole job (the panic hook's MPI_Abort).
 
-use xper_domain::fixtures::{deposit, serial_velocities, solver_params};
+use xper_domain::fixtures::{deposit, serial_spread, serial_velocities, solver_params};
 use xper_domain::MpiCommunicator;
 use xper_domain::{distributed_nlgs, split_problem, Bisection, Communicator, InterfaceMap};
 
@@ -13,30 +13,38 @@ fn main() {
         eprintln!("xper-domain-mpi-check: MPI was already initialised");
         std::process::exit(2);
     };
-    let args: Vec<String> = std::env::args().collect();
-    let option = |name: &str| {
-        args.iter().position(|a| a == name).map(|k| {
-            args.get(k + 1)
-                .and_then(|v| v.parse::<f64>().ok())
-                .filter(|v| v.is_finite() && *v >= 0.0)
-                .unwrap_or_else(|| comm.abort(&format!("{name} needs a non-negative number"), 2))
-        })
-    };
-    let fail_on = option("--fail-on-rank").map(|r| r as usize);
-    let tolerance = option("--tolerance").unwrap_or(1e-7);
+    let (mut tolerance, mut fail_on) = (1e-7, None);
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        let value = args.next();
+        let bad =
+            |what: &str| -> ! { comm.abort(&format!("{arg} needs {what}, got {value:?}"), 2) };
+        match arg.as_str() {
+            "--tolerance" => {
+                tolerance = value
+                    .as_deref()
+                    .and_then(|v| v.parse::<f64>().ok())
+                    .filter(|t| t.is_finite() && *t > 0.0)
+                    .unwrap_or_else(|| bad("a positive number"))
+            }
+            "--fail-on-rank" => {
+                fail_on = Some(
+                    value
+                        .as_deref()
+                        .and_then(|v| v.parse::<usize>().ok())
+                        .unwrap_or_else(|| bad("a rank number")),
+                )
+            }
+            _ => comm.abort(
+                &format!("unknown argument {arg:?} (known: --tolerance T, --fail-on-rank R)"),
+                2,
+            ),
+        }
+    }
     let (rank, size) = (comm.rank(), comm.size());
     let (world, problem) = deposit();
     let serial = serial_velocities(&problem, tolerance);
-    let mut reversed = problem.clone();
-    reversed.rows.reverse();
-    reversed.mu.reverse();
-    reversed.shift.reverse();
-    reversed.impulses.reverse();
-    let spread = serial_velocities(&reversed, tolerance)
-        .iter()
-        .zip(&serial)
-        .flat_map(|(a, b)| [(a[0] - b[0]).abs(), (a[1] - b[1]).abs()])
-        .fold(0.0, f64::max);
+    let spread = serial_spread(&problem, tolerance, &serial);
     if fail_on == Some(rank) {
         panic!("failure injected on rank {rank} (--fail-on-rank)");
     }
