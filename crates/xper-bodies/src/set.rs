@@ -157,7 +157,7 @@ impl BodySet {
     /// Kinetic energy of the finite-mass bodies (J per m).
     pub fn kinetic_energy(&self) -> Real {
         (0..self.len())
-            .filter(|&b| self.is_dynamic(b))
+            .filter(|&b| self.is_dynamic(b) && self.ownership[b] == Ownership::Owned)
             .map(|b| {
                 0.5 * self.mass[b] * self.velocity[b].norm_squared()
                     + 0.5 * self.inertia[b] * self.angular_velocity[b].powi(2)
@@ -168,7 +168,7 @@ impl BodySet {
     /// Gravitational potential energy of the finite-mass bodies (J per m), zero at the origin.
     pub fn potential_energy(&self, gravity: &Vector) -> Real {
         (0..self.len())
-            .filter(|&b| self.is_dynamic(b))
+            .filter(|&b| self.is_dynamic(b) && self.ownership[b] == Ownership::Owned)
             .map(|b| -self.mass[b] * gravity.dot(&self.position[b]))
             .sum()
     }

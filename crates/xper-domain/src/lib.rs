@@ -20,14 +20,18 @@ pub mod interface;
 pub mod mpi_communicator;
 pub mod nscdd;
 pub mod partition;
+pub mod shared_solve;
 pub mod split;
+pub mod stepper;
 mod threads;
 
 pub use communicator::{CommStats, Communicator, SingleProcess};
 pub use interface::InterfaceMap;
 #[cfg(feature = "mpi")]
 pub use mpi_communicator::MpiCommunicator;
-pub use nscdd::{distributed_nlgs, DistributedSolveInfo};
+pub use nscdd::distributed_nlgs;
 pub use partition::Bisection;
+pub use shared_solve::SharedNlgs;
 pub use split::{contact_owner, split_problem, LocalProblem};
+pub use stepper::{DistributedParams, DistributedStepper, RankLoad};
 pub use threads::{run_on_threads, ThreadCommunicator};

@@ -13,32 +13,26 @@
 //!
 //! so after step 2 each copy holds `v_free + M^-1 sum_a H_a R_a` over all contacts of all
 //! processes: the fixed point is the solution of the undivided problem. Every `check_every`
-//! sweeps the natural-map error of all contacts, scaled as in the serial solver by
-//! `max(|q|, |U|, |R|)`, is summed over processes (all-reduce) and compared with the tolerance.
+//! sweeps convergence is judged on all contacts, as the serial solver judges it: LMGC90's
+//! norms from the sums of the check sweep's updates (added over processes, maxima taken as
+//! maxima), or the natural-map error scaled by `max(|q|, |U|, |R|)` (all-reduce). On one
+//! process the iterates and the decision are those of [`xper_solver::nlgs`], bit for bit.
 //! Visseq et al., Comput. Mech. 49 (2012) 709; Renouf, Dubois and Alart, J. Comput. Appl.
 //! Math. 168 (2004) 375.
 
 use crate::communicator::Communicator;
 use crate::interface::InterfaceMap;
 use xper_nscd::RigidContactOperator;
-use xper_solver::{natural_map_error, ContactOperator, NlgsParams, NlgsSweeper, SolveError};
-
-/// Outcome of a distributed solve (identical on every rank).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct DistributedSolveInfo {
-    /// Sweeps performed (each followed by an interface exchange).
-    pub iterations: u32,
-    /// Scaled natural-map error of all contacts at the last check.
-    pub residual: f64,
-    /// Whether it went below the tolerance.
-    pub converged: bool,
-}
+use xper_solver::{
+    natural_map_error, ContactOperator, ConvergenceNorm, NlgsParams, NlgsSweeper, NormAccumulator,
+    SolveError, SolveInfo,
+};
 
 /// Solves the contacts of `op` (this process's rows, its bodies with split masses at their
 /// free velocities, zero impulses applied) together with those of the other processes.
-/// `impulses` holds the warm start on entry and the solution on exit. `params.tolerance` bounds
-/// the scaled natural-map error (the `norm` field is not used: LMGC90's norms are per-process
-/// sums of updates that the averaging step changes).
+/// `impulses` holds the warm start on entry and the solution on exit. The outcome (sweeps,
+/// residual of `params.norm`, convergence, LMGC90 norms of all contacts) is the same on every
+/// rank.
 pub fn distributed_nlgs<C: Communicator + ?Sized>(
     comm: &C,
     op: &mut RigidContactOperator,
@@ -47,7 +41,7 @@ pub fn distributed_nlgs<C: Communicator + ?Sized>(
     normal_shift: &[f64],
     impulses: &mut [[f64; 2]],
     params: &NlgsParams,
-) -> Result<DistributedSolveInfo, SolveError> {
+) -> Result<SolveInfo, SolveError> {
     if interface.multiplicity.len() != op.bodies.len() {
         return Err(SolveError::SizeMismatch {
             what: format!(
@@ -58,28 +52,66 @@ pub fn distributed_nlgs<C: Communicator + ?Sized>(
         });
     }
     let sweeper = NlgsSweeper::new(op, mu, normal_shift, &[], impulses, params)?;
-    let mut q_norm2 = [sweeper.q_norm().powi(2)];
-    comm.all_reduce_sum(&mut q_norm2);
-    let q_norm = q_norm2[0].sqrt();
+    let mut totals = [sweeper.q_norm().powi(2), op.contact_count() as f64];
+    comm.all_reduce_sum(&mut totals);
+    let (q_norm, contacts) = (totals[0].sqrt(), totals[1]);
     let mut glue = Glue::new(interface, comm.rank());
     glue.apply(comm, op, interface);
-    let mut info = DistributedSolveInfo::default();
+    let mut info = SolveInfo::default();
+    if contacts == 0.0 {
+        info.converged = true;
+        return Ok(info);
+    }
     for sweep in 1..=params.max_iterations {
-        sweeper.sweep(op, impulses);
+        let check = sweep % params.check_every == 0 || sweep == params.max_iterations;
+        let mut acc = NormAccumulator::default();
+        sweeper.sweep_accumulating(op, impulses, check.then_some(&mut acc));
         glue.apply(comm, op, interface);
-        if sweep % params.check_every == 0 || sweep == params.max_iterations {
+        if check {
             info.iterations = sweep;
-            info.residual = global_error(comm, op, mu, normal_shift, impulses, q_norm);
-            if !info.residual.is_finite() {
+            info.norms = global_norms(comm, &acc).norms(params.tolerance);
+            let (residual, converged) = match params.norm {
+                ConvergenceNorm::Quad | ConvergenceNorm::Maxm => {
+                    let m = info.norms.worst(params.norm == ConvergenceNorm::Maxm);
+                    (m * params.tolerance, m < 1.0)
+                }
+                ConvergenceNorm::NaturalMap => {
+                    let e = global_error(comm, op, mu, normal_shift, impulses, q_norm);
+                    (e, e < params.tolerance)
+                }
+            };
+            info.residual = residual;
+            if !residual.is_finite() {
                 return Ok(info);
             }
-            if info.residual < params.tolerance {
+            if converged {
                 info.converged = true;
                 return Ok(info);
             }
         }
     }
+    info.iterations = params.max_iterations;
     Ok(info)
+}
+
+/// The accumulator of the check sweep over all processes (one gather: sums added and maxima
+/// taken in rank order).
+fn global_norms<C: Communicator + ?Sized>(comm: &C, acc: &NormAccumulator) -> NormAccumulator {
+    if comm.size() == 1 {
+        return *acc;
+    }
+    let (sums, maxima) = acc.to_sums();
+    let mine: Vec<f64> = sums.iter().chain(&maxima).copied().collect();
+    let (mut sums, mut maxima) = ([0.0; 6], [0.0; 2]);
+    for theirs in comm.all_gather(&mine) {
+        for k in 0..6 {
+            sums[k] += theirs[k];
+        }
+        for k in 0..2 {
+            maxima[k] = f64::max(maxima[k], theirs[6 + k]);
+        }
+    }
+    NormAccumulator::from_sums(sums, maxima)
 }
 
 /// Step 2, prepared once per solve: the copies of every shared body take the average of their

@@ -64,6 +64,32 @@ impl Bisection {
     pub fn assign(&self, points: &[Vector]) -> Vec<u32> {
         points.iter().map(|x| self.part_of(x)).collect()
     }
+
+    /// The parts whose regions come within `distance` of `x` (in the max norm, so a superset
+    /// of those within Euclidean `distance`), in increasing order, `x`'s own part included.
+    pub fn parts_near(&self, x: &Vector, distance: Real, parts: &mut Vec<u32>) {
+        parts.clear();
+        let mut stack = vec![&self.root];
+        while let Some(node) = stack.pop() {
+            match node {
+                Node::Part(p) => parts.push(*p),
+                Node::Cut {
+                    axis,
+                    cut,
+                    below,
+                    above,
+                } => {
+                    if x[*axis] - distance < *cut {
+                        stack.push(below);
+                    }
+                    if x[*axis] + distance >= *cut {
+                        stack.push(above);
+                    }
+                }
+            }
+        }
+        parts.sort_unstable();
+    }
 }
 
 fn build(points: &[Vector], ids: &mut [u32], first_part: u32, parts: usize) -> Node {
@@ -119,6 +145,23 @@ fn build(points: &[Vector], ids: &mut [u32], first_part: u32, parts: usize) -> N
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn parts_near_finds_every_part_within_the_distance() {
+        let points = lattice(20, 0.3);
+        let bisection = Bisection::new(&points, 5);
+        let mut near = Vec::new();
+        for x in points.iter().step_by(7) {
+            bisection.parts_near(x, 1.5, &mut near);
+            // Brute force: the parts of the lattice points within 1.5 in the max norm.
+            for y in &points {
+                if (y - x).amax() <= 1.5 {
+                    assert!(near.contains(&bisection.part_of(y)), "{x:?} {y:?}");
+                }
+            }
+            assert!(near.contains(&bisection.part_of(x)));
+        }
+    }
 
     fn lattice(n: usize, jitter: Real) -> Vec<Vector> {
         (0..n * n)

@@ -11,11 +11,7 @@ use xper_nscd::RigidProblem;
 
 /// For each rank: (global id, velocity) of every local body, the solve's outcome, the number of
 /// shared bodies.
-type RankResult = (
-    Vec<(u64, [Real; 3])>,
-    xper_domain::DistributedSolveInfo,
-    usize,
-);
+type RankResult = (Vec<(u64, [Real; 3])>, xper_solver::SolveInfo, usize);
 
 fn distributed(problem: &RigidProblem, owners: &[u32], ranks: usize, tol: Real) -> Vec<RankResult> {
     run_on_threads(ranks, |comm| {

@@ -32,10 +32,13 @@
 
 mod assemble;
 mod operator;
+mod report;
 mod step;
 mod world;
 
 pub use assemble::assemble_problem;
 pub use operator::{ContactRow, RigidContactOperator, RigidProblem, SolverBody};
-pub use step::{normal_shift, MoreauJean, StageTimes, StepError, StepReport};
+pub use step::{
+    contact_owner_body, normal_shift, ContactSolve, MoreauJean, StageTimes, StepError, StepReport,
+};
 pub use world::{EnergyBudget, StepParams, VelocitySolver, World};

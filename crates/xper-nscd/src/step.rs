@@ -4,102 +4,55 @@
 
 use crate::assemble::assemble_problem;
 use crate::operator::{ContactRow, RigidContactOperator, RigidProblem};
+pub use crate::report::{StageTimes, StepError, StepReport};
 use crate::world::{VelocitySolver, World};
 use std::time::Instant;
+use xper_bodies::{BodySet, Ownership};
 use xper_geometry::Detector;
 use xper_laws::InteractionLaw;
 use xper_math::{Real, DOFS};
 use xper_solver::{
-    nlgs, solve, ContactOperator, ConvergenceNorms, FrictionProblem, NlgsParams, ProblemError,
-    SolveError,
+    nlgs, solve, ContactOperator, FrictionProblem, NlgsParams, ProblemError, SolveError, SolveInfo,
 };
 
-/// Wall time of the stages of one step (s).
-#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
-pub struct StageTimes {
-    /// Broad and narrow phase.
-    pub detect: f64,
-    /// The velocity problem: NLGS, or assembly of `W` and the assembled problem's solver.
-    pub solve: f64,
-    /// The position projection.
-    pub project: f64,
-    /// The whole step.
-    pub total: f64,
+/// A solver of the step's velocity and projection problems shared with other processes (a
+/// domain decomposition): [`MoreauJean::step_with`] hands it the problem of the contacts this
+/// process owns, on its copies of their bodies, instead of solving it alone.
+pub trait ContactSolve {
+    /// Solves the problem of `op` (zero impulses applied, `impulses` the warm start on entry
+    /// and the solution on exit) as [`xper_solver::nlgs`] does, together with the other
+    /// processes; every process gets the same outcome.
+    fn solve(
+        &mut self,
+        op: &mut RigidContactOperator,
+        mu: &[Real],
+        shift: &[Real],
+        impulses: &mut [[Real; 2]],
+        params: &NlgsParams,
+    ) -> Result<SolveInfo, SolveError>;
+    /// The largest `value` over the processes, for decisions they must all take alike.
+    fn agree_max(&mut self, value: Real) -> Real;
 }
 
-/// What happened during one step.
-#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
-pub struct StepReport {
-    /// Index of the step just done (1-based).
-    pub step: u64,
-    /// Time at the end of the step (s).
-    pub time: Real,
-    /// Contacts within the alert distance.
-    pub contacts: usize,
-    /// Contacts in the velocity problem (predicted gap closed).
-    pub active: usize,
-    /// NLGS sweeps, or the assembled problem's solver iterations (Newton iterations, ...).
-    pub iterations: u32,
-    /// Final value of the convergence measure (for an assembled solve: the natural-map
-    /// error under the solver's scaling).
-    pub residual: Real,
-    /// Whether the solver reached the tolerance.
-    pub converged: bool,
-    /// LMGC90 norms at the last check (zero for an assembled solve).
-    pub norms: ConvergenceNorms,
-    /// NLGS sweeps of the position projection (0 when it did not run).
-    pub projection_iterations: u32,
-    /// Largest overlap before projection (m, >= 0).
-    pub max_overlap: Real,
-    /// Kinetic energy (J/m).
-    pub kinetic: Real,
-    /// Potential energy (J/m).
-    pub potential: Real,
-    /// Dissipated energy since the start (J/m).
-    pub dissipated: Real,
-    /// External work since the start (J/m).
-    pub external_work: Real,
-    /// Potential energy added by position projections since the start (J/m).
-    pub projection_work: Real,
-    /// Energy balance error (J/m).
-    pub energy_error: Real,
-    /// Stage timings.
-    pub times: StageTimes,
-}
-
-/// A step that could not be completed; the world is left as it was after the failing stage.
-#[derive(Clone, Debug, PartialEq)]
-pub enum StepError {
-    /// The solver refused the problem.
-    Solver(SolveError),
-    /// A position or velocity became NaN or infinite.
-    NonFinite {
-        /// Body index.
-        body: usize,
-    },
-    /// The energy balance error exceeded the scale of the energy budget.
-    EnergyBlowUp {
-        /// Balance error (J/m).
-        error: Real,
-        /// Budget scale (J/m).
-        scale: Real,
-    },
-}
-
-impl std::fmt::Display for StepError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            StepError::Solver(e) => write!(f, "contact solver: {e}"),
-            StepError::NonFinite { body } => write!(f, "body {body} has a non-finite position or velocity"),
-            StepError::EnergyBlowUp { error, scale } => write!(
-                f,
-                "energy blow-up: balance error {error:.3e} J/m exceeds the energy scale {scale:.3e} J/m"
-            ),
-        }
+/// A shorter borrow of an optional shared solver (trait-object lifetimes shorten only at a
+/// coercion).
+fn reborrow<'b>(s: &'b mut Option<&mut dyn ContactSolve>) -> Option<&'b mut dyn ContactSolve> {
+    match s {
+        Some(s) => Some(&mut **s),
+        None => None,
     }
 }
 
-impl std::error::Error for StepError {}
+/// The body whose owner owns contact `(i, j)`: the first, or the second when the first is
+/// immovable (a wall, held by every process).
+#[inline]
+pub fn contact_owner_body(bodies: &BodySet, i: usize, j: usize) -> usize {
+    if bodies.inv_mass[i].iter().any(|&w| w != 0.0) {
+        i
+    } else {
+        j
+    }
+}
 
 /// The normal shift `s` of a contact in the Signorini condition `U_N + s >= 0 _|_ R_N >= 0`,
 /// or `None` when the contact stays out of the problem this step.
@@ -177,7 +130,28 @@ impl MoreauJean {
     pub fn step(&mut self, world: &mut World) -> Result<StepReport, StepError> {
         let h = world.params.dt;
         let (t_begin, t_end) = (world.step as Real * h, (world.step + 1) as Real * h);
-        self.step_between(world, t_begin, t_end)
+        self.step_between(world, t_begin, t_end, None)
+    }
+
+    /// [`MoreauJean::step`] of a process's part of a distributed world: bodies marked
+    /// [`Ownership::Shadow`] are copies of other processes' bodies, the contacts kept are those
+    /// whose [`contact_owner_body`] is owned here, `solver` solves them together with the other
+    /// processes', and the energies reported (kinetic, potential, dissipated, work) count only
+    /// what this process owns, so that they add up over the processes. The energy check is the
+    /// caller's, on the sums: `world.energy.scale` is left to the caller.
+    pub fn step_with(
+        &mut self,
+        world: &mut World,
+        solver: &mut dyn ContactSolve,
+    ) -> Result<StepReport, StepError> {
+        if let VelocitySolver::Assembled(_) = world.params.solver {
+            return Err(StepError::Solver(SolveError::Unsupported(
+                "a distributed step solves by NLGS only".into(),
+            )));
+        }
+        let h = world.params.dt;
+        let (t_begin, t_end) = (world.step as Real * h, (world.step + 1) as Real * h);
+        self.step_between(world, t_begin, t_end, Some(solver))
     }
 
     /// Advances `world` by a step of `h` from `world.time` (for time steps that change during
@@ -185,7 +159,7 @@ impl MoreauJean {
     pub fn step_by(&mut self, world: &mut World, h: Real) -> Result<StepReport, StepError> {
         world.params.dt = h;
         let t_begin = world.time;
-        self.step_between(world, t_begin, t_begin + h)
+        self.step_between(world, t_begin, t_begin + h, None)
     }
 
     fn step_between(
@@ -193,17 +167,19 @@ impl MoreauJean {
         world: &mut World,
         t_begin: Real,
         t_end: Real,
+        mut shared: Option<&mut dyn ContactSolve>,
     ) -> Result<StepReport, StepError> {
         let start = Instant::now();
         let mut report = StepReport {
             step: world.step + 1,
             ..Default::default()
         };
-        self.prepare(world, &mut report, t_begin, t_end);
+        let distributed = shared.is_some().then_some(());
+        self.prepare(world, &mut report, t_begin, t_end, distributed.is_some());
 
         // Stage: solve.
         let t_solve = Instant::now();
-        self.solve(world, &mut report)?;
+        self.solve(world, &mut report, reborrow(&mut shared))?;
         report.times.solve = t_solve.elapsed().as_secs_f64();
 
         // Stage: energy exchanged at contacts, with the same H at both ends of the step.
@@ -237,7 +213,8 @@ impl MoreauJean {
 
         // Stage: project positions out of overlaps.
         let t_project = Instant::now();
-        (report.projection_iterations, report.max_overlap) = self.project(world)?;
+        (report.projection_iterations, report.max_overlap) =
+            self.project(world, reborrow(&mut shared))?;
         report.times.project = t_project.elapsed().as_secs_f64();
 
         world.step += 1;
@@ -256,7 +233,7 @@ impl MoreauJean {
             .max(e.external_work.abs());
         report.times.total = start.elapsed().as_secs_f64();
         let scale = e.scale + e.dissipated + report.kinetic.min(e.initial.abs());
-        if report.energy_error > scale.max(1e-12) {
+        if distributed.is_none() && report.energy_error > scale.max(1e-12) {
             return Err(StepError::EnergyBlowUp {
                 error: report.energy_error,
                 scale,
@@ -304,12 +281,20 @@ impl MoreauJean {
         let mut report = StepReport::default();
         let h = world.params.dt;
         let (t_begin, t_end) = (world.step as Real * h, (world.step + 1) as Real * h);
-        self.prepare(&mut world, &mut report, t_begin, t_end);
+        self.prepare(&mut world, &mut report, t_begin, t_end, false);
     }
 
     /// Stages detect, assemble, free velocity and select: leaves the operator in its state of
     /// zero impulses at the free velocities, with the active rows, `mu`, shifts and warm start.
-    fn prepare(&mut self, world: &mut World, report: &mut StepReport, t_begin: Real, t_end: Real) {
+    /// With `owned_only`, the contacts other processes own are dropped after detection.
+    fn prepare(
+        &mut self,
+        world: &mut World,
+        report: &mut StepReport,
+        t_begin: Real,
+        t_end: Real,
+        owned_only: bool,
+    ) {
         let start = Instant::now();
         let (h, theta) = (world.params.dt, world.params.theta);
 
@@ -321,6 +306,13 @@ impl MoreauJean {
             |a, b| laws.between(a, b),
             &mut world.contacts,
         );
+        if owned_only {
+            let bodies = &world.bodies;
+            world.contacts.contacts.retain(|c| {
+                let b = contact_owner_body(bodies, c.bodies[0] as usize, c.bodies[1] as usize);
+                bodies.ownership[b] == Ownership::Owned
+            });
+        }
         report.contacts = world.contacts.len();
         report.times.detect = start.elapsed().as_secs_f64();
 
@@ -378,7 +370,12 @@ impl MoreauJean {
 
     /// Stage solve: the velocity problem by the world's [`VelocitySolver`]; on return the
     /// operator's velocities are those of the impulses found.
-    fn solve(&mut self, world: &World, report: &mut StepReport) -> Result<(), StepError> {
+    fn solve(
+        &mut self,
+        world: &World,
+        report: &mut StepReport,
+        shared: Option<&mut dyn ContactSolve>,
+    ) -> Result<(), StepError> {
         let assembled = match world.params.solver {
             VelocitySolver::Assembled(params) => Some(params),
             VelocitySolver::Nlgs => None,
@@ -393,13 +390,11 @@ impl MoreauJean {
             None
         };
         let (Some(params), Some(problem)) = (assembled, problem) else {
-            let info = nlgs(
-                &mut self.op,
-                &self.mu,
-                &self.shift,
-                &mut self.impulses,
-                &world.params.nlgs,
-            )
+            let (op, mu, shift) = (&mut self.op, &self.mu, &self.shift);
+            let info = match shared {
+                Some(s) => s.solve(op, mu, shift, &mut self.impulses, &world.params.nlgs),
+                None => nlgs(op, mu, shift, &mut self.impulses, &world.params.nlgs),
+            }
             .map_err(StepError::Solver)?;
             report.iterations = info.iterations;
             report.residual = info.residual;
@@ -459,8 +454,12 @@ impl MoreauJean {
     fn driven_work(&self, world: &World, t_begin: Real, t_end: Real) -> Real {
         let (h, theta, g) = (world.params.dt, world.params.theta, world.params.gravity);
         let mut work = 0.0;
+        let owned = |b: usize| world.bodies.ownership[b] == Ownership::Owned;
         for (handle, drives) in &world.bodies.driven {
             let b = handle.index();
+            if !owned(b) {
+                continue;
+            }
             let (v0, v1) = (self.v_begin[b], self.op.bodies[b].velocity);
             let masses = [
                 world.bodies.mass[b],
@@ -485,6 +484,9 @@ impl MoreauJean {
             }
         }
         for (b, force) in self.external_forces.iter().enumerate() {
+            if !owned(b) {
+                continue;
+            }
             let (v0, v1) = (self.v_begin[b], self.op.bodies[b].velocity);
             for d in 0..DOFS {
                 if self.op.bodies[b].inv_mass[d] > 0.0 {
@@ -518,7 +520,11 @@ impl MoreauJean {
 
     /// Removes overlaps larger than the projection tolerance: returns the sweeps used and the
     /// largest overlap before projection.
-    fn project(&mut self, world: &mut World) -> Result<(u32, Real), StepError> {
+    fn project(
+        &mut self,
+        world: &mut World,
+        mut shared: Option<&mut dyn ContactSolve>,
+    ) -> Result<(u32, Real), StepError> {
         let (h, theta) = (world.params.dt, world.params.theta);
         // Linearised gaps at the end of the step, over every contact's row.
         let subset = self.active_is_subset;
@@ -532,6 +538,9 @@ impl MoreauJean {
             let gap = c.gap + h * ((1.0 - theta) * self.u_begin[a][0] + theta * u_end);
             deepest = deepest.max(-gap);
             self.shift.push(gap);
+        }
+        if let Some(s) = reborrow(&mut shared) {
+            deepest = s.agree_max(deepest);
         }
         let restore = |me: &mut Self| {
             if subset {
@@ -557,18 +566,16 @@ impl MoreauJean {
         let params = NlgsParams {
             ..world.params.nlgs
         };
-        let info = nlgs(
-            &mut self.op,
-            &self.mu,
-            &self.shift,
-            &mut self.impulses,
-            &params,
-        )
+        let (op, mu, shift) = (&mut self.op, &self.mu, &self.shift);
+        let info = match shared {
+            Some(s) => s.solve(op, mu, shift, &mut self.impulses, &params),
+            None => nlgs(op, mu, shift, &mut self.impulses, &params),
+        }
         .map_err(StepError::Solver)?;
         let bodies = &mut world.bodies;
         let gravity = world.params.gravity;
         for (b, body) in self.op.bodies.iter().enumerate() {
-            if bodies.is_dynamic(b) {
+            if bodies.is_dynamic(b) && bodies.ownership[b] == Ownership::Owned {
                 world.energy.projection_work -=
                     bodies.mass[b] * (gravity.x * body.velocity[0] + gravity.y * body.velocity[1]);
             }

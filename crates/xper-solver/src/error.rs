@@ -67,9 +67,12 @@ impl ConvergenceNorms {
     }
 }
 
-/// Sums accumulated over a check sweep.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct NormAccumulator {
+/// Sums accumulated over a check sweep, from which LMGC90's norms are formed. Accumulators of
+/// several processes combine by [`NormAccumulator::to_sums`] and [`NormAccumulator::from_sums`]
+/// (sums added, the two maxima taken as maxima), so a distributed solve judges convergence by
+/// the norms of all contacts.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct NormAccumulator {
     sum_du2: f64,
     sum_du2_rm2: f64,
     max_du2: f64,
@@ -83,7 +86,7 @@ pub(crate) struct NormAccumulator {
 impl NormAccumulator {
     /// Adds one contact's local update.
     #[inline(always)]
-    pub(crate) fn add(&mut self, w: &Block2, r: [f64; 2], r_new: [f64; 2], du: [f64; 2]) {
+    pub fn add(&mut self, w: &Block2, r: [f64; 2], r_new: [f64; 2], du: [f64; 2]) {
         if r_new[0] == 0.0 && r_new[1] == 0.0 {
             return;
         }
@@ -101,8 +104,38 @@ impl NormAccumulator {
         self.active += 1;
     }
 
+    /// The additive sums `[sum |du|^2, sum |du|^2 |Rm|^2, sum W R.R, sum |W R|^2, sum Rm.du,
+    /// active]` and the maxima `[max |du|^2, max |du|^2 |Rm|^2]`.
+    pub fn to_sums(&self) -> ([f64; 6], [f64; 2]) {
+        (
+            [
+                self.sum_du2,
+                self.sum_du2_rm2,
+                self.sum_wrr,
+                self.sum_wrwr,
+                self.sum_rm_du,
+                self.active as f64,
+            ],
+            [self.max_du2, self.max_du2_rm2],
+        )
+    }
+
+    /// The accumulator of the given sums and maxima (the inverse of [`Self::to_sums`]).
+    pub fn from_sums(sums: [f64; 6], maxima: [f64; 2]) -> Self {
+        NormAccumulator {
+            sum_du2: sums[0],
+            sum_du2_rm2: sums[1],
+            sum_wrr: sums[2],
+            sum_wrwr: sums[3],
+            sum_rm_du: sums[4],
+            active: sums[5] as usize,
+            max_du2: maxima[0],
+            max_du2_rm2: maxima[1],
+        }
+    }
+
     /// The norms relative to `tol`; all zero when no contact carries a reaction.
-    pub(crate) fn norms(&self, tol: f64) -> ConvergenceNorms {
+    pub fn norms(&self, tol: f64) -> ConvergenceNorms {
         if self.active == 0 || self.sum_wrr <= 0.0 {
             return ConvergenceNorms {
                 active: self.active,

@@ -35,7 +35,7 @@ mod solve;
 
 pub use alart_curnier::LocalParams;
 pub use cohesive::{solve_one_cohesive_contact, CohesiveTerm, PreparedCohesiveContact};
-pub use error::{natural_map_error, project_on_cone, ConvergenceNorms};
+pub use error::{natural_map_error, project_on_cone, ConvergenceNorms, NormAccumulator};
 pub use lemke::{lemke, LemkeParams};
 pub use local::solve_one_contact;
 pub use newton::{newton, NewtonParams, RhoStrategy};

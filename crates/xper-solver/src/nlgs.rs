@@ -8,6 +8,7 @@
 
 use crate::cohesive::{CohesiveTerm, PreparedCohesiveContact};
 use crate::error::{natural_map_error, ConvergenceNorms, NormAccumulator};
+
 use crate::local::solve_one_contact;
 use crate::operator::{block_mul, ContactOperator};
 
@@ -295,7 +296,7 @@ impl<'a> NlgsSweeper<'a> {
     }
 
     /// One sweep, adding each contact's update to `acc` when given.
-    pub(crate) fn sweep_accumulating<O: ContactOperator>(
+    pub fn sweep_accumulating<O: ContactOperator>(
         &self,
         op: &mut O,
         impulses: &mut [[f64; 2]],

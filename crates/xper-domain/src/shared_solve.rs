@@ -1,0 +1,100 @@
+//! The contact solve of a distributed step: what [`xper_nscd::MoreauJean::step_with`] calls
+//! instead of NLGS on one process.
+//!
+//! For each problem of the step (velocities, then positions when the projection runs) the
+//! interface is built collectively ([`InterfaceMap::build`]), the shared bodies' masses are split
+//! among their copies, [`distributed_nlgs`] solves, and the operator gets its own masses and
+//! Delassus blocks back (copied, not recomputed, so they keep their bits).
+
+use crate::communicator::Communicator;
+use crate::interface::InterfaceMap;
+use crate::nscdd::distributed_nlgs;
+use xper_math::Real;
+use xper_nscd::{ContactSolve, RigidContactOperator};
+use xper_solver::{NlgsParams, SolveError, SolveInfo};
+
+/// [`ContactSolve`] by NSCDD over a communicator, for a process whose local bodies (those of
+/// the operator, in order) have the global ids `ids`, the owners `owners` and may move
+/// (`movable`).
+pub struct SharedNlgs<'c, C: Communicator + ?Sized> {
+    /// The processes solving together.
+    pub comm: &'c C,
+    /// Global id of each local body.
+    pub ids: Vec<u64>,
+    /// Owner rank of each local body.
+    pub owners: Vec<u32>,
+    /// Whether each local body has a free degree of freedom.
+    pub movable: Vec<bool>,
+    /// Interface bodies of the last solve (the largest over the step's solves).
+    pub shared_bodies: usize,
+}
+
+impl<'c, C: Communicator + ?Sized> SharedNlgs<'c, C> {
+    /// A solver with no bodies yet (filled before each step).
+    pub fn new(comm: &'c C) -> Self {
+        SharedNlgs {
+            comm,
+            ids: Vec::new(),
+            owners: Vec::new(),
+            movable: Vec::new(),
+            shared_bodies: 0,
+        }
+    }
+}
+
+impl<C: Communicator + ?Sized> ContactSolve for SharedNlgs<'_, C> {
+    fn solve(
+        &mut self,
+        op: &mut RigidContactOperator,
+        mu: &[Real],
+        shift: &[Real],
+        impulses: &mut [[Real; 2]],
+        params: &NlgsParams,
+    ) -> Result<SolveInfo, SolveError> {
+        let me = self.comm.rank() as u32;
+        // A copy takes part in the interface when it is this process's body or one of its
+        // contacts touches it.
+        let mut shared: Vec<bool> = (0..op.bodies.len())
+            .map(|b| self.movable[b] && self.owners[b] == me)
+            .collect();
+        for row in &op.rows {
+            for &b in &row.bodies {
+                shared[b as usize] |= self.movable[b as usize];
+            }
+        }
+        let interface = InterfaceMap::build(self.comm, &self.ids, &self.owners, &shared);
+        self.shared_bodies = interface.shared_count();
+        let split = self.shared_bodies > 0;
+        let (masses, blocks): (Vec<_>, Vec<_>) = if split {
+            (
+                op.bodies.iter().map(|b| b.inv_mass).collect(),
+                op.rows.iter().map(|r| r.block).collect(),
+            )
+        } else {
+            Default::default()
+        };
+        if split {
+            interface.split_masses(&mut op.bodies);
+            let bodies = &op.bodies;
+            for row in &mut op.rows {
+                row.refresh_block(bodies);
+            }
+        }
+        let info = distributed_nlgs(self.comm, op, &interface, mu, shift, impulses, params);
+        if split {
+            for (body, m) in op.bodies.iter_mut().zip(masses) {
+                body.inv_mass = m;
+            }
+            for (row, block) in op.rows.iter_mut().zip(blocks) {
+                row.block = block;
+            }
+        }
+        info
+    }
+
+    fn agree_max(&mut self, value: Real) -> Real {
+        let mut v = [value];
+        self.comm.all_reduce_max(&mut v);
+        v[0]
+    }
+}

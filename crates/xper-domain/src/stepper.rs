@@ -1,0 +1,507 @@
+//! A rigid-body run over several processes: [`DistributedStepper`].
+//!
+//! Each step is a sequence of named stages, every one collective:
+//!
+//! ```text
+//! 1. partition: every `rebalance_every` steps the states of all bodies are gathered and space
+//!    is cut again by recursive coordinate bisection (equal numbers of movable bodies);
+//!    in between, a body whose centre left its owner's region migrates to the region's owner.
+//!    Contacts follow the body that owns them, carrying their impulses (the warm start);
+//! 2. shadows: each owner sends the state of its bodies to every process whose region lies
+//!    within the halo `2 r_max + alert` (a contact partner of one of that process's bodies
+//!    cannot be farther);
+//! 3. local step: the process's bodies (owned, shadow copies, and the immovable ones that every
+//!    process holds) in increasing global id, so that contacts are detected with the same body
+//!    order, normal and feature as in a serial run; `MoreauJean::step_with` keeps the contacts
+//!    this process owns and solves them with the others' ([`SharedNlgs`]);
+//! 4. totals: contacts, energies and the budget check are summed over processes.
+//! ```
+//!
+//! The bodies' descriptions (shape, masses, group, drives) are held by every process; their
+//! state is authoritative only at the owner. [`DistributedStepper::gather`] rebuilds the whole
+//! world on rank 0 for outputs and checkpoints, which are therefore those of a serial run, and a
+//! checkpoint written with any number of processes resumes with any other.
+
+use crate::communicator::Communicator;
+use crate::partition::Bisection;
+use crate::shared_solve::SharedNlgs;
+use xper_bodies::{BodySet, Ownership};
+use xper_geometry::Contact;
+use xper_math::{Real, Vector};
+use xper_nscd::{contact_owner_body, EnergyBudget, MoreauJean, StepError, StepReport, World};
+
+/// Tuning of a distributed run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DistributedParams {
+    /// Steps between re-partitions of space (bodies migrate at every step in between).
+    pub rebalance_every: u64,
+}
+
+impl Default for DistributedParams {
+    fn default() -> Self {
+        DistributedParams {
+            rebalance_every: 50,
+        }
+    }
+}
+
+/// What one process holds and did, for the run's load summary.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct RankLoad {
+    /// Movable bodies owned.
+    pub bodies: usize,
+    /// Shadow copies of other processes' bodies.
+    pub shadows: usize,
+    /// Contacts owned (those of the last step).
+    pub contacts: usize,
+    /// Bodies shared with other processes in the last solve.
+    pub interface_bodies: usize,
+    /// Bodies received by migration since the start.
+    pub migrated_in: u64,
+}
+
+const STATE: usize = 7;
+const CONTACT: usize = 11;
+
+/// A rigid-body world stepped by `comm.size()` processes (see the module documentation).
+pub struct DistributedStepper<'c, C: Communicator + ?Sized> {
+    comm: &'c C,
+    params: DistributedParams,
+    /// Every body's description; states are current for the bodies held here.
+    all: World,
+    movable: Vec<bool>,
+    immovable: Vec<u32>,
+    driven_of: Vec<u32>,
+    owned: Vec<u32>,
+    carried: Vec<Contact>,
+    partition: Bisection,
+    partitioned_at: u64,
+    halo: Real,
+    local: World,
+    local_of: Vec<u32>,
+    stepper: MoreauJean,
+    load: RankLoad,
+}
+
+impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
+    /// Distributes `world` (the same on every process: read from the scene or a checkpoint).
+    pub fn new(comm: &'c C, world: World, params: DistributedParams) -> Self {
+        let n = world.bodies.len();
+        let movable: Vec<bool> = (0..n)
+            .map(|b| world.bodies.inv_mass[b].iter().any(|&w| w != 0.0))
+            .collect();
+        let mut driven_of = vec![u32::MAX; n];
+        for (k, (handle, _)) in world.bodies.driven.iter().enumerate() {
+            driven_of[handle.index()] = k as u32;
+        }
+        let r_max = (0..n)
+            .filter(|&b| movable[b])
+            .map(|b| world.bodies.shape[b].size())
+            .fold(0.0, Real::max);
+        let halo = 2.0 * r_max + world.params.alert_distance;
+        let mut local = world.clone();
+        local.bodies = BodySet::new();
+        local.contacts.contacts.clear();
+        let mut me = DistributedStepper {
+            comm,
+            params,
+            immovable: (0..n as u32).filter(|&b| !movable[b as usize]).collect(),
+            movable,
+            driven_of,
+            owned: Vec::new(),
+            carried: world.contacts.contacts.clone(),
+            partition: Bisection::new(&[], 1),
+            partitioned_at: world.step,
+            halo,
+            local_of: vec![u32::MAX; n],
+            all: world,
+            local,
+            stepper: MoreauJean::new(),
+            load: RankLoad::default(),
+        };
+        me.partition_space(false);
+        me
+    }
+
+    /// The run's time, step and global energy budget (bodies current only where held).
+    pub fn world(&self) -> &World {
+        &self.all
+    }
+
+    /// This process's load.
+    pub fn load(&self) -> RankLoad {
+        self.load
+    }
+
+    /// One step of the whole world; the report holds the totals over processes (contacts,
+    /// energies) and the shared solver's figures.
+    pub fn step(&mut self) -> Result<StepReport, StepError> {
+        let start = std::time::Instant::now();
+        let step = self.all.step;
+        if step % self.params.rebalance_every.max(1) == 0 && step != self.partitioned_at {
+            self.partition_space(true);
+        } else {
+            self.migrate();
+        }
+        let shadows = self.exchange_shadows();
+        self.build_local(&shadows);
+        let mut solver = SharedNlgs::new(self.comm);
+        solver.ids = self.local.bodies.id.clone();
+        let me = self.comm.rank() as u32;
+        solver.owners = (self.local.bodies.ownership.iter())
+            .map(|o| match o {
+                Ownership::Owned => me,
+                Ownership::Shadow { owner } => *owner,
+            })
+            .collect();
+        solver.movable = (self.local.bodies.id.iter())
+            .map(|&g| self.movable[g as usize])
+            .collect();
+        self.local.energy = EnergyBudget {
+            scale: Real::INFINITY,
+            ..Default::default()
+        };
+        let mut report = self.stepper.step_with(&mut self.local, &mut solver)?;
+        self.load.interface_bodies = solver.shared_bodies;
+        self.load.contacts = self.local.contacts.len();
+        self.store_local();
+        self.totals(&mut report)?;
+        report.times.total = start.elapsed().as_secs_f64();
+        Ok(report)
+    }
+
+    /// Stage 1 at a re-partition: every body's state to every process, new cuts, contacts sent
+    /// to the owners of their bodies. At the start (`gather` false) every process already has
+    /// the whole world.
+    fn partition_space(&mut self, gather: bool) {
+        if gather {
+            let mine = vec![self.states_of(&self.owned); self.comm.size()];
+            for message in self.comm.all_to_all(&mine) {
+                self.read_states(&message);
+            }
+        }
+        let ids: Vec<u32> = (0..self.movable.len() as u32)
+            .filter(|&b| self.movable[b as usize])
+            .collect();
+        let points: Vec<Vector> = ids
+            .iter()
+            .map(|&b| self.all.bodies.position[b as usize])
+            .collect();
+        self.partition = Bisection::new(&points, self.comm.size());
+        self.partitioned_at = self.all.step;
+        let me = self.comm.rank() as u32;
+        self.owned = ids
+            .into_iter()
+            .filter(|&b| {
+                self.partition
+                    .part_of(&self.all.bodies.position[b as usize])
+                    == me
+            })
+            .collect();
+        let carried = std::mem::take(&mut self.carried);
+        if gather {
+            self.send_contacts(carried);
+        } else {
+            let mut owned = vec![false; self.movable.len()];
+            for &b in &self.owned {
+                owned[b as usize] = true;
+            }
+            let bodies = &self.all.bodies;
+            self.carried = carried
+                .into_iter()
+                .filter(|c| owned[contact_owner_body(bodies, c.bodies[0] as _, c.bodies[1] as _)])
+                .collect();
+        }
+    }
+
+    /// Stage 1 between re-partitions: bodies whose centre left this region go to its owner,
+    /// with the contacts they own.
+    fn migrate(&mut self) {
+        let (me, size) = (self.comm.rank() as u32, self.comm.size());
+        let mut leaving = vec![Vec::new(); size];
+        let partition = &self.partition;
+        let bodies = &self.all.bodies;
+        self.owned.retain(|&b| {
+            let p = partition.part_of(&bodies.position[b as usize]);
+            if p != me {
+                leaving[p as usize].push(b);
+            }
+            p == me
+        });
+        let sends: Vec<Vec<f64>> = leaving.iter().map(|ids| self.states_of(ids)).collect();
+        for message in self.comm.all_to_all(&sends) {
+            let arrived = self.read_states(&message);
+            self.load.migrated_in += arrived.len() as u64;
+            self.owned.extend(arrived);
+        }
+        self.owned.sort_unstable();
+        let carried = std::mem::take(&mut self.carried);
+        self.send_contacts(carried);
+    }
+
+    /// Sends each contact to the process owning its owner body (by the current partition);
+    /// keeps those of this process.
+    fn send_contacts(&mut self, contacts: Vec<Contact>) {
+        let mut sends = vec![Vec::new(); self.comm.size()];
+        for c in &contacts {
+            let b = contact_owner_body(&self.all.bodies, c.bodies[0] as _, c.bodies[1] as _);
+            let p = self.partition.part_of(&self.all.bodies.position[b]);
+            write_contact(&mut sends[p as usize], c);
+        }
+        self.carried = self
+            .comm
+            .all_to_all(&sends)
+            .iter()
+            .flat_map(|m| m.chunks_exact(CONTACT).map(read_contact))
+            .collect();
+    }
+
+    /// Stage 2: the states of the bodies of other processes within the halo of this region,
+    /// with their owners.
+    fn exchange_shadows(&mut self) -> Vec<(u32, u32)> {
+        let (me, size) = (self.comm.rank(), self.comm.size());
+        let mut sends = vec![Vec::new(); size];
+        let mut near = Vec::new();
+        for &b in &self.owned {
+            let x = self.all.bodies.position[b as usize];
+            self.partition.parts_near(&x, self.halo, &mut near);
+            for &p in near.iter().filter(|&&p| p as usize != me) {
+                write_state(&mut sends[p as usize], &self.all.bodies, b);
+            }
+        }
+        let received = self.comm.all_to_all(&sends);
+        let mut shadows = Vec::new();
+        for (rank, message) in received.iter().enumerate() {
+            for b in self.read_states(message) {
+                shadows.push((b, rank as u32));
+            }
+        }
+        self.load.shadows = shadows.len();
+        self.load.bodies = self.owned.len();
+        shadows
+    }
+
+    /// Stage 3's world: immovable, owned and shadow bodies in increasing global id, and the
+    /// carried contacts in local indices.
+    fn build_local(&mut self, shadows: &[(u32, u32)]) {
+        let me = self.comm.rank() as u32;
+        let mut held: Vec<(u32, Ownership)> = Vec::new();
+        let wall_owner = if me == 0 {
+            Ownership::Owned
+        } else {
+            Ownership::Shadow { owner: 0 }
+        };
+        held.extend(self.immovable.iter().map(|&b| (b, wall_owner)));
+        held.extend(self.owned.iter().map(|&b| (b, Ownership::Owned)));
+        held.extend(
+            shadows
+                .iter()
+                .map(|&(b, owner)| (b, Ownership::Shadow { owner })),
+        );
+        held.sort_unstable_by_key(|h| h.0);
+        for &g in &self.local.bodies.id {
+            self.local_of[g as usize] = u32::MAX;
+        }
+        let (all, local) = (&self.all.bodies, &mut self.local.bodies);
+        *local = BodySet::new();
+        for (k, &(g, ownership)) in held.iter().enumerate() {
+            let b = g as usize;
+            self.local_of[b] = k as u32;
+            local.position.push(all.position[b]);
+            local.angle.push(all.angle[b]);
+            local.velocity.push(all.velocity[b]);
+            local.angular_velocity.push(all.angular_velocity[b]);
+            local.mass.push(all.mass[b]);
+            local.inertia.push(all.inertia[b]);
+            local.inv_mass.push(all.inv_mass[b]);
+            local.shape.push(all.shape[b].clone());
+            local.group.push(all.group[b]);
+            local.id.push(g as u64);
+            local.ownership.push(ownership);
+            if let Some((_, drives)) = all.driven.get(self.driven_of[b] as usize) {
+                local
+                    .driven
+                    .push((xper_bodies::BodyHandle(k as u32), drives.clone()));
+            }
+        }
+        let local_of = &self.local_of;
+        self.local.contacts.contacts = (self.carried.iter())
+            .filter_map(|c| {
+                let [i, j] = c.bodies.map(|b| local_of[b as usize]);
+                (i != u32::MAX && j != u32::MAX).then_some(Contact {
+                    bodies: [i, j],
+                    ..*c
+                })
+            })
+            .collect();
+        self.local.step = self.all.step;
+        self.local.time = self.all.time;
+        self.local.params.dt = self.all.params.dt;
+    }
+
+    /// After the local step: the owned and immovable bodies' states, the owned contacts.
+    fn store_local(&mut self) {
+        let (local, all) = (&self.local.bodies, &mut self.all.bodies);
+        for (k, &g) in local.id.iter().enumerate() {
+            let b = g as usize;
+            if local.ownership[k] == Ownership::Owned || !self.movable[b] {
+                all.position[b] = local.position[k];
+                all.angle[b] = local.angle[k];
+                all.velocity[b] = local.velocity[k];
+                all.angular_velocity[b] = local.angular_velocity[k];
+            }
+        }
+        self.carried = (self.local.contacts.contacts.iter())
+            .map(|c| Contact {
+                bodies: c.bodies.map(|b| local.id[b as usize] as u32),
+                ..*c
+            })
+            .collect();
+        self.all.step = self.local.step;
+        self.all.time = self.local.time;
+    }
+
+    /// Stage 4: totals over processes into `report` and the global energy budget, with the
+    /// serial run's blow-up check.
+    fn totals(&mut self, report: &mut StepReport) -> Result<(), StepError> {
+        let e = self.local.energy;
+        let mut sums = [
+            report.contacts as f64,
+            report.active as f64,
+            e.dissipated,
+            e.external_work,
+            e.projection_work,
+            report.kinetic,
+            report.potential,
+        ];
+        self.comm.all_reduce_sum(&mut sums);
+        let mut maxima = [report.max_overlap];
+        self.comm.all_reduce_max(&mut maxima);
+        let budget = &mut self.all.energy;
+        budget.dissipated += sums[2];
+        budget.external_work += sums[3];
+        budget.projection_work += sums[4];
+        report.contacts = sums[0] as usize;
+        report.active = sums[1] as usize;
+        report.max_overlap = maxima[0];
+        report.kinetic = sums[5];
+        report.potential = sums[6];
+        report.dissipated = budget.dissipated;
+        report.external_work = budget.external_work;
+        report.projection_work = budget.projection_work;
+        report.energy_error = report.kinetic + report.potential + budget.dissipated
+            - budget.external_work
+            - budget.projection_work
+            - budget.initial;
+        budget.scale = budget
+            .scale
+            .max((report.kinetic + report.potential - budget.initial).abs())
+            .max(budget.external_work.abs());
+        let scale = budget.scale + budget.dissipated + report.kinetic.min(budget.initial.abs());
+        if report.energy_error > scale.max(1e-12) {
+            return Err(StepError::EnergyBlowUp {
+                error: report.energy_error,
+                scale,
+            });
+        }
+        Ok(())
+    }
+
+    /// The whole world on rank 0 (bodies, contacts in a canonical order, budget), `None`
+    /// elsewhere; collective.
+    pub fn gather(&self) -> Option<World> {
+        let mut message = self.states_of(&self.owned);
+        message.push(f64::NAN);
+        for c in &self.carried {
+            write_contact(&mut message, c);
+        }
+        let mut sends = vec![Vec::new(); self.comm.size()];
+        sends[0] = message;
+        let received = self.comm.all_to_all(&sends);
+        if self.comm.rank() != 0 {
+            return None;
+        }
+        let mut world = self.all.clone();
+        let mut contacts = Vec::new();
+        for m in &received {
+            let split = m.iter().position(|x| x.is_nan()).unwrap_or(m.len());
+            for s in m[..split].chunks_exact(STATE) {
+                set_state(&mut world.bodies, s);
+            }
+            contacts.extend(
+                m[(split + 1).min(m.len())..]
+                    .chunks_exact(CONTACT)
+                    .map(read_contact),
+            );
+        }
+        contacts.sort_by_key(|c: &Contact| (c.bodies, c.feature));
+        world.contacts.contacts = contacts;
+        Some(world)
+    }
+
+    fn states_of(&self, ids: &[u32]) -> Vec<f64> {
+        let mut out = Vec::with_capacity(ids.len() * STATE);
+        for &b in ids {
+            write_state(&mut out, &self.all.bodies, b);
+        }
+        out
+    }
+
+    /// Writes the states of `message` into the catalogue; returns their bodies.
+    fn read_states(&mut self, message: &[f64]) -> Vec<u32> {
+        (message.chunks_exact(STATE))
+            .map(|s| set_state(&mut self.all.bodies, s))
+            .collect()
+    }
+}
+
+fn write_state(out: &mut Vec<f64>, bodies: &BodySet, b: u32) {
+    let k = b as usize;
+    let (x, v) = (bodies.position[k], bodies.velocity[k]);
+    out.extend_from_slice(&[
+        b as f64,
+        x.x,
+        x.y,
+        bodies.angle[k],
+        v.x,
+        v.y,
+        bodies.angular_velocity[k],
+    ]);
+}
+
+fn set_state(bodies: &mut BodySet, s: &[f64]) -> u32 {
+    let b = s[0] as usize;
+    bodies.position[b] = Vector::new(s[1], s[2]);
+    bodies.angle[b] = s[3];
+    bodies.velocity[b] = Vector::new(s[4], s[5]);
+    bodies.angular_velocity[b] = s[6];
+    b as u32
+}
+
+fn write_contact(out: &mut Vec<f64>, c: &Contact) {
+    out.extend_from_slice(&[
+        c.bodies[0] as f64,
+        c.bodies[1] as f64,
+        c.feature as f64,
+        c.law as f64,
+        c.point.x,
+        c.point.y,
+        c.normal.x,
+        c.normal.y,
+        c.gap,
+        c.impulse[0],
+        c.impulse[1],
+    ]);
+}
+
+fn read_contact(m: &[f64]) -> Contact {
+    Contact {
+        bodies: [m[0] as u32, m[1] as u32],
+        feature: m[2] as u32,
+        law: m[3] as u16,
+        point: Vector::new(m[4], m[5]),
+        normal: Vector::new(m[6], m[7]),
+        gap: m[8],
+        impulse: [m[9], m[10]],
+    }
+}
