@@ -10,6 +10,7 @@ pub mod fracture_frames;
 pub mod fracture_outputs;
 pub mod frames;
 pub mod run;
+pub mod run_distributed;
 pub mod run_fluid;
 pub mod run_fracture;
 pub mod solve;

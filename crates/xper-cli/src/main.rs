@@ -104,7 +104,7 @@ fn main() -> ExitCode {
             if fracture {
                 run_fracture::run(&opts, quiet)
             } else {
-                run::run(&opts, quiet)
+                run_rigid(&opts, quiet)
             }
         }
         Command::Bench(args) => bench::bench(&args),
@@ -122,6 +122,32 @@ fn main() -> ExitCode {
             ExitCode::from(1)
         }
     }
+}
+
+/// `xper run` of a rigid or fluid scene: under `mpirun` with more than one process (binary built
+/// with `--features mpi`) a distributed run, otherwise a run on this process.
+#[cfg(feature = "mpi")]
+fn run_rigid(opts: &run::RunOptions, quiet: bool) -> Result<(), CliError> {
+    match xper_domain::MpiCommunicator::init() {
+        Some(comm) => {
+            let result = run::run_on(opts, quiet, Some(&comm));
+            // A failure every process met alike (bad input) ends them all normally; anything
+            // else a process met alone would leave the others waiting: end them all.
+            match (&result, xper_domain::Communicator::size(&comm)) {
+                (Err(CliError::Runtime(message)), n) if n > 1 => {
+                    xper_domain::Communicator::abort(&comm, message, 1)
+                }
+                _ => result,
+            }
+        }
+        None => run::run(opts, quiet),
+    }
+}
+
+/// `xper run` of a rigid or fluid scene on this process (built without MPI).
+#[cfg(not(feature = "mpi"))]
+fn run_rigid(opts: &run::RunOptions, quiet: bool) -> Result<(), CliError> {
+    run::run(opts, quiet)
 }
 
 /// Whether the file is a fracture scene (a readable TOML file with a `[mesh]` section);

@@ -2,6 +2,7 @@
 //! and the contact problems of the steps listed in `[output] dump_problems`).
 
 use crate::frames::{bodies_grid, contacts_grid};
+use crate::run_distributed::{DistributedRun, RigidRun, SerialRun};
 use crate::world_from_scene::world_from_scene;
 use crate::CliError;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -12,7 +13,7 @@ use xper_io::{
     plot_panels, write_atomic, write_json_atomic, write_vtu, Curve, Panel, PvdCollection,
     SeriesTable,
 };
-use xper_nscd::{MoreauJean, StepReport, World};
+use xper_nscd::{StepReport, World};
 
 /// Columns of `series.csv`, one row per step.
 pub const SERIES_COLUMNS: [&str; 18] = [
@@ -48,6 +49,9 @@ pub struct RunOptions {
     pub stop_at_step: Option<u64>,
 }
 
+/// The load of each process of a run (empty for a run on one process).
+pub type RankLoads = Vec<crate::run_distributed::RankSummary>;
+
 /// Summary of a run (`summary.json`).
 #[derive(Serialize)]
 struct Summary {
@@ -68,6 +72,11 @@ struct Summary {
     max_contacts: f64,
     peak_memory_bytes: Option<u64>,
     xper_version: &'static str,
+    /// Processes of the run.
+    processes: usize,
+    /// Per-process load, communication and efficiency (distributed runs only).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    ranks: RankLoads,
 }
 
 /// FNV-1a hash of the scene text: a checkpoint resumes only the scene it was written for.
@@ -81,7 +90,7 @@ fn io_err(e: std::io::Error) -> CliError {
     CliError::Runtime(e.to_string())
 }
 
-struct Outputs {
+pub(crate) struct Outputs {
     dir: PathBuf,
     series: SeriesTable,
     pvd: PvdCollection,
@@ -89,7 +98,7 @@ struct Outputs {
 }
 
 impl Outputs {
-    fn write_frame(&mut self, world: &World) -> Result<(), CliError> {
+    pub(crate) fn write_frame(&mut self, world: &World) -> Result<(), CliError> {
         let frames = self.dir.join("frames");
         let parts = [
             ("bodies", bodies_grid(world)),
@@ -106,7 +115,7 @@ impl Outputs {
         self.pvd.write(&self.dir.join("result.pvd")).map_err(io_err)
     }
 
-    fn write_checkpoint(&self, world: &World) -> Result<(), CliError> {
+    pub(crate) fn write_checkpoint(&self, world: &World) -> Result<(), CliError> {
         let bytes = bincode::serialize(&(self.scene_hash, world.to_bytes()))
             .map_err(|e| CliError::Runtime(e.to_string()))?;
         write_atomic(&self.dir.join("checkpoint.bin"), &bytes).map_err(io_err)?;
@@ -172,12 +181,29 @@ pub(crate) fn create_output_dir(dir: &Path) -> Result<(), CliError> {
 
 /// Runs a scene; see [`RunOptions`].
 pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
+    run_on(opts, quiet, None)
+}
+
+/// [`run`] on the processes of `comm` when it has more than one (a distributed run of a rigid
+/// scene, outputs written by rank 0 from the gathered world), on this process otherwise.
+pub fn run_on(
+    opts: &RunOptions,
+    quiet: bool,
+    comm: Option<&dyn xper_domain::Communicator>,
+) -> Result<(), CliError> {
     let text = std::fs::read(&opts.scene).map_err(|e| {
         CliError::BadInput(format!("{}: cannot read scene: {e}", opts.scene.display()))
     })?;
     let scene =
         xper_scene::load_scene(&opts.scene).map_err(|e| CliError::BadInput(e.to_string()))?;
+    let distributed = comm.filter(|c| c.size() > 1);
     if scene.fluid.is_some() {
+        if distributed.is_some() {
+            return Err(CliError::BadInput(format!(
+                "{}: fluid scenes run on one process (the distributed fluid is not built yet)",
+                opts.scene.display()
+            )));
+        }
         return crate::run_fluid::run(opts, &scene, fnv1a(&text), quiet);
     }
     let dumps = &scene.output.dump_problems;
@@ -187,6 +213,8 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
             opts.scene.display()
         )));
     }
+    crate::run_distributed::check_distributable(&scene, &opts.scene, distributed.is_some())?;
+    let root = distributed.is_none_or(|c| c.rank() == 0);
     let mut dirs = vec![opts.out.join("frames")];
     if !dumps.is_empty() {
         dirs.push(opts.out.join("problems"));
@@ -200,7 +228,7 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
         pvd: PvdCollection::default(),
         scene_hash: fnv1a(&text),
     };
-    let mut world = if opts.resume {
+    let world = if opts.resume {
         let bytes: Vec<u8> = read_checkpoint(&opts.out, out.scene_hash, "an xper checkpoint")?;
         let world = World::from_bytes(&bytes).map_err(|e| {
             CliError::BadInput(format!(
@@ -218,47 +246,59 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
         world
     } else {
         let world = world_from_scene(&scene);
-        out.write_frame(&world)?;
+        if root {
+            out.write_frame(&world)?;
+        }
         world
     };
     let last = opts
         .stop_at_step
         .map_or(scene.steps, |s| s.min(scene.steps));
-    let bar = progress_bar(quiet, scene.steps, world.step);
-    let mut stepper = MoreauJean::new();
+    let bar = progress_bar(quiet || !root, scene.steps, world.step);
+    let mut stepper: Box<dyn RigidRun + '_> = match distributed {
+        Some(comm) => Box::new(DistributedRun::new(
+            comm,
+            world,
+            scene.output.checkpoint_every,
+        )),
+        None => Box::new(SerialRun::new(world, dumps.clone(), opts.out.clone())),
+    };
     let started = Instant::now();
     let mut failure = None;
-    while world.step < last {
-        if dumps.binary_search(&(world.step + 1)).is_ok() {
-            stepper.capture_next_problem();
-        }
-        let result = stepper.step(&mut world);
-        if let Some(problem) = stepper.take_problem() {
-            // Written also when the step then failed: the problem it could not solve.
-            write_problem(&opts.out, world.step + u64::from(result.is_err()), &problem)?;
-        }
-        match result {
+    while stepper.step_index() < last {
+        match stepper.step()? {
             Ok(report) => {
                 out.push(&report);
-                if world.step % scene.output.frame_every == 0 || world.step == scene.steps {
-                    out.write_frame(&world)?;
+                let step = report.step;
+                if step % scene.output.frame_every == 0 || step == scene.steps {
+                    if let Some(world) = stepper.snapshot() {
+                        out.write_frame(&world)?;
+                    }
                 }
-                if world.step % scene.output.checkpoint_every == 0 {
-                    out.write_checkpoint(&world)?;
+                if step % scene.output.checkpoint_every == 0 {
+                    if let Some(world) = stepper.snapshot() {
+                        out.write_checkpoint(&world)?;
+                    }
                 }
-                if world.step % 10 == 0 || world.step == last {
-                    bar.set_position(world.step);
+                if step % 10 == 0 || step == last {
+                    bar.set_position(step);
                     bar.set_message(format!(
                         "t = {:.4e} s, {} contacts, {} sweeps",
-                        world.time, report.contacts, report.iterations
+                        report.time, report.contacts, report.iterations
                     ));
+                }
+            }
+            Err(e) if distributed.is_some() => {
+                let message = format!("step {}: {e}", stepper.step_index() + 1);
+                if let Some(comm) = distributed {
+                    comm.abort(&message, 1);
                 }
             }
             Err(e) => {
                 failure = Some(format!(
                     "step {} (t = {:.6e} s): {e}; the last checkpoint is kept in {}",
-                    world.step + 1,
-                    world.time,
+                    stepper.step_index() + 1,
+                    stepper.time(),
                     opts.out.join("checkpoint.bin").display()
                 ));
                 break;
@@ -266,18 +306,33 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
         }
     }
     bar.finish_and_clear();
-    if failure.is_none() {
-        out.write_checkpoint(&world)?;
-    } else {
-        out.series
-            .write_csv(&opts.out.join("series.csv"))
-            .map_err(io_err)?;
+    let ranks = stepper.rank_summaries(started.elapsed().as_secs_f64());
+    let final_world = match failure {
+        None => stepper.snapshot().map(|w| w.into_owned()),
+        Some(_) => None,
+    };
+    if !root {
+        return Ok(());
     }
-    let status = run_status(failure.is_some(), world.step == scene.steps);
+    match &final_world {
+        Some(world) => out.write_checkpoint(world)?,
+        None => out
+            .series
+            .write_csv(&opts.out.join("series.csv"))
+            .map_err(io_err)?,
+    }
+    let (step, time) = (stepper.step_index(), stepper.time());
+    let status = run_status(failure.is_some(), step == scene.steps);
+    let facts = RunFacts {
+        bodies: stepper.body_count(),
+        step,
+        time,
+        ranks,
+    };
     write_summary(
         &out,
         &scene,
-        &world,
+        &facts,
         status,
         failure.clone().unwrap_or_default(),
         &opts.scene,
@@ -287,7 +342,7 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
         eprintln!(
             "{}: {} of {} steps in {:.2} s, outputs in {}",
             status,
-            world.step,
+            step,
             scene.steps,
             started.elapsed().as_secs_f64(),
             opts.out.display()
@@ -299,6 +354,14 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
     }
 }
 
+/// What the summary needs of the run's end.
+struct RunFacts {
+    bodies: usize,
+    step: u64,
+    time: f64,
+    ranks: RankLoads,
+}
+
 /// The file of the problem of step `step` (1-based) under the output directory `out`.
 pub fn problem_path(out: &Path, step: u64) -> PathBuf {
     out.join("problems").join(format!("step_{step:06}.hdf5"))
@@ -306,7 +369,7 @@ pub fn problem_path(out: &Path, step: u64) -> PathBuf {
 
 /// Writes the problem of `step` in FCLib's HDF5 local form, atomically.
 #[cfg(feature = "hdf5")]
-fn write_problem(
+pub(crate) fn write_problem(
     out: &Path,
     step: u64,
     problem: &xper_solver::FrictionProblem,
@@ -317,7 +380,7 @@ fn write_problem(
 
 /// Without HDF5 no problem is captured (dumps are refused before the run starts).
 #[cfg(not(feature = "hdf5"))]
-fn write_problem(
+pub(crate) fn write_problem(
     out: &Path,
     step: u64,
     _problem: &xper_solver::FrictionProblem,
@@ -347,7 +410,7 @@ pub(crate) fn progress_bar(quiet: bool, steps: u64, position: u64) -> ProgressBa
 fn write_summary(
     out: &Outputs,
     scene: &xper_scene::Scene,
-    world: &World,
+    facts: &RunFacts,
     status: &'static str,
     message: String,
     file: &Path,
@@ -365,10 +428,10 @@ fn write_summary(
         },
         status,
         message,
-        bodies: world.bodies.len(),
+        bodies: facts.bodies,
         dt: scene.dt,
-        steps: world.step,
-        simulated_time: world.time,
+        steps: facts.step,
+        simulated_time: facts.time,
         wall_time_s: col("wall_time").iter().sum(),
         average_iterations: crate::bench::mean(&iterations),
         max_iterations: max(&iterations),
@@ -377,6 +440,8 @@ fn write_summary(
         max_contacts: max(&contacts),
         peak_memory_bytes: xper_io::peak_memory_bytes(),
         xper_version: env!("CARGO_PKG_VERSION"),
+        processes: facts.ranks.len().max(1),
+        ranks: facts.ranks.clone(),
     };
     write_json_atomic(&out.dir.join("summary.json"), &summary).map_err(io_err)
 }

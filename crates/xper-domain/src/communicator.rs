@@ -53,6 +53,12 @@ pub trait Communicator {
     }
     /// Traffic and time so far.
     fn stats(&self) -> CommStats;
+    /// Ends every process of the group at once with exit code `code`, after printing
+    /// `message`: for a failure one process meets alone, when the others would wait for it.
+    fn abort(&self, message: &str, code: i32) -> ! {
+        eprintln!("xper: rank {}: {message}", self.rank());
+        std::process::exit(code)
+    }
 }
 
 /// The group of one process: every collective returns its input.

@@ -35,12 +35,6 @@ impl MpiCommunicator {
         })
     }
 
-    /// Ends the job on every rank with exit code `code` (after printing `message` here).
-    pub fn abort(&self, message: &str, code: i32) -> ! {
-        eprintln!("xper: rank {}: {message}", self.world.rank());
-        self.world.abort(code)
-    }
-
     fn count(&self, sends: &[(usize, &[f64])], start: Instant) {
         let mut s = self.stats.get();
         s.messages += sends.len() as u64;
@@ -76,6 +70,10 @@ impl MpiCommunicator {
 }
 
 impl Communicator for MpiCommunicator {
+    fn abort(&self, message: &str, code: i32) -> ! {
+        eprintln!("xper: rank {}: {message}", self.world.rank());
+        self.world.abort(code)
+    }
     fn rank(&self) -> usize {
         self.world.rank() as usize
     }

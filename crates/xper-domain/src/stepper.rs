@@ -138,7 +138,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
     pub fn step(&mut self) -> Result<StepReport, StepError> {
         let start = std::time::Instant::now();
         let step = self.all.step;
-        if step % self.params.rebalance_every.max(1) == 0 && step != self.partitioned_at {
+        if step.is_multiple_of(self.params.rebalance_every.max(1)) && step != self.partitioned_at {
             self.partition_space(true);
         } else {
             self.migrate();

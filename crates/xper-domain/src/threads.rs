@@ -96,6 +96,9 @@ impl ThreadCommunicator {
 }
 
 impl Communicator for ThreadCommunicator {
+    fn abort(&self, message: &str, _code: i32) -> ! {
+        panic!("rank {}: {message}", self.rank())
+    }
     fn rank(&self) -> usize {
         self.rank
     }

@@ -1,0 +1,163 @@
+//! `mpirun -np N xper run` (binary built with `--features mpi`) against the run on one process,
+//! on a deposit of 400 disks (random placement, so bodies fall across the cuts and migrate).
+//!
+//! The measure: the largest distance between a body's positions in two runs after 300 steps (0.06 s: the lower disks land and collide).
+//! NLGS stops at its tolerance, not at the solution, so the scale is the serial run's own error,
+//! estimated as its distance to the serial run at a tolerance ten times smaller. Every mpirun
+//! is under `timeout`, so a hang fails the test instead of the CI job.
+#![cfg(feature = "mpi")]
+
+mod common;
+
+use common::{deposit_scene, temp_dir, xper};
+use std::path::Path;
+use std::process::{Command, Output};
+use xper_nscd::World;
+
+fn mpirun(ranks: usize, args: &[&str]) -> Output {
+    Command::new("timeout")
+        .args(["300", "mpirun", "-np", &ranks.to_string()])
+        .arg(env!("CARGO_BIN_EXE_xper"))
+        .args(args)
+        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+        .env("OMPI_MCA_rmaps_base_oversubscribe", "1")
+        .env("OMPI_MCA_mpi_yield_when_idle", "1")
+        .output()
+        .expect("mpirun could not be started (is openmpi-bin installed?)")
+}
+
+fn ok(output: &Output) {
+    assert!(
+        output.status.success(),
+        "exit {:?}\n{}{}",
+        output.status.code(),
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
+fn checkpoint(dir: &Path) -> World {
+    let bytes = std::fs::read(dir.join("checkpoint.bin")).unwrap();
+    let (_, world): (u64, Vec<u8>) = bincode::deserialize(&bytes).unwrap();
+    World::from_bytes(&world).unwrap()
+}
+
+fn distance(a: &World, b: &World) -> f64 {
+    assert_eq!(a.step, b.step);
+    (0..a.bodies.len())
+        .map(|k| (a.bodies.position[k] - b.bodies.position[k]).norm())
+        .fold(0.0, f64::max)
+}
+
+fn run(ranks: usize, scene: &Path, out: &Path, extra: &[&str]) -> World {
+    let (scene, out) = (scene.to_str().unwrap(), out.to_str().unwrap());
+    let mut args = vec!["run", scene, "--out", out, "--quiet"];
+    args.extend_from_slice(extra);
+    ok(&if ranks == 0 {
+        xper(&args)
+    } else {
+        mpirun(ranks, &args)
+    });
+    checkpoint(Path::new(out))
+}
+
+#[test]
+fn mpirun_xper_run_agrees_with_the_serial_run_and_resumes_on_another_count() {
+    let dir = temp_dir("mpi_run");
+    let text = deposit_scene(400, 300);
+    let scene = dir.join("deposit.toml");
+    std::fs::write(&scene, &text).unwrap();
+    let finer = dir.join("deposit_finer.toml");
+    std::fs::write(
+        &finer,
+        text.replace(
+            "[[materials]]",
+            "[solver]\ntolerance = 1.666e-5\n\n[[materials]]",
+        ),
+    )
+    .unwrap();
+    // 0: the plain binary on this process.
+    let serial = run(0, &scene, &dir.join("serial"), &[]);
+    let spread = distance(&serial, &run(0, &finer, &dir.join("finer"), &[]));
+    assert!(spread > 0.0, "the two tolerances gave the same run");
+    let one = run(1, &scene, &dir.join("np1"), &[]);
+    assert_eq!(one.bodies.position, serial.bodies.position, "mpirun -np 1");
+    for ranks in [2, 4] {
+        let out = dir.join(format!("np{ranks}"));
+        let world = run(ranks, &scene, &out, &[]);
+        let d = distance(&world, &serial);
+        eprintln!("{ranks} processes: {d:.3e} m from serial (serial error {spread:.3e} m)");
+        assert!(
+            d <= 10.0 * spread,
+            "{ranks} processes: {d:.3e} m vs {spread:.3e} m"
+        );
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        assert_eq!(summary["processes"], ranks);
+        let ranks_list = summary["ranks"].as_array().unwrap();
+        let owned: u64 = ranks_list
+            .iter()
+            .map(|r| r["bodies"].as_u64().unwrap())
+            .sum();
+        assert_eq!(owned, 400, "every disk owned by one process");
+        let pvd = std::fs::read_to_string(out.join("result.pvd")).unwrap();
+        assert_eq!(
+            pvd.matches("<DataSet").count(),
+            3 * 7,
+            "frames at 0, 50, ..., 300"
+        );
+    }
+    // Stopped at step 160 on 2 processes, resumed on 4 and on this process alone.
+    let stopped = dir.join("resumed_np4");
+    run(2, &scene, &stopped, &["--stop-at-step", "160"]);
+    let copy = dir.join("resumed_serial");
+    std::fs::create_dir_all(&copy).unwrap();
+    for file in ["checkpoint.bin", "series.csv", "result.pvd"] {
+        std::fs::copy(stopped.join(file), copy.join(file)).unwrap();
+    }
+    let on_four = run(4, &scene, &stopped, &["--resume"]);
+    let on_one = run(0, &scene, &copy, &["--resume"]);
+    let whole = checkpoint(&dir.join("np2"));
+    for (name, world) in [("4 processes", &on_four), ("one process", &on_one)] {
+        let d = distance(world, &whole);
+        eprintln!("resumed on {name}: {d:.3e} m from the run on 2 (serial error {spread:.3e} m)");
+        assert!(d <= 10.0 * spread, "resumed on {name}: {d:.3e} m");
+    }
+    let series = std::fs::read_to_string(stopped.join("series.csv")).unwrap();
+    assert_eq!(
+        series.lines().count(),
+        301,
+        "header and one row per step after the resume"
+    );
+}
+
+#[test]
+fn what_a_distributed_run_cannot_do_is_refused_on_every_process() {
+    let dir = temp_dir("mpi_refused");
+    let scene = dir.join("newton.toml");
+    std::fs::write(
+        &scene,
+        deposit_scene(50, 10).replace(
+            "[[materials]]",
+            "[solver]\nkind = \"newton\"\n\n[[materials]]",
+        ),
+    )
+    .unwrap();
+    let output = mpirun(
+        2,
+        &[
+            "run",
+            scene.to_str().unwrap(),
+            "--out",
+            dir.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(output.status.code(), Some(2));
+    let text = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        text.contains("newton.toml: [solver] kind: a distributed run solves by NLGS only"),
+        "{text}"
+    );
+}
