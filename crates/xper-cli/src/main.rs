@@ -46,6 +46,10 @@ enum Command {
         /// No progress bar or final message (also implied when stderr is not a terminal).
         #[arg(long)]
         quiet: bool,
+        /// Under mpirun: after the run, run the same steps on one process and write the
+        /// parallel efficiency and the largest position difference into summary.json.
+        #[arg(long)]
+        compare_serial: bool,
     },
     /// Run benchmark scenes without outputs; print figures, save JSON and regenerate BENCHMARKS.md.
     Bench(bench::BenchArgs),
@@ -92,6 +96,7 @@ fn main() -> ExitCode {
             resume,
             stop_at_step,
             quiet,
+            compare_serial,
         } => {
             let quiet = quiet || !std::io::stderr().is_terminal();
             let fracture = is_fracture(&scene);
@@ -100,6 +105,7 @@ fn main() -> ExitCode {
                 out,
                 resume,
                 stop_at_step,
+                compare_serial,
             };
             if fracture {
                 run_fracture::run(&opts, quiet)

@@ -47,6 +47,26 @@ pub struct RunOptions {
     pub resume: bool,
     /// Stop (with a checkpoint) after this step, as if interrupted.
     pub stop_at_step: Option<u64>,
+    /// After a distributed run, run the same steps on one process and report the parallel
+    /// efficiency and the largest position difference in `summary.json`.
+    pub compare_serial: bool,
+}
+
+/// A distributed run against the same steps on one process (`--compare-serial`).
+#[derive(Clone, Debug, Serialize)]
+pub struct SerialComparison {
+    /// Steps compared.
+    pub steps: u64,
+    /// Wall time of the distributed run's steps (s).
+    pub distributed_wall_time_s: f64,
+    /// Wall time of the same steps on one process (s).
+    pub serial_wall_time_s: f64,
+    /// `serial / distributed`.
+    pub speed_up: f64,
+    /// Speed-up divided by the number of processes.
+    pub efficiency: f64,
+    /// Largest distance between a body's positions at the end of the two runs (m).
+    pub max_position_difference_m: f64,
 }
 
 /// The load of each process of a run (empty for a run on one process).
@@ -77,6 +97,9 @@ struct Summary {
     /// Per-process load, communication and efficiency (distributed runs only).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     ranks: RankLoads,
+    /// The serial comparison, when asked for.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    serial_comparison: Option<SerialComparison>,
 }
 
 /// FNV-1a hash of the scene text: a checkpoint resumes only the scene it was written for.
@@ -255,6 +278,8 @@ pub fn run_on(
         .stop_at_step
         .map_or(scene.steps, |s| s.min(scene.steps));
     let bar = progress_bar(quiet || !root, scene.steps, world.step);
+    let compare_from =
+        (opts.compare_serial && root && distributed.is_some()).then(|| world.clone());
     let mut stepper: Box<dyn RigidRun + '_> = match distributed {
         Some(comm) => Box::new(DistributedRun::new(
             comm,
@@ -322,12 +347,22 @@ pub fn run_on(
             .map_err(io_err)?,
     }
     let (step, time) = (stepper.step_index(), stepper.time());
+    let comparison = match (compare_from, &final_world) {
+        (Some(start), Some(end)) => Some(compare_serial(
+            start,
+            end,
+            started.elapsed().as_secs_f64(),
+            facts_processes(distributed),
+        )?),
+        _ => None,
+    };
     let status = run_status(failure.is_some(), step == scene.steps);
     let facts = RunFacts {
         bodies: stepper.body_count(),
         step,
         time,
         ranks,
+        comparison,
     };
     write_summary(
         &out,
@@ -360,6 +395,41 @@ struct RunFacts {
     step: u64,
     time: f64,
     ranks: RankLoads,
+    comparison: Option<SerialComparison>,
+}
+
+fn facts_processes(comm: Option<&dyn xper_domain::Communicator>) -> usize {
+    comm.map_or(1, |c| c.size())
+}
+
+/// Runs `start` on this process up to `end`'s step and compares (`--compare-serial`).
+fn compare_serial(
+    mut start: World,
+    end: &World,
+    distributed_wall: f64,
+    processes: usize,
+) -> Result<SerialComparison, CliError> {
+    let steps = end.step - start.step;
+    let mut stepper = xper_nscd::MoreauJean::new();
+    let clock = Instant::now();
+    while start.step < end.step {
+        stepper
+            .step(&mut start)
+            .map_err(|e| CliError::Runtime(format!("--compare-serial: serial run: {e}")))?;
+    }
+    let serial = clock.elapsed().as_secs_f64();
+    let difference = (0..start.bodies.len())
+        .map(|b| (start.bodies.position[b] - end.bodies.position[b]).norm())
+        .fold(0.0, f64::max);
+    let speed_up = serial / distributed_wall.max(1e-12);
+    Ok(SerialComparison {
+        steps,
+        distributed_wall_time_s: distributed_wall,
+        serial_wall_time_s: serial,
+        speed_up,
+        efficiency: speed_up / processes as f64,
+        max_position_difference_m: difference,
+    })
 }
 
 /// The file of the problem of step `step` (1-based) under the output directory `out`.
@@ -442,6 +512,7 @@ fn write_summary(
         xper_version: env!("CARGO_PKG_VERSION"),
         processes: facts.ranks.len().max(1),
         ranks: facts.ranks.clone(),
+        serial_comparison: facts.comparison.clone(),
     };
     write_json_atomic(&out.dir.join("summary.json"), &summary).map_err(io_err)
 }

@@ -34,6 +34,7 @@ fn paper_run(name: &str, full: bool) -> Result<Option<FractureSummary>, CliError
         out,
         resume,
         stop_at_step: if full { None } else { Some(0) },
+        compare_serial: false,
     };
     let quiet = !full || !std::io::IsTerminal::is_terminal(&std::io::stderr());
     crate::run_fracture::run_with_summary(&opts, quiet).map(Some)

@@ -85,7 +85,7 @@ fn mpirun_xper_run_agrees_with_the_serial_run_and_resumes_on_another_count() {
     assert_eq!(one.bodies.position, serial.bodies.position, "mpirun -np 1");
     for ranks in [2, 4] {
         let out = dir.join(format!("np{ranks}"));
-        let world = run(ranks, &scene, &out, &[]);
+        let world = run(ranks, &scene, &out, &["--compare-serial"]);
         let d = distance(&world, &serial);
         eprintln!("{ranks} processes: {d:.3e} m from serial (serial error {spread:.3e} m)");
         assert!(
@@ -96,6 +96,13 @@ fn mpirun_xper_run_agrees_with_the_serial_run_and_resumes_on_another_count() {
             serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
                 .unwrap();
         assert_eq!(summary["processes"], ranks);
+        let comparison = &summary["serial_comparison"];
+        let reported = comparison["max_position_difference_m"].as_f64().unwrap();
+        assert!(
+            (reported - d).abs() <= 1e-15,
+            "--compare-serial: {reported:e} vs {d:e}"
+        );
+        assert!(comparison["efficiency"].as_f64().unwrap() > 0.0);
         let ranks_list = summary["ranks"].as_array().unwrap();
         let owned: u64 = ranks_list
             .iter()
