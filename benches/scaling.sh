@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# Strong and weak scaling of distributed rigid runs (issue 6). Needs Open MPI (see .ci/run).
+#
+#   bash benches/scaling.sh            # writes bench-results/scaling/*.json and prints a table
+#
+# Strong scaling: the same scene on 1 and 2 processes, each with --compare-serial (the serial
+# time of the same steps is measured in the same invocation, right after the distributed run).
+#   - box10k, all 1500 steps (deposit: fall, collapse, settled bed);
+#   - box100k, the first STEPS_100K steps (default 100: free fall and first contacts).
+# Weak scaling: a deposit of 2500 disks per process on 1, 2 and 4 processes (oversubscribed on
+# a 2-core machine), 300 steps; reported as communication volume per step per process.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_mpi_yield_when_idle=1
+STEPS_100K=${STEPS_100K:-100}
+cargo build --release -p xper-cli --features mpi
+XPER=target/release/xper
+OUT=bench-results/scaling
+mkdir -p "$OUT/scenes"
+
+run() { # processes scene out [extra...]
+  local np=$1 scene=$2 out=$3; shift 3
+  rm -rf "$out"
+  timeout 7200 mpirun -np "$np" "$XPER" run "$scene" --out "$out" --quiet "$@"
+}
+
+# Strong scaling.
+sed "s/^steps = .*/steps = $STEPS_100K/" scenes/box100k/scene.toml > "$OUT/scenes/box100k_head.toml"
+for scene in scenes/box10k/scene.toml "$OUT/scenes/box100k_head.toml"; do
+  name=$(basename "$(dirname "$scene")"); [ "$name" = scenes ] && name=box100k_head
+  for np in 2; do
+    run "$np" "$scene" "$OUT/strong_${name}_np$np" --compare-serial
+  done
+done
+
+# Weak scaling.
+for np in 1 2 4; do
+  count=$((2500 * np))
+  width=$(python3 -c "print(0.1 * $count / 300.0)")
+  cat > "$OUT/scenes/weak_np$np.toml" <<TOML
+[scene]
+name = "weak_np$np"
+dt = 2e-4
+steps = 300
+alert_distance = 5e-4
+
+[output]
+frame_every = 300
+checkpoint_every = 300
+
+[[materials]]
+name = "glass"
+density = 2500.0
+
+[[laws]]
+between = ["grains", "grains"]
+kind = "signorini_coulomb"
+friction = 0.3
+
+[[laws]]
+between = ["grains", "walls"]
+kind = "signorini_coulomb"
+friction = 0.5
+
+[[generators]]
+kind = "box_of_disks"
+count = $count
+radius = [0.002, 0.003]
+box = [[0.0, 0.0], [$width, 0.15]]
+placement = "random"
+seed = 7
+material = "glass"
+group = "grains"
+walls = "walls"
+TOML
+  run "$np" "$OUT/scenes/weak_np$np.toml" "$OUT/weak_np$np"
+done
+
+python3 - "$OUT" <<'PY'
+import json, sys, os
+out = sys.argv[1]
+rows = {}
+for d in sorted(os.listdir(out)):
+    p = os.path.join(out, d, "summary.json")
+    if os.path.exists(p):
+        rows[d] = json.load(open(p))
+json.dump(rows, open(os.path.join(out, "scaling.json"), "w"), indent=1)
+print("| run | processes | steps | wall (s) | serial (s) | speed-up | efficiency | max |dx| (m) | comm share (max rank) | bytes / step / rank | messages / step / rank |")
+print("|---|---|---|---|---|---|---|---|---|---|---|")
+for d, s in rows.items():
+    ranks = s.get("ranks", [])
+    steps = max(s["steps"], 1)
+    c = s.get("serial_comparison") or {}
+    share = max((r["communication_share"] for r in ranks), default=0)
+    bytes_ = sum(r["bytes"] for r in ranks) / steps / max(len(ranks), 1)
+    msgs = sum(r["messages"] for r in ranks) / steps / max(len(ranks), 1)
+    fmt = lambda x, f: (f % x) if x != "" else "-"
+    print(f"| {d} | {s['processes']} | {s['steps']} | {c.get('distributed_wall_time_s', s['wall_time_s']):.2f} | "
+          f"{fmt(c.get('serial_wall_time_s', ''), '%.2f')} | {fmt(c.get('speed_up', ''), '%.2f')} | "
+          f"{fmt(c.get('efficiency', ''), '%.2f')} | {fmt(c.get('max_position_difference_m', ''), '%.1e')} | "
+          f"{share:.2f} | {bytes_:.0f} | {msgs:.0f} |")
+PY
