@@ -57,7 +57,7 @@ pub struct RunOptions {
 pub struct SerialComparison {
     /// Steps compared.
     pub steps: u64,
-    /// Wall time of the distributed run's steps (s).
+    /// Wall time of the distributed run's steps (s), outputs excluded.
     pub distributed_wall_time_s: f64,
     /// Wall time of the same steps on one process (s).
     pub serial_wall_time_s: f64,
@@ -290,9 +290,11 @@ pub fn run_on(
     };
     let started = Instant::now();
     let mut failure = None;
+    let mut stepping = 0.0;
     while stepper.step_index() < last {
         match stepper.step()? {
             Ok(report) => {
+                stepping += report.times.total;
                 out.push(&report);
                 let step = report.step;
                 if step % scene.output.frame_every == 0 || step == scene.steps {
@@ -351,7 +353,7 @@ pub fn run_on(
         (Some(start), Some(end)) => Some(compare_serial(
             start,
             end,
-            started.elapsed().as_secs_f64(),
+            stepping,
             facts_processes(distributed),
         )?),
         _ => None,
