@@ -108,7 +108,7 @@ fn main() -> ExitCode {
                 compare_serial,
             };
             if fracture {
-                run_fracture::run(&opts, quiet)
+                refuse_distributed_fracture(&opts).and_then(|()| run_fracture::run(&opts, quiet))
             } else {
                 run_rigid(&opts, quiet)
             }
@@ -148,6 +148,28 @@ fn run_rigid(opts: &run::RunOptions, quiet: bool) -> Result<(), CliError> {
         }
         None => run::run(opts, quiet),
     }
+}
+
+/// Under `mpirun` with several processes a fracture scene would run whole on each of them,
+/// all writing the same outputs: refused (fracture is not distributed yet).
+#[cfg(feature = "mpi")]
+fn refuse_distributed_fracture(opts: &run::RunOptions) -> Result<(), CliError> {
+    match xper_domain::MpiCommunicator::init() {
+        Some(comm) if xper_domain::Communicator::size(&comm) > 1 => {
+            Err(CliError::BadInput(format!(
+                "{}: fracture scenes run on one process (the distributed fracture is not built \
+                 yet): run without mpirun",
+                opts.scene.display()
+            )))
+        }
+        _ => Ok(()),
+    }
+}
+
+/// Without MPI every run is on one process.
+#[cfg(not(feature = "mpi"))]
+fn refuse_distributed_fracture(_opts: &run::RunOptions) -> Result<(), CliError> {
+    Ok(())
 }
 
 /// `xper run` of a rigid or fluid scene on this process (built without MPI).

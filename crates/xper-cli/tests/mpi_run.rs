@@ -168,3 +168,25 @@ fn what_a_distributed_run_cannot_do_is_refused_on_every_process() {
         "{text}"
     );
 }
+
+#[test]
+fn a_fracture_scene_under_mpirun_is_refused_instead_of_run_twice() {
+    let dir = temp_dir("mpi_fracture");
+    let scene =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/bimaterial_small/scene.toml");
+    let output = mpirun(
+        2,
+        &[
+            "run",
+            scene.to_str().unwrap(),
+            "--out",
+            dir.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(output.status.code(), Some(2));
+    let text = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        text.contains("fracture scenes run on one process"),
+        "{text}"
+    );
+}
