@@ -24,8 +24,8 @@ use crate::communicator::Communicator;
 use crate::interface::InterfaceMap;
 use xper_nscd::RigidContactOperator;
 use xper_solver::{
-    natural_map_error, ContactOperator, ConvergenceNorm, NlgsParams, NlgsSweeper, NormAccumulator,
-    SolveError, SolveInfo,
+    natural_map_error, ContactOperator, NlgsParams, NlgsSweeper, NormAccumulator, SolveError,
+    SolveInfo,
 };
 
 /// Solves the contacts of `op` (this process's rows, its bodies with split masses at their
@@ -68,24 +68,9 @@ pub fn distributed_nlgs<C: Communicator + ?Sized>(
         sweeper.sweep_accumulating(op, impulses, check.then_some(&mut acc));
         glue.apply(comm, op, interface);
         if check {
-            info.iterations = sweep;
-            info.norms = global_norms(comm, &acc).norms(params.tolerance);
-            let (residual, converged) = match params.norm {
-                ConvergenceNorm::Quad | ConvergenceNorm::Maxm => {
-                    let m = info.norms.worst(params.norm == ConvergenceNorm::Maxm);
-                    (m * params.tolerance, m < 1.0)
-                }
-                ConvergenceNorm::NaturalMap => {
-                    let e = global_error(comm, op, mu, normal_shift, impulses, q_norm);
-                    (e, e < params.tolerance)
-                }
-            };
-            info.residual = residual;
-            if !residual.is_finite() {
-                return Ok(info);
-            }
-            if converged {
-                info.converged = true;
+            let global = global_norms(comm, &acc);
+            let error = || global_error(comm, op, mu, normal_shift, impulses, q_norm);
+            if info.record_check(sweep, &global, params, error) {
                 return Ok(info);
             }
         }

@@ -66,6 +66,35 @@ pub struct SolveInfo {
     pub norms: ConvergenceNorms,
 }
 
+impl SolveInfo {
+    /// Records the convergence check after `sweep` from the check sweep's sums `acc` and, for
+    /// [`ConvergenceNorm::NaturalMap`], the scaled natural-map error (evaluated only for that
+    /// norm); returns whether the solve stops here (converged, or a non-finite residual).
+    pub fn record_check(
+        &mut self,
+        sweep: u32,
+        acc: &NormAccumulator,
+        params: &NlgsParams,
+        natural_map: impl FnOnce() -> f64,
+    ) -> bool {
+        self.iterations = sweep;
+        self.norms = acc.norms(params.tolerance);
+        let (residual, converged) = match params.norm {
+            ConvergenceNorm::Quad | ConvergenceNorm::Maxm => {
+                let m = self.norms.worst(params.norm == ConvergenceNorm::Maxm);
+                (m * params.tolerance, m < 1.0)
+            }
+            ConvergenceNorm::NaturalMap => {
+                let e = natural_map();
+                (e, e < params.tolerance)
+            }
+        };
+        self.residual = residual;
+        self.converged = converged;
+        converged || !residual.is_finite()
+    }
+}
+
 /// A problem the solver refuses to start on.
 #[derive(Clone, Debug, PartialEq)]
 pub enum SolveError {
@@ -139,28 +168,12 @@ pub fn nlgs_with_cohesion<O: ContactOperator>(
         let check = sweep % params.check_every == 0 || sweep == params.max_iterations;
         let mut acc = NormAccumulator::default();
         sweeper.sweep_accumulating(op, impulses, check.then_some(&mut acc));
-        if check {
-            info.iterations = sweep;
-            info.norms = acc.norms(params.tolerance);
-            let (residual, converged) = match params.norm {
-                ConvergenceNorm::Quad | ConvergenceNorm::Maxm => {
-                    let m = info.norms.worst(params.norm == ConvergenceNorm::Maxm);
-                    (m * params.tolerance, m < 1.0)
-                }
-                ConvergenceNorm::NaturalMap => {
-                    let e =
-                        scaled_natural_map_error(op, mu, normal_shift, impulses, sweeper.q_norm());
-                    (e, e < params.tolerance)
-                }
-            };
-            info.residual = residual;
-            if !residual.is_finite() {
-                return Ok(info);
-            }
-            if converged {
-                info.converged = true;
-                return Ok(info);
-            }
+        if check
+            && info.record_check(sweep, &acc, params, || {
+                scaled_natural_map_error(op, mu, normal_shift, impulses, sweeper.q_norm())
+            })
+        {
+            return Ok(info);
         }
     }
     info.iterations = params.max_iterations;
