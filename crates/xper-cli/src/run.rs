@@ -315,13 +315,11 @@ pub fn run_on(
                     ));
                 }
             }
-            Err(e) if distributed.is_some() => {
-                let message = format!("step {}: {e}", stepper.step_index() + 1);
-                if let Some(comm) = distributed {
-                    comm.abort(&message, 1);
-                }
-            }
             Err(e) => {
+                if let Some(comm) = distributed {
+                    // Other processes may be waiting in a collective this one will not reach.
+                    comm.abort(&format!("step {}: {e}", stepper.step_index() + 1), 1);
+                }
                 failure = Some(format!(
                     "step {} (t = {:.6e} s): {e}; the last checkpoint is kept in {}",
                     stepper.step_index() + 1,
@@ -354,7 +352,7 @@ pub fn run_on(
             start,
             end,
             stepping,
-            facts_processes(distributed),
+            distributed.map_or(1, |c| c.size()),
         )?),
         _ => None,
     };
@@ -398,10 +396,6 @@ struct RunFacts {
     time: f64,
     ranks: RankLoads,
     comparison: Option<SerialComparison>,
-}
-
-fn facts_processes(comm: Option<&dyn xper_domain::Communicator>) -> usize {
-    comm.map_or(1, |c| c.size())
 }
 
 /// Runs `start` on this process up to `end`'s step and compares (`--compare-serial`).

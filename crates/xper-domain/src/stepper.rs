@@ -28,7 +28,9 @@ use crate::shared_solve::SharedNlgs;
 use xper_bodies::{BodySet, Ownership};
 use xper_geometry::Contact;
 use xper_math::{Real, Vector};
-use xper_nscd::{contact_owner_body, EnergyBudget, MoreauJean, StepError, StepReport, World};
+use xper_nscd::{
+    contact_owner_body, is_movable, EnergyBudget, MoreauJean, StepError, StepReport, World,
+};
 
 /// Tuning of a distributed run.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -88,7 +90,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
     pub fn new(comm: &'c C, world: World, params: DistributedParams) -> Self {
         let n = world.bodies.len();
         let movable: Vec<bool> = (0..n)
-            .map(|b| world.bodies.inv_mass[b].iter().any(|&w| w != 0.0))
+            .map(|b| is_movable(&world.bodies.inv_mass[b]))
             .collect();
         let mut driven_of = vec![u32::MAX; n];
         for (k, (handle, _)) in world.bodies.driven.iter().enumerate() {

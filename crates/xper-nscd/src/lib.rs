@@ -39,6 +39,7 @@ mod world;
 pub use assemble::assemble_problem;
 pub use operator::{ContactRow, RigidContactOperator, RigidProblem, SolverBody};
 pub use step::{
-    contact_owner_body, normal_shift, ContactSolve, MoreauJean, StageTimes, StepError, StepReport,
+    contact_owner_body, is_movable, normal_shift, ContactSolve, MoreauJean, StageTimes, StepError,
+    StepReport,
 };
 pub use world::{EnergyBudget, StepParams, VelocitySolver, World};

@@ -43,11 +43,19 @@ fn reborrow<'b>(s: &'b mut Option<&mut dyn ContactSolve>) -> Option<&'b mut dyn 
     }
 }
 
+/// Whether a body with these inverse masses per degree of freedom can be moved by contacts
+/// (at least one free degree of freedom); immovable bodies (walls, fully driven bodies) are
+/// held by every process of a distributed run.
+#[inline]
+pub fn is_movable(inv_mass: &[Real; DOFS]) -> bool {
+    inv_mass.iter().any(|&w| w != 0.0)
+}
+
 /// The body whose owner owns contact `(i, j)`: the first, or the second when the first is
 /// immovable (a wall, held by every process).
 #[inline]
 pub fn contact_owner_body(bodies: &BodySet, i: usize, j: usize) -> usize {
-    if bodies.inv_mass[i].iter().any(|&w| w != 0.0) {
+    if is_movable(&bodies.inv_mass[i]) {
         i
     } else {
         j
@@ -174,8 +182,8 @@ impl MoreauJean {
             step: world.step + 1,
             ..Default::default()
         };
-        let distributed = shared.is_some().then_some(());
-        self.prepare(world, &mut report, t_begin, t_end, distributed.is_some());
+        let distributed = shared.is_some();
+        self.prepare(world, &mut report, t_begin, t_end, distributed);
 
         // Stage: solve.
         let t_solve = Instant::now();
@@ -233,7 +241,7 @@ impl MoreauJean {
             .max(e.external_work.abs());
         report.times.total = start.elapsed().as_secs_f64();
         let scale = e.scale + e.dissipated + report.kinetic.min(e.initial.abs());
-        if distributed.is_none() && report.energy_error > scale.max(1e-12) {
+        if !distributed && report.energy_error > scale.max(1e-12) {
             return Err(StepError::EnergyBlowUp {
                 error: report.energy_error,
                 scale,
