@@ -2,7 +2,7 @@
 //! an uninterrupted run, and a bad `[fluid]` section reported with its place and exit code 2.
 
 mod common;
-use common::{temp_dir, xper};
+use common::{assert_success, temp_dir, xper};
 
 fn scene(duration: f64, viscosity: &str) -> String {
     format!(
@@ -54,11 +54,7 @@ fn fluid_scene_writes_its_outputs_and_resumes_exactly() {
     let s = path.to_str().unwrap();
     let (straight, split) = (dir.join("straight"), dir.join("split"));
     let out = xper(&["run", s, "--out", straight.to_str().unwrap()]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     for file in [
         "result.pvd",
         "series.csv",
@@ -89,17 +85,9 @@ fn fluid_scene_writes_its_outputs_and_resumes_exactly() {
         "--stop-at-step",
         "60",
     ]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let out = xper(&["run", s, "--out", split.to_str().unwrap(), "--resume"]);
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    assert_success(&out);
     let a = std::fs::read(straight.join("checkpoint.bin")).unwrap();
     let b = std::fs::read(split.join("checkpoint.bin")).unwrap();
     assert!(a == b, "final states differ after a resume");

@@ -9,7 +9,7 @@
 
 mod common;
 
-use common::{deposit_scene, temp_dir, xper};
+use common::{assert_success, deposit_scene, temp_dir, xper};
 use std::path::Path;
 use std::process::{Command, Output};
 use xper_nscd::World;
@@ -25,16 +25,6 @@ fn mpirun(ranks: usize, args: &[&str]) -> Output {
         .env("OMPI_MCA_mpi_yield_when_idle", "1")
         .output()
         .expect("mpirun could not be started (is openmpi-bin installed?)")
-}
-
-fn ok(output: &Output) {
-    assert!(
-        output.status.success(),
-        "exit {:?}\n{}{}",
-        output.status.code(),
-        String::from_utf8_lossy(&output.stdout),
-        String::from_utf8_lossy(&output.stderr)
-    );
 }
 
 fn checkpoint(dir: &Path) -> World {
@@ -54,7 +44,7 @@ fn run(ranks: usize, scene: &Path, out: &Path, extra: &[&str]) -> World {
     let (scene, out) = (scene.to_str().unwrap(), out.to_str().unwrap());
     let mut args = vec!["run", scene, "--out", out, "--quiet"];
     args.extend_from_slice(extra);
-    ok(&if ranks == 0 {
+    assert_success(&if ranks == 0 {
         xper(&args)
     } else {
         mpirun(ranks, &args)
@@ -152,20 +142,10 @@ fn what_a_distributed_run_cannot_do_is_refused_on_every_process() {
         ),
     )
     .unwrap();
-    let output = mpirun(
-        2,
-        &[
-            "run",
-            scene.to_str().unwrap(),
-            "--out",
-            dir.to_str().unwrap(),
-        ],
-    );
-    assert_eq!(output.status.code(), Some(2));
-    let text = String::from_utf8_lossy(&output.stderr);
-    assert!(
-        text.contains("newton.toml: [solver] kind: a distributed run solves by NLGS only"),
-        "{text}"
+    refused_on_two_processes(
+        &scene,
+        &dir,
+        "newton.toml: [solver] kind: a distributed run solves by NLGS only",
     );
 }
 
@@ -174,19 +154,14 @@ fn a_fracture_scene_under_mpirun_is_refused_instead_of_run_twice() {
     let dir = temp_dir("mpi_fracture");
     let scene =
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/bimaterial_small/scene.toml");
-    let output = mpirun(
-        2,
-        &[
-            "run",
-            scene.to_str().unwrap(),
-            "--out",
-            dir.to_str().unwrap(),
-        ],
-    );
+    refused_on_two_processes(&scene, &dir, "fracture scenes run on one process");
+}
+
+/// `mpirun -np 2 xper run scene` exits with code 2 and a message containing `expected`.
+fn refused_on_two_processes(scene: &Path, out: &Path, expected: &str) {
+    let (scene, out) = (scene.to_str().unwrap(), out.to_str().unwrap());
+    let output = mpirun(2, &["run", scene, "--out", out]);
     assert_eq!(output.status.code(), Some(2));
     let text = String::from_utf8_lossy(&output.stderr);
-    assert!(
-        text.contains("fracture scenes run on one process"),
-        "{text}"
-    );
+    assert!(text.contains(expected), "{text}");
 }

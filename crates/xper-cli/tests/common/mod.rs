@@ -22,6 +22,17 @@ pub fn xper(args: &[&str]) -> Output {
         .expect("xper runs")
 }
 
+/// Fails with the exit code and both output streams unless the command succeeded.
+pub fn assert_success(output: &Output) {
+    assert!(
+        output.status.success(),
+        "exit {:?}\n{}{}",
+        output.status.code(),
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
 /// A box of disks deposited under gravity, with frames and checkpoints.
 pub fn deposit_scene(count: usize, steps: usize) -> String {
     xper_cli::validation::deposit_scene(count, steps).replace(
