@@ -106,8 +106,7 @@ pub fn point_position(m: &FractureModel, i: &Interface, k: usize) -> [f64; 2] {
 /// Whether an interface is fully broken: a cohesive interface whose two points have lost
 /// all adhesion (pre-cracks included). Contact-law interfaces never count as broken.
 pub fn is_broken(m: &FractureModel, i: &Interface) -> bool {
-    matches!(m.laws[i.law as usize], InterfaceLaw::Cohesive(_))
-        && i.points.iter().all(|p| p.intensity == 0.0)
+    m.is_broken(i)
 }
 
 /// Whether a cohesive interface has lost some adhesion without being fully broken.

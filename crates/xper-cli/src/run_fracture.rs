@@ -269,7 +269,7 @@ pub fn run_with_summary(opts: &RunOptions, quiet: bool) -> Result<FractureSummar
     while model.step < last {
         let (step, error) = match stepper.step(&mut model) {
             Ok(report) => {
-                out.series.push(series_row(&model, &report));
+                out.series.push(series_row(&report));
                 let step = model.step;
                 if step % scene.output.frame_every == 0 || step == scene.steps {
                     out.write_frame(&model)?;

@@ -15,6 +15,7 @@
 
 pub mod communicator;
 pub mod fixtures;
+pub mod fracture;
 pub mod interface;
 #[cfg(feature = "mpi")]
 pub mod mpi_communicator;
@@ -26,10 +27,11 @@ pub mod stepper;
 mod threads;
 
 pub use communicator::{CommStats, Communicator, SingleProcess};
+pub use fracture::DistributedFracture;
 pub use interface::InterfaceMap;
 #[cfg(feature = "mpi")]
 pub use mpi_communicator::MpiCommunicator;
-pub use nscdd::distributed_nlgs;
+pub use nscdd::{distributed_nlgs, BodyVelocities};
 pub use partition::Bisection;
 pub use shared_solve::SharedNlgs;
 pub use split::{contact_owner, split_problem, LocalProblem};

@@ -24,38 +24,81 @@ use crate::communicator::Communicator;
 use crate::interface::InterfaceMap;
 use xper_nscd::RigidContactOperator;
 use xper_solver::{
-    natural_map_error, ContactOperator, NlgsParams, NlgsSweeper, NormAccumulator, SolveError,
-    SolveInfo,
+    natural_map_error, CohesiveTerm, ContactOperator, NlgsParams, NlgsSweeper, NormAccumulator,
+    SolveError, SolveInfo,
 };
+
+/// A contact operator whose bodies each carry a velocity of `DOFS` components: what the glue
+/// of interface bodies averages. Rigid bodies (`vx, vy, w`) and element bodies (the six nodal
+/// velocity components of a triangle) both are.
+pub trait BodyVelocities: ContactOperator {
+    /// Velocity components per body.
+    const DOFS: usize;
+    /// Number of bodies.
+    fn body_count(&self) -> usize;
+    /// Velocity of body `b`.
+    fn body_velocity(&self, b: usize) -> &[f64];
+    /// Velocity of body `b`, to overwrite.
+    fn body_velocity_mut(&mut self, b: usize) -> &mut [f64];
+}
+
+impl BodyVelocities for RigidContactOperator {
+    const DOFS: usize = 3;
+    fn body_count(&self) -> usize {
+        self.bodies.len()
+    }
+    fn body_velocity(&self, b: usize) -> &[f64] {
+        &self.bodies[b].velocity
+    }
+    fn body_velocity_mut(&mut self, b: usize) -> &mut [f64] {
+        &mut self.bodies[b].velocity
+    }
+}
+
+impl BodyVelocities for xper_fracture::ElementContactOperator {
+    const DOFS: usize = 6;
+    fn body_count(&self) -> usize {
+        self.bodies.len()
+    }
+    fn body_velocity(&self, b: usize) -> &[f64] {
+        &self.bodies[b].velocity
+    }
+    fn body_velocity_mut(&mut self, b: usize) -> &mut [f64] {
+        &mut self.bodies[b].velocity
+    }
+}
 
 /// Solves the contacts of `op` (this process's rows, its bodies with split masses at their
 /// free velocities, zero impulses applied) together with those of the other processes.
-/// `impulses` holds the warm start on entry and the solution on exit. The outcome (sweeps,
-/// residual of `params.norm`, convergence, LMGC90 norms of all contacts) is the same on every
-/// rank.
-pub fn distributed_nlgs<C: Communicator + ?Sized>(
+/// `cohesion` is empty or holds the adhesive term of each row, as for
+/// [`xper_solver::nlgs_with_cohesion`]. `impulses` holds the warm start on entry and the
+/// solution on exit. The outcome (sweeps, residual of `params.norm`, convergence, LMGC90
+/// norms of all contacts) is the same on every rank.
+#[allow(clippy::too_many_arguments)]
+pub fn distributed_nlgs<C: Communicator + ?Sized, O: BodyVelocities>(
     comm: &C,
-    op: &mut RigidContactOperator,
+    op: &mut O,
     interface: &InterfaceMap,
     mu: &[f64],
     normal_shift: &[f64],
+    cohesion: &[CohesiveTerm],
     impulses: &mut [[f64; 2]],
     params: &NlgsParams,
 ) -> Result<SolveInfo, SolveError> {
-    if interface.multiplicity.len() != op.bodies.len() {
+    if interface.multiplicity.len() != op.body_count() {
         return Err(SolveError::SizeMismatch {
             what: format!(
                 "{} bodies, an interface of {}",
-                op.bodies.len(),
+                op.body_count(),
                 interface.multiplicity.len()
             ),
         });
     }
-    let sweeper = NlgsSweeper::new(op, mu, normal_shift, &[], impulses, params)?;
+    let sweeper = NlgsSweeper::new(op, mu, normal_shift, cohesion, impulses, params)?;
     let mut totals = [sweeper.q_norm().powi(2), op.contact_count() as f64];
     comm.all_reduce_sum(&mut totals);
     let (q_norm, contacts) = (totals[0].sqrt(), totals[1]);
-    let mut glue = Glue::new(interface, comm.rank());
+    let mut glue = Glue::new(interface, comm.rank(), O::DOFS);
     glue.apply(comm, op, interface);
     let mut info = SolveInfo::default();
     if contacts == 0.0 {
@@ -109,11 +152,12 @@ struct Glue {
     /// Neighbours of lower rank than this process: this copy is added after them.
     below: usize,
     sources: Vec<usize>,
-    sums: Vec<[f64; 3]>,
+    /// `DOFS` components per shared body.
+    sums: Vec<f64>,
 }
 
 impl Glue {
-    fn new(interface: &InterfaceMap, rank: usize) -> Self {
+    fn new(interface: &InterfaceMap, rank: usize, dofs: usize) -> Self {
         let shared: Vec<u32> = (0..interface.multiplicity.len() as u32)
             .filter(|&b| interface.multiplicity[b as usize] > 1)
             .collect();
@@ -133,27 +177,28 @@ impl Glue {
                 .filter(|(r, _)| *r < rank)
                 .count(),
             sources: interface.neighbours.iter().map(|(r, _)| *r).collect(),
-            sums: vec![[0.0; 3]; shared.len()],
+            sums: vec![0.0; dofs * shared.len()],
             shared,
         }
     }
 
-    fn apply<C: Communicator + ?Sized>(
+    fn apply<C: Communicator + ?Sized, O: BodyVelocities>(
         &mut self,
         comm: &C,
-        op: &mut RigidContactOperator,
+        op: &mut O,
         interface: &InterfaceMap,
     ) {
         if self.shared.is_empty() {
             return;
         }
+        let dofs = O::DOFS;
         let sends: Vec<(usize, Vec<f64>)> = interface
             .neighbours
             .iter()
             .map(|(rank, list)| {
                 let data = list
                     .iter()
-                    .flat_map(|&b| op.bodies[b as usize].velocity)
+                    .flat_map(|&b| op.body_velocity(b as usize).iter().copied())
                     .collect();
                 (*rank, data)
             })
@@ -166,14 +211,14 @@ impl Glue {
             sums,
             ..
         } = self;
-        sums.fill([0.0; 3]);
+        sums.fill(0.0);
         for (k, (slots, data)) in slots.iter().zip(&received).enumerate() {
             if k == *below {
                 add_own(shared, sums, op);
             }
-            for (&slot, v) in slots.iter().zip(data.chunks_exact(3)) {
-                let sum = &mut sums[slot as usize];
-                for d in 0..3 {
+            for (&slot, v) in slots.iter().zip(data.chunks_exact(dofs)) {
+                let sum = &mut sums[slot as usize * dofs..][..dofs];
+                for d in 0..dofs {
                     sum[d] += v[d];
                 }
             }
@@ -181,27 +226,28 @@ impl Glue {
         if *below == slots.len() {
             add_own(shared, sums, op);
         }
-        for (&b, sum) in self.shared.iter().zip(&self.sums) {
+        for (&b, sum) in self.shared.iter().zip(self.sums.chunks_exact(dofs)) {
             let m = interface.multiplicity[b as usize] as f64;
-            op.bodies[b as usize].velocity = [sum[0] / m, sum[1] / m, sum[2] / m];
+            for (v, s) in op.body_velocity_mut(b as usize).iter_mut().zip(sum) {
+                *v = s / m;
+            }
         }
     }
 }
 
 /// Adds this process's copy of each shared body to its sum.
-fn add_own(shared: &[u32], sums: &mut [[f64; 3]], op: &RigidContactOperator) {
-    for (&b, sum) in shared.iter().zip(sums) {
-        let v = op.bodies[b as usize].velocity;
-        for d in 0..3 {
-            sum[d] += v[d];
+fn add_own<O: BodyVelocities>(shared: &[u32], sums: &mut [f64], op: &O) {
+    for (&b, sum) in shared.iter().zip(sums.chunks_exact_mut(O::DOFS)) {
+        for (s, v) in sum.iter_mut().zip(op.body_velocity(b as usize)) {
+            *s += v;
         }
     }
 }
 
 /// The scaled natural-map error of the contacts of all processes.
-fn global_error<C: Communicator + ?Sized>(
+fn global_error<C: Communicator + ?Sized, O: ContactOperator>(
     comm: &C,
-    op: &RigidContactOperator,
+    op: &O,
     mu: &[f64],
     normal_shift: &[f64],
     impulses: &[[f64; 2]],

@@ -80,7 +80,7 @@ impl<C: Communicator + ?Sized> ContactSolve for SharedNlgs<'_, C> {
                 row.refresh_block(bodies);
             }
         }
-        let info = distributed_nlgs(self.comm, op, &interface, mu, shift, impulses, params);
+        let info = distributed_nlgs(self.comm, op, &interface, mu, shift, &[], impulses, params);
         if split {
             for (body, m) in op.bodies.iter_mut().zip(masses) {
                 body.inv_mass = m;

@@ -26,6 +26,7 @@ fn distributed(problem: &RigidProblem, owners: &[u32], ranks: usize, tol: Real) 
             &interface,
             &local.problem.mu,
             &local.problem.shift,
+            &[],
             &mut impulses,
             &solver_params(tol),
         )

@@ -16,6 +16,8 @@ mod dense;
 mod interface;
 mod model;
 mod operator;
+mod part;
+mod solve;
 mod step;
 mod update;
 pub mod validation;
@@ -26,6 +28,7 @@ pub use model::{
     InterfaceRule, MassMatrix, NodeLoad, PointState,
 };
 pub use operator::{ElementContactOperator, ElementWork, InterfaceRow};
+pub use solve::{InterfaceSolve, SerialInterfaceSolve};
 pub use step::{
     elastic_energy, stored_energy, FractureStepError, FractureStepReport, FractureStepper,
     LoadReading,

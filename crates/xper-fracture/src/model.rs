@@ -252,6 +252,10 @@ pub struct FractureModel {
     pub step: u64,
     /// Energy budget.
     pub energy: FractureEnergy,
+    /// Elements that are copies of another process's (a part of a distributed run, see
+    /// [`FractureModel::part`]): stepped like the others but left out of the energies and
+    /// loads, which their owner counts. Empty for a whole model.
+    pub shadow: Vec<bool>,
 }
 
 const NO_LOAD: u16 = u16::MAX;
@@ -368,7 +372,13 @@ impl FractureModel {
             time: 0.0,
             step: 0,
             energy: FractureEnergy::default(),
+            shadow: Vec::new(),
         })
+    }
+
+    /// Whether element `e` is a copy of another process's element.
+    pub fn is_shadow(&self, e: usize) -> bool {
+        self.shadow.get(e).copied().unwrap_or(false)
     }
 
     /// Whether degree of freedom `d` of element `e` has an imposed velocity.
@@ -377,11 +387,13 @@ impl FractureModel {
         l != NO_LOAD && self.spec.loads[l as usize].drives[d % 2].is_imposed_velocity()
     }
 
-    /// Kinetic energy `v^T M v / 2` summed over the elements (J).
+    /// Kinetic energy `v^T M v / 2` summed over the elements, shadows excepted (J).
     pub fn kinetic_energy(&self) -> f64 {
         self.elements
             .iter()
-            .map(|e| {
+            .enumerate()
+            .filter(|(k, _)| !self.is_shadow(*k))
+            .map(|(_, e)| {
                 let mv = crate::dense::mul_vec(&e.mass, &e.velocity);
                 0.5 * mv.iter().zip(&e.velocity).map(|(a, b)| a * b).sum::<f64>()
             })
@@ -402,6 +414,18 @@ impl FractureModel {
             .flat_map(|i| i.points.iter())
             .filter(|p| p.intensity == 0.0)
             .count()
+    }
+
+    /// Whether an interface is fully broken: a cohesive interface whose two points have lost
+    /// all adhesion (pre-cracks included). Contact-law interfaces never count as broken.
+    pub fn is_broken(&self, i: &Interface) -> bool {
+        matches!(self.laws[i.law as usize], InterfaceLaw::Cohesive(_))
+            && i.points.iter().all(|p| p.intensity == 0.0)
+    }
+
+    /// Number of fully broken interfaces ([`FractureModel::is_broken`]).
+    pub fn broken_interfaces(&self) -> usize {
+        self.interfaces.iter().filter(|i| self.is_broken(i)).count()
     }
 }
 

@@ -19,12 +19,13 @@
 use std::time::Instant;
 
 use xper_bodies::Drive;
-use xper_solver::{nlgs_with_cohesion, CohesiveTerm, SolveError};
+use xper_solver::{CohesiveTerm, SolveError};
 
 use crate::dense::{masked_spd_inverse, mul_vec, Mat6};
 use crate::interface::cohesive;
-use crate::model::FractureModel;
+use crate::model::{FractureEnergy, FractureModel};
 use crate::operator::{ElementContactOperator, ElementWork, InterfaceRow};
+use crate::solve::{InterfaceSolve, SerialInterfaceSolve};
 
 /// Reading of one load over a step.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
@@ -47,6 +48,10 @@ pub struct FractureStepReport {
     pub contacts: usize,
     /// Broken interface points (intensity 0).
     pub broken_points: usize,
+    /// Fully broken interfaces ([`FractureModel::is_broken`]).
+    pub broken_interfaces: usize,
+    /// The energy budget at the end of the step (of the whole model in a distributed run).
+    pub energy: FractureEnergy,
     /// NLGS sweeps.
     pub iterations: u32,
     /// Final residual of the convergence norm.
@@ -118,6 +123,18 @@ impl FractureStepper {
 
     /// Advances the model by one step.
     pub fn step(&mut self, m: &mut FractureModel) -> Result<FractureStepReport, FractureStepError> {
+        self.step_with(m, &mut SerialInterfaceSolve)
+    }
+
+    /// Advances the model by one step, the interface problem solved and the step's totals
+    /// summed by `solver`: [`SerialInterfaceSolve`] for a whole model, a domain-decomposition
+    /// solver for a part of one ([`FractureModel::part`]), whose report then holds the totals
+    /// of the whole model.
+    pub fn step_with(
+        &mut self,
+        m: &mut FractureModel,
+        solver: &mut dyn InterfaceSolve,
+    ) -> Result<FractureStepReport, FractureStepError> {
         let start = Instant::now();
         if m.step == 0 && !self.started {
             m.energy.initial = m.kinetic_energy() + elastic_energy(m) + stored_energy(m);
@@ -128,32 +145,36 @@ impl FractureStepper {
         let ext = self.free_velocity(m, t_begin, t_end)?;
         self.assemble(m);
         let t_solve = Instant::now();
-        let info = nlgs_with_cohesion(
-            &mut self.op,
-            &self.mu,
-            &self.shift,
-            &self.cohesion,
-            &mut self.impulses,
-            &m.spec.nlgs,
-        )
-        .map_err(FractureStepError::Solver)?;
+        let info = solver
+            .solve(
+                &mut self.op,
+                &self.mu,
+                &self.shift,
+                &self.cohesion,
+                &mut self.impulses,
+                &m.spec.nlgs,
+            )
+            .map_err(FractureStepError::Solver)?;
         let solve_time = t_solve.elapsed().as_secs_f64();
-        let loads = self.update(m, ext)?;
+        let load_sums = self.update(m, ext)?;
         crate::update::interfaces(self, m);
         m.step += 1;
         m.time = t_end;
-        if let Some(why) = m.energy.divergence() {
+        let totals = crate::update::StepTotals::sum(m, self.op.rows.len(), load_sums, solver);
+        if let Some(why) = totals.energy.divergence() {
             return Err(FractureStepError::Diverging(why));
         }
         Ok(FractureStepReport {
             step: m.step,
             time: m.time,
-            contacts: self.op.rows.len(),
-            broken_points: m.broken_points(),
+            contacts: totals.contacts,
+            broken_points: totals.broken_points,
+            broken_interfaces: totals.broken_interfaces,
+            energy: totals.energy,
             iterations: info.iterations,
             residual: info.residual,
             converged: info.converged,
-            loads,
+            loads: totals.loads,
             wall_time: start.elapsed().as_secs_f64(),
             solve_time,
         })
@@ -303,11 +324,14 @@ impl FractureStepper {
     }
 
     /// Stage: velocities and displacements, material update, reactions and work of the loads.
+    /// Returns per load the sums of this model's share: force x and y, displacement x and y
+    /// and the number of degrees of freedom summed, x and y. A shadow element adds only the
+    /// impulses of this model's interfaces to a reaction; its owner adds the rest.
     fn update(
         &mut self,
         m: &mut FractureModel,
         ext: Vec<[f64; 6]>,
-    ) -> Result<Vec<LoadReading>, FractureStepError> {
+    ) -> Result<Vec<[f64; 6]>, FractureStepError> {
         let (h, th) = (m.spec.dt, m.spec.theta);
         // Generalised contact impulses per element.
         let mut contact = vec![[0.0; 6]; m.elements.len()];
@@ -326,14 +350,14 @@ impl FractureStepper {
                 g[c + 1] += sign * p[1];
             }
         }
-        let mut readings = vec![LoadReading::default(); m.spec.loads.len()];
-        let mut counts = vec![[0usize; 2]; m.spec.loads.len()];
+        let mut sums = vec![[0.0; 6]; m.spec.loads.len()];
         let (hypothesis, mut work, mut plastic) = (m.spec.hypothesis, 0.0, 0.0);
         for e in 0..m.elements.len() {
             let v = self.op.bodies[e].velocity;
             if v.iter().any(|x| !x.is_finite()) {
                 return Err(FractureStepError::NonFinite { element: e });
             }
+            let owned = if m.is_shadow(e) { 0.0 } else { 1.0 };
             let m_eff: Mat6 = m.effective_mass(e);
             let el = &mut m.elements[e];
             let v0 = el.velocity;
@@ -345,10 +369,10 @@ impl FractureStepper {
                 let force_on_body = ext[e][d];
                 let l = el.load[d];
                 if l != u16::MAX {
-                    let reading = &mut readings[l as usize];
+                    let sum = &mut sums[l as usize];
                     if m.spec.loads[l as usize].drives[d % 2].is_imposed_velocity() {
-                        let reaction = inertia[d] - self.rhs[e][d] - contact[e][d];
-                        reading.force[d % 2] += reaction / h;
+                        let reaction = owned * (inertia[d] - self.rhs[e][d]) - contact[e][d];
+                        sum[d % 2] += reaction / h;
                         work += reaction * du / h;
                     } else if let Drive::Force(_) = m.spec.loads[l as usize].drives[d % 2] {
                         let g = m.spec.gravity[d % 2];
@@ -356,12 +380,12 @@ impl FractureStepper {
                             .filter(|k| k % 2 == d % 2)
                             .map(|k| el.mass[d][k] * g)
                             .sum();
-                        reading.force[d % 2] += ext[e][d] - gravity;
+                        sum[d % 2] += owned * (ext[e][d] - gravity);
                     }
-                    reading.displacement[d % 2] += el.displacement[d];
-                    counts[l as usize][d % 2] += 1;
+                    sum[2 + d % 2] += owned * el.displacement[d];
+                    sum[4 + d % 2] += owned;
                 }
-                work += force_on_body * du;
+                work += owned * force_on_body * du;
             }
             el.velocity = v;
             let material = &m.spec.materials[el.region as usize];
@@ -369,24 +393,17 @@ impl FractureStepper {
             let up = material.update(hypothesis, &el.state, strain);
             el.state = up.state;
             el.internal_force = el.triangle.internal_force(&up.state.in_plane_stress());
-            plastic += up.plastic_work * el.triangle.volume();
+            plastic += owned * up.plastic_work * el.triangle.volume();
             if matches!(material, xper_fem::Material::J2Plastic { .. }) {
                 el.stiffness = el.triangle.stiffness(&up.tangent);
                 self.inv_mass_valid[e] = false;
-            }
-        }
-        for (reading, count) in readings.iter_mut().zip(&counts) {
-            for d in 0..2 {
-                if count[d] > 0 {
-                    reading.displacement[d] /= count[d] as f64;
-                }
             }
         }
         m.energy.external_work += work;
         m.energy.plastic += plastic;
         m.energy.kinetic = m.kinetic_energy();
         m.energy.elastic = elastic_energy(m);
-        Ok(readings)
+        Ok(sums)
     }
 
     /// The step's interface points, in interface order (two per interface).
@@ -414,11 +431,13 @@ pub(crate) struct PointWork {
 
 const NOT_SOLVED: u32 = u32::MAX;
 
-/// Elastic energy of the elements (J).
+/// Elastic energy of the elements, shadows excepted (J).
 pub fn elastic_energy(m: &FractureModel) -> f64 {
     m.elements
         .iter()
-        .map(|e| {
+        .enumerate()
+        .filter(|(k, _)| !m.is_shadow(*k))
+        .map(|(_, e)| {
             e.triangle
                 .elastic_energy(&m.spec.materials[e.region as usize], &e.state)
         })

@@ -2,8 +2,9 @@
 //! BRIEF.md section 3) and the interface energies.
 
 use crate::interface::cohesive;
-use crate::model::FractureModel;
-use crate::step::{stored_energy, FractureStepper};
+use crate::model::{FractureEnergy, FractureModel};
+use crate::solve::InterfaceSolve;
+use crate::step::{stored_energy, FractureStepper, LoadReading};
 
 /// Updates the interface points of `m` from the solved step in `stepper`.
 pub(crate) fn interfaces(stepper: &FractureStepper, m: &mut FractureModel) {
@@ -42,4 +43,73 @@ pub(crate) fn interfaces(stepper: &FractureStepper, m: &mut FractureModel) {
     m.energy.cohesive_dissipated += damage;
     m.energy.contact_dissipated += contact;
     m.energy.cohesive_stored = stored_energy(m);
+}
+
+/// What a step reports of the whole model: this model's share summed over the processes
+/// sharing it ([`InterfaceSolve::sum`], one reduction per step).
+pub(crate) struct StepTotals {
+    pub contacts: usize,
+    pub broken_points: usize,
+    pub broken_interfaces: usize,
+    pub energy: FractureEnergy,
+    pub loads: Vec<LoadReading>,
+}
+
+impl StepTotals {
+    /// Sums the counts, the energy budget and the load sums (per load: force x, y,
+    /// displacement x, y, degrees of freedom x, y) of `m`'s share, then averages the
+    /// displacements.
+    pub fn sum(
+        m: &FractureModel,
+        contacts: usize,
+        load_sums: Vec<[f64; 6]>,
+        solver: &mut dyn InterfaceSolve,
+    ) -> Self {
+        let e = m.energy;
+        let mut values = vec![
+            contacts as f64,
+            m.broken_points() as f64,
+            m.broken_interfaces() as f64,
+            e.kinetic,
+            e.elastic,
+            e.plastic,
+            e.cohesive_stored,
+            e.cohesive_dissipated,
+            e.contact_dissipated,
+            e.external_work,
+            e.initial,
+        ];
+        let head = values.len();
+        values.extend(load_sums.iter().flatten());
+        solver.sum(&mut values);
+        let loads = values[head..]
+            .chunks_exact(6)
+            .map(|s| LoadReading {
+                force: [s[0], s[1]],
+                displacement: std::array::from_fn(|d| {
+                    if s[4 + d] > 0.0 {
+                        s[2 + d] / s[4 + d]
+                    } else {
+                        s[2 + d]
+                    }
+                }),
+            })
+            .collect();
+        StepTotals {
+            contacts: values[0] as usize,
+            broken_points: values[1] as usize,
+            broken_interfaces: values[2] as usize,
+            energy: FractureEnergy {
+                kinetic: values[3],
+                elastic: values[4],
+                plastic: values[5],
+                cohesive_stored: values[6],
+                cohesive_dissipated: values[7],
+                contact_dissipated: values[8],
+                external_work: values[9],
+                initial: values[10],
+            },
+            loads,
+        }
+    }
 }

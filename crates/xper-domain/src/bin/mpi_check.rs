@@ -60,6 +60,7 @@ fn main() {
         &interface,
         &local.problem.mu,
         &local.problem.shift,
+        &[],
         &mut impulses,
         &solver_params(tolerance),
     )

@@ -1,0 +1,164 @@
+//! The distributed fracture run against the serial one, on the coarse Nooru-Mohamed scene
+//! (`scenes/nooru_mohamed_small`: 1491 elements, 2177 cohesive interfaces, cracks growing from
+//! both notches).
+//!
+//! The measure of agreement: the largest difference of a nodal displacement between the two
+//! runs, against the serial run's own error, measured as the difference between the serial
+//! run at the scene's tolerance and at a hundredth of it. NLGS stops at the tolerance, not at
+//! the solution, so a distributed run (a different sweep order, the shared elements glued
+//! after each sweep) may differ by a multiple of that error; it must also shrink with the
+//! tolerance.
+
+use std::path::Path;
+
+use xper_domain::{run_on_threads, DistributedFracture, RankLoad};
+use xper_fracture::{FractureModel, FractureStepReport, FractureStepper};
+
+const STEPS: u64 = 800;
+
+fn scene_model(tolerance: f64) -> FractureModel {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/nooru_mohamed_small/scene.toml");
+    let scene = match xper_scene::load_any_scene(&path).unwrap() {
+        xper_scene::AnyScene::Fracture(s) => s,
+        xper_scene::AnyScene::Rigid(_) => panic!("not a fracture scene"),
+    };
+    let setup = scene.build().unwrap();
+    let mut model = FractureModel::new(setup.mesh, setup.spec).unwrap();
+    model.spec.nlgs.tolerance = tolerance;
+    model
+}
+
+fn serial(mut model: FractureModel, steps: u64) -> (FractureModel, Vec<FractureStepReport>) {
+    let mut stepper = FractureStepper::new();
+    let reports = (0..steps)
+        .map(|_| stepper.step(&mut model).unwrap())
+        .collect();
+    (model, reports)
+}
+
+/// The run of `model` on `ranks` thread processes: the gathered model, the reports of rank 0
+/// and each rank's load.
+fn distributed(
+    model: &FractureModel,
+    ranks: usize,
+    steps: u64,
+) -> (FractureModel, Vec<FractureStepReport>, Vec<RankLoad>) {
+    let out = run_on_threads(ranks, |comm| {
+        let mut run = DistributedFracture::new(comm, model);
+        let reports: Vec<_> = (0..steps).map(|_| run.step().unwrap()).collect();
+        let mut whole = model.clone();
+        run.gather(&mut whole);
+        (whole, reports, run.load())
+    });
+    let loads = out.iter().map(|o| o.2).collect();
+    let (whole, reports, _) = out.into_iter().next().unwrap();
+    (whole, reports, loads)
+}
+
+fn displacement_difference(a: &FractureModel, b: &FractureModel) -> f64 {
+    (a.elements.iter().zip(&b.elements))
+        .flat_map(|(x, y)| (0..6).map(|d| (x.displacement[d] - y.displacement[d]).abs()))
+        .fold(0.0, f64::max)
+}
+
+fn largest_displacement(a: &FractureModel) -> f64 {
+    (a.elements.iter())
+        .flat_map(|x| x.displacement.map(f64::abs))
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn one_process_is_the_serial_run_bit_for_bit() {
+    let model = scene_model(1.666e-4);
+    let (serial, serial_reports) = serial(model.clone(), 60);
+    let (whole, reports, loads) = distributed(&model, 1, 60);
+    assert_eq!(displacement_difference(&serial, &whole), 0.0);
+    for (a, b) in serial_reports.iter().zip(&reports) {
+        assert_eq!(
+            (a.iterations, a.energy, &a.loads),
+            (b.iterations, b.energy, &b.loads)
+        );
+    }
+    assert_eq!(loads[0].shadows, 0);
+    assert!((serial.interfaces.iter().zip(&whole.interfaces)).all(|(a, b)| a.points == b.points));
+}
+
+#[test]
+fn two_and_four_processes_agree_with_the_serial_run_within_its_own_error() {
+    let tolerance = 1.666e-4;
+    let model = scene_model(tolerance);
+    let (reference, reference_reports) = serial(model.clone(), STEPS);
+    let (tight, _) = serial(scene_model(tolerance / 100.0), STEPS);
+    let serial_error = displacement_difference(&reference, &tight);
+    let scale = largest_displacement(&reference);
+    let broken = reference.broken_points();
+    println!("serial error {serial_error:.3e} m of {scale:.3e} m; {broken} broken points");
+    assert!(broken > 0, "the run must break interfaces");
+    for ranks in [2, 4] {
+        let (whole, reports, loads) = distributed(&model, ranks, STEPS);
+        let difference = displacement_difference(&reference, &whole);
+        let shared: usize = loads.iter().map(|l| l.interface_bodies).sum();
+        let force = |r: &[FractureStepReport]| r.last().unwrap().loads[0].force[1];
+        println!(
+            "{ranks} processes: {difference:.3e} m, shared elements {shared}, top force {:.4e} \
+             N (serial {:.4e} N), energy error {:.2e} J",
+            force(&reports),
+            force(&reference_reports),
+            reports.last().unwrap().energy.error()
+        );
+        assert!(shared > 0);
+        assert_eq!(reports.last().unwrap().broken_points, broken);
+        assert_eq!(
+            loads.iter().map(|l| l.bodies).sum::<usize>(),
+            model.elements.len()
+        );
+        assert!(
+            difference <= 10.0 * serial_error,
+            "{ranks} processes: {difference:e} m from the serial run, its own error {serial_error:e} m"
+        );
+        let energy = reports.last().unwrap().energy;
+        assert!(energy.error().abs() <= 1e-6 * energy.in_play());
+    }
+}
+
+#[test]
+fn the_difference_shrinks_with_the_tolerance() {
+    let differences: Vec<f64> = [1.666e-4, 1.666e-6]
+        .iter()
+        .map(|&tolerance| {
+            let model = scene_model(tolerance);
+            let (reference, _) = serial(model.clone(), 300);
+            let (whole, _, _) = distributed(&model, 3, 300);
+            displacement_difference(&reference, &whole)
+        })
+        .collect();
+    println!(
+        "3 processes, 300 steps: {:.3e} m and {:.3e} m at tolerances 1.666e-4 and 1.666e-6",
+        differences[0], differences[1]
+    );
+    assert!(differences[1] < 0.1 * differences[0]);
+}
+
+#[test]
+fn a_run_resumed_on_another_process_count_continues_the_uninterrupted_run() {
+    let tolerance = 1.666e-4;
+    let model = scene_model(tolerance);
+    let (reference, _) = serial(model.clone(), 400);
+    let (tight, _) = serial(scene_model(tolerance / 100.0), 400);
+    let serial_error = displacement_difference(&reference, &tight);
+    let (halfway, _, _) = distributed(&model, 2, 200);
+    assert_eq!(halfway.step, 200);
+    let (resumed, _, _) = distributed(&halfway, 3, 200);
+    assert_eq!(resumed.step, 400);
+    let difference = displacement_difference(&reference, &resumed);
+    println!("2 then 3 processes: {difference:.3e} m (serial error {serial_error:.3e} m)");
+    assert!(difference <= 10.0 * serial_error);
+    let (same, _, _) = distributed(&halfway, 2, 200);
+    let (straight, _, _) = distributed(&model, 2, 400);
+    assert_eq!(
+        displacement_difference(&same, &straight),
+        0.0,
+        "resume on the same count"
+    );
+}
