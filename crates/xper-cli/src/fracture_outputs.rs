@@ -123,6 +123,12 @@ pub struct FractureSummary {
     pub peak_memory_bytes: Option<u64>,
     /// Version of xper.
     pub xper_version: &'static str,
+    /// Processes of the run (1 without mpirun).
+    pub processes: usize,
+    /// Each process's load and communication (empty on one process).
+    pub ranks: crate::run::RankLoads,
+    /// The same steps on one process (`--compare-serial` under mpirun).
+    pub serial_comparison: Option<crate::run::SerialComparison>,
 }
 
 /// The summary of a run from its series and final model.
@@ -167,6 +173,9 @@ pub fn summary(
         crack: crate::crack::crack_metrics(m),
         peak_memory_bytes: xper_io::peak_memory_bytes(),
         xper_version: env!("CARGO_PKG_VERSION"),
+        processes: 1,
+        ranks: Vec::new(),
+        serial_comparison: None,
     }
 }
 

@@ -13,6 +13,7 @@ pub mod run;
 pub mod run_distributed;
 pub mod run_fluid;
 pub mod run_fracture;
+pub mod run_fracture_distributed;
 pub mod solve;
 pub mod validation;
 pub mod validation_fluid;

@@ -108,9 +108,11 @@ fn main() -> ExitCode {
                 compare_serial,
             };
             if fracture {
-                refuse_distributed_fracture(&opts).and_then(|()| run_fracture::run(&opts, quiet))
+                run_maybe_distributed(&opts, quiet, |o, q, c| {
+                    run_fracture::run_on(o, q, c).map(|_| ())
+                })
             } else {
-                run_rigid(&opts, quiet)
+                run_maybe_distributed(&opts, quiet, run::run_on)
             }
         }
         Command::Bench(args) => bench::bench(&args),
@@ -130,13 +132,21 @@ fn main() -> ExitCode {
     }
 }
 
-/// `xper run` of a rigid or fluid scene: under `mpirun` with more than one process (binary built
-/// with `--features mpi`) a distributed run, otherwise a run on this process.
+/// The run loop of one kind of scene, on the processes of a communicator or on this one.
+type RunOn =
+    fn(&run::RunOptions, bool, Option<&dyn xper_domain::Communicator>) -> Result<(), CliError>;
+
+/// `xper run`: under `mpirun` with more than one process (binary built with `--features mpi`)
+/// a distributed run, otherwise a run on this process.
 #[cfg(feature = "mpi")]
-fn run_rigid(opts: &run::RunOptions, quiet: bool) -> Result<(), CliError> {
+fn run_maybe_distributed(
+    opts: &run::RunOptions,
+    quiet: bool,
+    run_on: RunOn,
+) -> Result<(), CliError> {
     match xper_domain::MpiCommunicator::init() {
         Some(comm) => {
-            let result = run::run_on(opts, quiet, Some(&comm));
+            let result = run_on(opts, quiet, Some(&comm));
             // A failure every process met alike (bad input) ends them all normally; anything
             // else a process met alone would leave the others waiting: end them all.
             match (&result, xper_domain::Communicator::size(&comm)) {
@@ -146,36 +156,18 @@ fn run_rigid(opts: &run::RunOptions, quiet: bool) -> Result<(), CliError> {
                 _ => result,
             }
         }
-        None => run::run(opts, quiet),
+        None => run_on(opts, quiet, None),
     }
 }
 
-/// Under `mpirun` with several processes a fracture scene would run whole on each of them,
-/// all writing the same outputs: refused (fracture is not distributed yet).
-#[cfg(feature = "mpi")]
-fn refuse_distributed_fracture(opts: &run::RunOptions) -> Result<(), CliError> {
-    match xper_domain::MpiCommunicator::init() {
-        Some(comm) if xper_domain::Communicator::size(&comm) > 1 => {
-            Err(CliError::BadInput(format!(
-                "{}: fracture scenes run on one process (the distributed fracture is not built \
-                 yet): run without mpirun",
-                opts.scene.display()
-            )))
-        }
-        _ => Ok(()),
-    }
-}
-
-/// Without MPI every run is on one process.
+/// `xper run` on this process (built without MPI).
 #[cfg(not(feature = "mpi"))]
-fn refuse_distributed_fracture(_opts: &run::RunOptions) -> Result<(), CliError> {
-    Ok(())
-}
-
-/// `xper run` of a rigid or fluid scene on this process (built without MPI).
-#[cfg(not(feature = "mpi"))]
-fn run_rigid(opts: &run::RunOptions, quiet: bool) -> Result<(), CliError> {
-    run::run(opts, quiet)
+fn run_maybe_distributed(
+    opts: &run::RunOptions,
+    quiet: bool,
+    run_on: RunOn,
+) -> Result<(), CliError> {
+    run_on(opts, quiet, None)
 }
 
 /// Whether the file is a fracture scene (a readable TOML file with a `[mesh]` section);

@@ -6,7 +6,7 @@ use crate::CliError;
 use serde::Serialize;
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
-use xper_domain::{Communicator, DistributedParams, DistributedStepper};
+use xper_domain::{Communicator, DistributedParams, DistributedStepper, RankLoad};
 use xper_nscd::{MoreauJean, StepError, StepReport, World};
 
 /// A rigid run advanced step by step.
@@ -33,11 +33,11 @@ pub trait RigidRun {
 pub struct RankSummary {
     /// Process rank.
     pub rank: usize,
-    /// Movable bodies owned at the end.
+    /// Movable bodies (fracture: elements) owned at the end.
     pub bodies: usize,
     /// Shadow copies held at the end.
     pub shadows: usize,
-    /// Contacts owned at the last step.
+    /// Contacts (fracture: interface points) owned at the last step.
     pub contacts: usize,
     /// Bodies shared with other processes in the last solve.
     pub interface_bodies: usize,
@@ -174,30 +174,35 @@ impl RigidRun for DistributedRun<'_> {
         self.stepper.world().bodies.len()
     }
     fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary> {
-        let (load, stats) = (self.stepper.load(), self.comm.stats());
-        let mine = [
-            load.bodies as f64,
-            load.shadows as f64,
-            load.contacts as f64,
-            load.interface_bodies as f64,
-            load.migrated_in as f64,
-            stats.messages as f64,
-            stats.bytes as f64,
-            stats.time.as_secs_f64(),
-        ];
-        (self.comm.all_gather(&mine).iter().enumerate())
-            .map(|(rank, v)| RankSummary {
-                rank,
-                bodies: v[0] as usize,
-                shadows: v[1] as usize,
-                contacts: v[2] as usize,
-                interface_bodies: v[3] as usize,
-                migrated_in: v[4] as u64,
-                messages: v[5] as u64,
-                bytes: v[6] as u64,
-                communication_s: v[7],
-                communication_share: if wall > 0.0 { v[7] / wall } else { 0.0 },
-            })
-            .collect()
+        rank_summaries(self.comm, self.stepper.load(), wall)
     }
+}
+
+/// Every process's `load` and communication over a run of `wall` seconds (collective).
+pub fn rank_summaries(comm: &dyn Communicator, load: RankLoad, wall: f64) -> Vec<RankSummary> {
+    let stats = comm.stats();
+    let mine = [
+        load.bodies as f64,
+        load.shadows as f64,
+        load.contacts as f64,
+        load.interface_bodies as f64,
+        load.migrated_in as f64,
+        stats.messages as f64,
+        stats.bytes as f64,
+        stats.time.as_secs_f64(),
+    ];
+    (comm.all_gather(&mine).iter().enumerate())
+        .map(|(rank, v)| RankSummary {
+            rank,
+            bodies: v[0] as usize,
+            shadows: v[1] as usize,
+            contacts: v[2] as usize,
+            interface_bodies: v[3] as usize,
+            migrated_in: v[4] as u64,
+            messages: v[5] as u64,
+            bytes: v[6] as u64,
+            communication_s: v[7],
+            communication_share: if wall > 0.0 { v[7] / wall } else { 0.0 },
+        })
+        .collect()
 }

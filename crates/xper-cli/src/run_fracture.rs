@@ -7,9 +7,7 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 use xper_fem::MaterialState;
-use xper_fracture::{
-    FractureEnergy, FractureModel, FractureStepError, FractureStepper, PointState,
-};
+use xper_fracture::{FractureEnergy, FractureModel, FractureStepError, PointState};
 use xper_io::{write_atomic, write_json_atomic, write_vtu, PvdCollection, SeriesTable};
 use xper_scene::{FractureScene, MeshSource};
 
@@ -19,6 +17,9 @@ use crate::fracture_outputs::{
     write_series_plot, FractureSummary,
 };
 use crate::run::RunOptions;
+use crate::run_fracture_distributed::{
+    compare_serial, DistributedFractureRun, FractureRun, SerialFracture,
+};
 use crate::CliError;
 
 fn io_err(e: std::io::Error) -> CliError {
@@ -162,6 +163,21 @@ impl Checkpoint {
     }
 }
 
+/// The step and the nodal displacements of each element (m) held by the checkpoint of a
+/// fracture run in `dir` (for comparing runs).
+pub fn checkpoint_displacements(dir: &Path) -> Result<(u64, Vec<[f64; 6]>), CliError> {
+    let path = dir.join("checkpoint.bin");
+    let bytes = std::fs::read(&path)
+        .map_err(|e| CliError::BadInput(format!("{}: cannot read: {e}", path.display())))?;
+    let c: Checkpoint = bincode::deserialize(&bytes).map_err(|e| {
+        CliError::BadInput(format!(
+            "{}: not a fracture checkpoint of xper: {e}",
+            path.display()
+        ))
+    })?;
+    Ok((c.step, c.elements.iter().map(|e| e.displacement).collect()))
+}
+
 /// FNV-1a hash of the scene text and, for a mesh file, of its bytes.
 fn scene_hash(scene: &FractureScene) -> Result<u64, CliError> {
     let mut bytes = std::fs::read(&scene.file).map_err(|e| {
@@ -241,8 +257,22 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
 
 /// [`run`], returning the run's summary (as written to `summary.json`).
 pub fn run_with_summary(opts: &RunOptions, quiet: bool) -> Result<FractureSummary, CliError> {
+    run_on(opts, quiet, None)
+}
+
+/// [`run`] on the processes of `comm` when it has several (every process calls it; rank 0
+/// writes the outputs, and the summary it returns is the run's), on this process otherwise.
+pub fn run_on(
+    opts: &RunOptions,
+    quiet: bool,
+    comm: Option<&dyn xper_domain::Communicator>,
+) -> Result<FractureSummary, CliError> {
     let (scene, mut model) = load_model(&opts.scene)?;
-    crate::run::create_output_dir(&opts.out.join("frames"))?;
+    let distributed = comm.filter(|c| c.size() > 1);
+    let root = distributed.is_none_or(|c| c.rank() == 0);
+    if root {
+        crate::run::create_output_dir(&opts.out.join("frames"))?;
+    }
     let names: Vec<String> = model.spec.loads.iter().map(|l| l.name.clone()).collect();
     let columns = series_columns(&names);
     let columns: Vec<&str> = columns.iter().map(String::as_str).collect();
@@ -254,7 +284,7 @@ pub fn run_with_summary(opts: &RunOptions, quiet: bool) -> Result<FractureSummar
     };
     if opts.resume {
         out.resume(&mut model)?;
-    } else {
+    } else if root {
         // A checkpoint of an earlier run in the same directory is not this run's.
         let _ = std::fs::remove_file(opts.out.join("checkpoint.bin"));
         out.write_frame(&model)?;
@@ -262,19 +292,31 @@ pub fn run_with_summary(opts: &RunOptions, quiet: bool) -> Result<FractureSummar
     let last = opts
         .stop_at_step
         .map_or(scene.steps, |s| s.min(scene.steps));
-    let bar = crate::run::progress_bar(quiet, scene.steps, model.step);
-    let mut stepper = FractureStepper::new();
+    let bar = crate::run::progress_bar(quiet || !root, scene.steps, model.step);
+    let compare_from =
+        (opts.compare_serial && root && distributed.is_some()).then(|| model.clone());
+    let mut runner: Box<dyn FractureRun + '_> = match distributed {
+        Some(comm) => Box::new(DistributedFractureRun::new(comm, &model)),
+        None => Box::<SerialFracture>::default(),
+    };
     let started = Instant::now();
+    let mut stepping = 0.0;
     let mut failure = None;
     while model.step < last {
-        let (step, error) = match stepper.step(&mut model) {
+        let (step, error) = match runner.step(&mut model) {
             Ok(report) => {
+                stepping += report.wall_time;
                 out.series.push(series_row(&report));
                 let step = model.step;
-                if step % scene.output.frame_every == 0 || step == scene.steps {
+                let frame = step % scene.output.frame_every == 0 || step == scene.steps;
+                let checkpoint = step % scene.output.checkpoint_every == 0;
+                if frame || checkpoint {
+                    runner.sync(&mut model);
+                }
+                if frame && root {
                     out.write_frame(&model)?;
                 }
-                if step % scene.output.checkpoint_every == 0 {
+                if checkpoint && root {
                     out.write_checkpoint(&model)?;
                 }
                 if step % 10 == 0 || step == last {
@@ -287,11 +329,21 @@ pub fn run_with_summary(opts: &RunOptions, quiet: bool) -> Result<FractureSummar
                 continue;
             }
             Err(e @ FractureStepError::Diverging(_)) => {
-                // The diverged state is shown, not checkpointed.
-                out.write_frame(&model)?;
+                // Every process meets it together. The diverged state is shown, not
+                // checkpointed.
+                runner.sync(&mut model);
+                if root {
+                    out.write_frame(&model)?;
+                }
                 (model.step, e.to_string())
             }
-            Err(e) => (model.step + 1, e.to_string()),
+            Err(e) => {
+                if let Some(comm) = distributed {
+                    // This process may be alone in failing: the others would wait for it.
+                    comm.abort(&format!("step {}: {e}", model.step + 1), 1);
+                }
+                (model.step + 1, e.to_string())
+            }
         };
         let checkpoint = opts.out.join("checkpoint.bin");
         let kept = if checkpoint.exists() {
@@ -306,6 +358,32 @@ pub fn run_with_summary(opts: &RunOptions, quiet: bool) -> Result<FractureSummar
         break;
     }
     bar.finish_and_clear();
+    let wall = started.elapsed().as_secs_f64();
+    if failure.is_none() {
+        runner.sync(&mut model);
+    }
+    let ranks = runner.rank_summaries(wall);
+    let processes = runner.processes();
+    let comparison = match compare_from.filter(|_| failure.is_none()) {
+        Some(start) => Some(compare_serial(start, &model, stepping, processes)?),
+        None => None,
+    };
+    let status = crate::run::run_status(failure.is_some(), model.step == scene.steps);
+    let message = failure.clone().unwrap_or_default();
+    let mut s = summary(
+        &model,
+        &out.series,
+        (&scene.name, &opts.scene),
+        status,
+        message,
+    );
+    (s.processes, s.ranks, s.serial_comparison) = (processes, ranks, comparison);
+    if !root {
+        return match failure {
+            Some(message) => Err(CliError::Runtime(message)),
+            None => Ok(s),
+        };
+    }
     if failure.is_none() {
         out.write_checkpoint(&model)?;
     } else {
@@ -313,15 +391,6 @@ pub fn run_with_summary(opts: &RunOptions, quiet: bool) -> Result<FractureSummar
             .write_csv(&opts.out.join("series.csv"))
             .map_err(io_err)?;
     }
-    let status = crate::run::run_status(failure.is_some(), model.step == scene.steps);
-    let message = failure.clone().unwrap_or_default();
-    let s = summary(
-        &model,
-        &out.series,
-        (&scene.name, &opts.scene),
-        status,
-        message,
-    );
     write_json_atomic(&opts.out.join("summary.json"), &s).map_err(io_err)?;
     write_series_plot(&out.series, &opts.out.join("series.png"), &scene.name).map_err(io_err)?;
     let fd = opts.out.join("force_displacement.png");
@@ -330,10 +399,10 @@ pub fn run_with_summary(opts: &RunOptions, quiet: bool) -> Result<FractureSummar
         .map_err(io_err)?;
     if !quiet {
         eprintln!(
-            "{status}: {} of {} steps in {:.2} s, {} broken points, outputs in {}",
+            "{status}: {} of {} steps in {wall:.2} s on {processes} process(es), {} broken points, \
+             outputs in {}",
             model.step,
             scene.steps,
-            started.elapsed().as_secs_f64(),
             model.broken_points(),
             opts.out.display()
         );

@@ -149,12 +149,109 @@ fn what_a_distributed_run_cannot_do_is_refused_on_every_process() {
     );
 }
 
+/// The coarse Nooru-Mohamed scene cut to 400 steps (cracks start from both notches), with
+/// the tolerance `tolerance`.
+fn fracture_scene(dir: &Path, name: &str, tolerance: &str) -> std::path::PathBuf {
+    let source =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/nooru_mohamed_small/scene.toml");
+    let text = std::fs::read_to_string(source)
+        .unwrap()
+        .replace("steps = 1500", "steps = 400")
+        .replace("frame_every = 50", "frame_every = 100")
+        .replace("checkpoint_every = 500", "checkpoint_every = 200")
+        .replace("tolerance = 1.666e-4", &format!("tolerance = {tolerance}"));
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn fracture_run(ranks: usize, scene: &Path, out: &Path, extra: &[&str]) -> Vec<[f64; 6]> {
+    let (scene, out) = (scene.to_str().unwrap(), out.to_str().unwrap());
+    let mut args = vec!["run", scene, "--out", out, "--quiet"];
+    args.extend_from_slice(extra);
+    assert_success(&if ranks == 0 {
+        xper(&args)
+    } else {
+        mpirun(ranks, &args)
+    });
+    xper_cli::run_fracture::checkpoint_displacements(Path::new(out))
+        .unwrap()
+        .1
+}
+
+fn displacement_difference(a: &[[f64; 6]], b: &[[f64; 6]]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    (a.iter().zip(b))
+        .flat_map(|(x, y)| (0..6).map(|d| (x[d] - y[d]).abs()))
+        .fold(0.0, f64::max)
+}
+
 #[test]
-fn a_fracture_scene_under_mpirun_is_refused_instead_of_run_twice() {
+fn mpirun_fracture_run_agrees_with_the_serial_run_and_resumes_on_another_count() {
     let dir = temp_dir("mpi_fracture");
-    let scene =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/bimaterial_small/scene.toml");
-    refused_on_two_processes(&scene, &dir, "fracture scenes run on one process");
+    let scene = fracture_scene(&dir, "nm.toml", "1.666e-4");
+    let finer = fracture_scene(&dir, "nm_finer.toml", "1.666e-6");
+    let serial = fracture_run(0, &scene, &dir.join("serial"), &[]);
+    let spread =
+        displacement_difference(&serial, &fracture_run(0, &finer, &dir.join("finer"), &[]));
+    assert!(spread > 0.0, "the two tolerances gave the same run");
+    let one = fracture_run(1, &scene, &dir.join("np1"), &[]);
+    assert_eq!(one, serial, "mpirun -np 1");
+    let out = dir.join("np2");
+    let two = fracture_run(2, &scene, &out, &["--compare-serial"]);
+    let d = displacement_difference(&two, &serial);
+    eprintln!("fracture on 2 processes: {d:.3e} m from serial (serial error {spread:.3e} m)");
+    assert!(
+        d <= 10.0 * spread,
+        "2 processes: {d:.3e} m vs {spread:.3e} m"
+    );
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["processes"], 2);
+    let reported = summary["serial_comparison"]["max_position_difference_m"]
+        .as_f64()
+        .unwrap();
+    assert!(
+        (reported - d).abs() <= 1e-15,
+        "--compare-serial: {reported:e} vs {d:e}"
+    );
+    let owned: u64 = (summary["ranks"].as_array().unwrap().iter())
+        .map(|r| r["bodies"].as_u64().unwrap())
+        .sum();
+    assert_eq!(
+        owned,
+        summary["elements"].as_u64().unwrap(),
+        "every element owned once"
+    );
+    let serial_summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("serial/summary.json")).unwrap())
+            .unwrap();
+    assert_eq!(
+        summary["final_broken_points"],
+        serial_summary["final_broken_points"]
+    );
+    let pvd = std::fs::read_to_string(out.join("result.pvd")).unwrap();
+    assert_eq!(
+        pvd.matches("<DataSet").count(),
+        2 * 5,
+        "frames at 0, 100, ..., 400"
+    );
+    // Stopped at step 200 on 2 processes, resumed on 3.
+    let stopped = dir.join("resumed_np3");
+    fracture_run(2, &scene, &stopped, &["--stop-at-step", "200"]);
+    let resumed = fracture_run(3, &scene, &stopped, &["--resume"]);
+    let d = displacement_difference(&resumed, &two);
+    eprintln!("fracture resumed on 3 processes: {d:.3e} m from the run on 2");
+    assert!(
+        d <= 10.0 * spread,
+        "resumed on 3: {d:.3e} m vs {spread:.3e} m"
+    );
+    let series = std::fs::read_to_string(stopped.join("series.csv")).unwrap();
+    assert_eq!(
+        series.lines().count(),
+        401,
+        "header and one row per step after the resume"
+    );
 }
 
 /// `mpirun -np 2 xper run scene` exits with code 2 and a message containing `expected`.
