@@ -7,13 +7,19 @@
 # time of the same steps is measured in the same invocation, right after the distributed run).
 #   - box10k, all 1500 steps (deposit: fall, collapse, settled bed);
 #   - box100k, the first STEPS_100K steps (default 100: free fall and first contacts).
+#   - nooru_mohamed (the paper's mesh, 36,351 elements), the first STEPS_NM steps (default
+#     500: loading, damage at both notches).
 # Weak scaling: a deposit of 2500 disks per process on 1, 2 and 4 processes (oversubscribed on
 # a 2-core machine), 300 steps; reported as communication volume per step per process.
+# CASES (default "rigid fracture weak") selects parts; the table and scaling.json cover every
+# run found under bench-results/scaling.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_mpi_yield_when_idle=1
 STEPS_100K=${STEPS_100K:-100}
+STEPS_NM=${STEPS_NM:-500}
+CASES=${CASES:-rigid fracture weak}
 cargo build --release -p xper-cli --features mpi
 XPER=target/release/xper
 OUT=bench-results/scaling
@@ -31,7 +37,13 @@ no_outputs() { printf '\n[output]\nframe_every = %s\ncheckpoint_every = %s\n' "$
 { cat scenes/box10k/scene.toml; no_outputs 1500; } > "$OUT/scenes/box10k.toml"
 { sed "s/^steps = .*/steps = $STEPS_100K/" scenes/box100k/scene.toml; no_outputs "$STEPS_100K"; } \
   > "$OUT/scenes/box100k_head.toml"
-for name in box10k box100k_head; do
+sed -e "s/^steps = .*/steps = $STEPS_NM/" -e "s/^frame_every = .*/frame_every = $STEPS_NM/" \
+  -e "s/^checkpoint_every = .*/checkpoint_every = $STEPS_NM/" scenes/nooru_mohamed/scene.toml \
+  > "$OUT/scenes/nooru_mohamed_head.toml"
+strong=()
+[[ " $CASES " == *" rigid "* ]] && strong+=(box10k box100k_head)
+[[ " $CASES " == *" fracture "* ]] && strong+=(nooru_mohamed_head)
+for name in "${strong[@]}"; do
   scene="$OUT/scenes/$name.toml"
   rm -rf "$OUT/serial_$name"
   "$XPER" run "$scene" --out "$OUT/serial_$name" --quiet
@@ -39,7 +51,7 @@ for name in box10k box100k_head; do
 done
 
 # Weak scaling.
-for np in 1 2 4; do
+[[ " $CASES " == *" weak "* ]] && for np in 1 2 4; do
   count=$((2500 * np))
   width=$(python3 -c "print(0.1 * $count / 300.0)")
   cat > "$OUT/scenes/weak_np$np.toml" <<TOML
