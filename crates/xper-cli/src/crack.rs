@@ -161,3 +161,75 @@ pub fn crack_metrics(m: &FractureModel) -> CrackMetrics {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The coarse Nooru-Mohamed model (1491 elements), no interface damaged.
+    fn model() -> FractureModel {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../scenes/nooru_mohamed_small/scene.toml");
+        crate::run_fracture::load_model(&path).unwrap().1
+    }
+
+    /// Breaks the interfaces whose reference midpoint satisfies `select`; returns their
+    /// total length, computed here independently of `crack_metrics`.
+    fn break_where(m: &mut FractureModel, select: impl Fn([f64; 2]) -> bool) -> f64 {
+        let chosen: Vec<usize> = (0..m.interfaces.len())
+            .filter(|&k| select(midpoint(m, &m.interfaces[k])))
+            .collect();
+        let mut length = 0.0;
+        for k in chosen {
+            let i = &mut m.interfaces[k];
+            for p in &mut i.points {
+                p.intensity = 0.0;
+            }
+            length += i.length;
+        }
+        length
+    }
+
+    #[test]
+    fn a_sound_specimen_has_no_crack() {
+        let c = crack_metrics(&model());
+        assert_eq!((c.broken_interfaces, c.damaged_interfaces), (0, 0));
+        assert_eq!((c.broken_length_m, c.point_symmetry), (0.0, 0.0));
+        assert!(c.edge_length_m > 0.005 && c.edge_length_m < 0.015, "{}", c.edge_length_m);
+    }
+
+    #[test]
+    fn a_band_across_the_centre_is_symmetric_and_a_band_on_one_side_is_not() {
+        let mut m = model();
+        let (centre, edge) = (mesh_centre(&m), crack_metrics(&m).edge_length_m);
+        let length = break_where(&mut m, |p| (p[1] - centre[1]).abs() < 0.5 * edge);
+        let c = crack_metrics(&m);
+        assert!((c.broken_length_m - length).abs() <= 1e-12 * length);
+        let [left, right] = c.broken_length_left_right_m;
+        assert!((left + right - length).abs() <= 1e-12 * length);
+        assert!(left > 0.3 * length && right > 0.3 * length, "{left} / {right}");
+        assert!(c.height_left_right_m.iter().all(|&h| h < edge), "{:?}", c.height_left_right_m);
+        assert!(c.mirror_symmetry > 0.95 && c.point_symmetry > 0.95, "{c:?}");
+        assert_eq!(c.broken_length_by_regions.len(), 1);
+
+        let mut m = model();
+        let length = break_where(&mut m, |p| {
+            (p[1] - centre[1]).abs() < 0.5 * edge && p[0] < centre[0] - 3.0 * edge
+        });
+        let c = crack_metrics(&m);
+        assert_eq!(c.broken_length_left_right_m, [c.broken_length_m, 0.0]);
+        assert!((c.broken_length_m - length).abs() <= 1e-12 * length);
+        assert_eq!((c.mirror_symmetry, c.point_symmetry), (0.0, 0.0));
+    }
+
+    #[test]
+    fn partly_damaged_interfaces_are_counted_apart_from_broken_ones() {
+        let mut m = model();
+        for (k, i) in m.interfaces.iter_mut().take(10).enumerate() {
+            i.points[0].intensity = if k < 4 { 0.5 } else { 0.0 };
+            i.points[1].intensity = if k < 7 { 0.5 } else { 0.0 };
+        }
+        let c = crack_metrics(&m);
+        assert_eq!((c.broken_interfaces, c.damaged_interfaces), (3, 7));
+    }
+}
