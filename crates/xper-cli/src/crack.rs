@@ -195,7 +195,11 @@ mod tests {
         let c = crack_metrics(&model());
         assert_eq!((c.broken_interfaces, c.damaged_interfaces), (0, 0));
         assert_eq!((c.broken_length_m, c.point_symmetry), (0.0, 0.0));
-        assert!(c.edge_length_m > 0.005 && c.edge_length_m < 0.015, "{}", c.edge_length_m);
+        assert!(
+            c.edge_length_m > 0.005 && c.edge_length_m < 0.015,
+            "{}",
+            c.edge_length_m
+        );
     }
 
     #[test]
@@ -207,8 +211,15 @@ mod tests {
         assert!((c.broken_length_m - length).abs() <= 1e-12 * length);
         let [left, right] = c.broken_length_left_right_m;
         assert!((left + right - length).abs() <= 1e-12 * length);
-        assert!(left > 0.3 * length && right > 0.3 * length, "{left} / {right}");
-        assert!(c.height_left_right_m.iter().all(|&h| h < edge), "{:?}", c.height_left_right_m);
+        assert!(
+            left > 0.3 * length && right > 0.3 * length,
+            "{left} / {right}"
+        );
+        assert!(
+            c.height_left_right_m.iter().all(|&h| h < edge),
+            "{:?}",
+            c.height_left_right_m
+        );
         assert!(c.mirror_symmetry > 0.95 && c.point_symmetry > 0.95, "{c:?}");
         assert_eq!(c.broken_length_by_regions.len(), 1);
 

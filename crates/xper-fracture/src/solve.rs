@@ -2,9 +2,7 @@
 //! solver when the model is a part of a distributed one (the `xper-domain` crate). The
 //! stepper also asks it to sum the step's totals over the processes.
 
-use xper_solver::{
-    nlgs_with_cohesion, CohesiveTerm, NlgsParams, SolveError, SolveInfo,
-};
+use xper_solver::{nlgs_with_cohesion, CohesiveTerm, NlgsParams, SolveError, SolveInfo};
 
 use crate::operator::ElementContactOperator;
 
