@@ -103,17 +103,11 @@ pub fn point_position(m: &FractureModel, i: &Interface, k: usize) -> [f64; 2] {
     [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])]
 }
 
-/// Whether an interface is fully broken: a cohesive interface whose two points have lost
-/// all adhesion (pre-cracks included). Contact-law interfaces never count as broken.
-pub fn is_broken(m: &FractureModel, i: &Interface) -> bool {
-    m.is_broken(i)
-}
-
 /// Whether a cohesive interface has lost some adhesion without being fully broken.
 pub fn is_damaged(m: &FractureModel, i: &Interface) -> bool {
     match m.laws[i.law as usize] {
         InterfaceLaw::Cohesive(z) => {
-            !is_broken(m, i) && i.points.iter().any(|p| p.intensity < z.initial_damage)
+            !m.is_broken(i) && i.points.iter().any(|p| p.intensity < z.initial_damage)
         }
         InterfaceLaw::Contact { .. } => false,
     }
@@ -154,7 +148,7 @@ pub fn interfaces_grid(m: &FractureModel) -> UnstructuredGrid {
         for (c, v) in columns.iter_mut().zip(values) {
             c.push(v);
         }
-        broken.push(i32::from(is_broken(m, i)));
+        broken.push(i32::from(m.is_broken(i)));
         law.push(i32::from(i.law));
     }
     let names = [

@@ -8,7 +8,7 @@ use xper_bodies::Drive;
 use xper_fracture::{FractureEnergy, FractureModel, FractureStepReport, InterfaceLaw};
 use xper_io::{plot_panels, plot_segments, Curve, Panel, SegmentLayer, SeriesTable};
 
-use crate::fracture_frames::{is_broken, is_damaged, point_position};
+use crate::fracture_frames::{is_damaged, point_position};
 
 /// Per-load columns of `series.csv`, after `step` and `time`: `<name>_fx`, `<name>_fy` (N),
 /// `<name>_ux`, `<name>_uy` (m) for each load in scene order.
@@ -167,7 +167,7 @@ pub fn summary(
         max_iterations: sorted.last().copied().unwrap_or(0.0),
         non_converged_steps: col("converged").iter().filter(|&&c| c == 0.0).count(),
         final_broken_points: m.broken_points(),
-        final_broken_interfaces: m.interfaces.iter().filter(|i| is_broken(m, i)).count(),
+        final_broken_interfaces: m.broken_interfaces(),
         energy: m.energy,
         energy_error: m.energy.error(),
         crack: crate::crack::crack_metrics(m),
@@ -311,7 +311,7 @@ pub fn write_crack_pattern(m: &FractureModel, path: &Path, title: &str) -> std::
         let seg = [point_position(m, i, 0), point_position(m, i, 1)];
         let [a, b] = i.elements.map(|e| m.elements[e as usize].region);
         let beta = i.points[0].intensity.min(i.points[1].intensity);
-        let k = if is_broken(m, i) {
+        let k = if m.is_broken(i) {
             4
         } else if is_damaged(m, i) && beta < STRONG_DAMAGE {
             3

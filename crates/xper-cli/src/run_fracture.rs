@@ -11,7 +11,7 @@ use xper_fracture::{FractureEnergy, FractureModel, FractureStepError, PointState
 use xper_io::{write_atomic, write_json_atomic, write_vtu, PvdCollection, SeriesTable};
 use xper_scene::{FractureScene, MeshSource};
 
-use crate::fracture_frames::{elements_grid, interfaces_grid, is_broken};
+use crate::fracture_frames::{elements_grid, interfaces_grid};
 use crate::fracture_outputs::{
     series_columns, series_row, summary, write_crack_pattern, write_force_displacement,
     write_series_plot, FractureSummary,
@@ -70,9 +70,7 @@ pub fn check(path: &Path) -> Result<(), CliError> {
         model.elements.len(),
         mesh.nodes.len(),
         model.interfaces.len(),
-        (model.interfaces.iter())
-            .filter(|i| is_broken(&model, i))
-            .count(),
+        model.broken_interfaces(),
         scene.steps,
         scene.dt
     );
