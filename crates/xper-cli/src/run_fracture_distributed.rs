@@ -106,14 +106,11 @@ pub fn compare_serial(
             .map_err(|e| CliError::Runtime(format!("--compare-serial: serial run: {e}")))?;
     }
     let serial = clock.elapsed().as_secs_f64();
-    let difference = (start.elements.iter().zip(&end.elements))
-        .flat_map(|(a, b)| (0..6).map(|d| (a.displacement[d] - b.displacement[d]).abs()))
-        .fold(0.0, f64::max);
     Ok(SerialComparison::new(
         steps,
         distributed_wall,
         serial,
         processes,
-        difference,
+        start.largest_displacement_difference(end),
     ))
 }

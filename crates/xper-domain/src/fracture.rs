@@ -42,7 +42,6 @@ pub struct DistributedFracture<'c, C: Communicator + ?Sized> {
     interfaces: Vec<u32>,
     /// The whole model's energy budget after the last step.
     energy: FractureEnergy,
-    contacts: usize,
 }
 
 impl<'c, C: Communicator + ?Sized> DistributedFracture<'c, C> {
@@ -90,7 +89,6 @@ impl<'c, C: Communicator + ?Sized> DistributedFracture<'c, C> {
             elements,
             interfaces,
             energy: whole.energy,
-            contacts: 0,
         }
     }
 
@@ -101,7 +99,6 @@ impl<'c, C: Communicator + ?Sized> DistributedFracture<'c, C> {
         let report = self.stepper.step_with(&mut self.part, &mut self.solve);
         if let Ok(r) = &report {
             self.energy = r.energy;
-            self.contacts = 2 * self.part.interfaces.len();
         }
         report
     }
@@ -162,7 +159,7 @@ impl<'c, C: Communicator + ?Sized> DistributedFracture<'c, C> {
         RankLoad {
             bodies: self.elements.len() - shadows,
             shadows,
-            contacts: self.contacts,
+            contacts: 2 * self.part.interfaces.len(),
             interface_bodies: self.solve.interface.shared_count(),
             migrated_in: 0,
         }

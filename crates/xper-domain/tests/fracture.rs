@@ -56,12 +56,6 @@ fn distributed(
     (whole, reports, loads)
 }
 
-fn displacement_difference(a: &FractureModel, b: &FractureModel) -> f64 {
-    (a.elements.iter().zip(&b.elements))
-        .flat_map(|(x, y)| (0..6).map(|d| (x.displacement[d] - y.displacement[d]).abs()))
-        .fold(0.0, f64::max)
-}
-
 fn largest_displacement(a: &FractureModel) -> f64 {
     (a.elements.iter())
         .flat_map(|x| x.displacement.map(f64::abs))
@@ -73,7 +67,7 @@ fn one_process_is_the_serial_run_bit_for_bit() {
     let model = scene_model(1.666e-4);
     let (serial, serial_reports) = serial(model.clone(), 60);
     let (whole, reports, loads) = distributed(&model, 1, 60);
-    assert_eq!(displacement_difference(&serial, &whole), 0.0);
+    assert_eq!(serial.largest_displacement_difference(&whole), 0.0);
     for (a, b) in serial_reports.iter().zip(&reports) {
         assert_eq!(
             (a.iterations, a.energy, &a.loads),
@@ -90,14 +84,14 @@ fn two_and_four_processes_agree_with_the_serial_run_within_its_own_error() {
     let model = scene_model(tolerance);
     let (reference, reference_reports) = serial(model.clone(), STEPS);
     let (tight, _) = serial(scene_model(tolerance / 100.0), STEPS);
-    let serial_error = displacement_difference(&reference, &tight);
+    let serial_error = reference.largest_displacement_difference(&tight);
     let scale = largest_displacement(&reference);
     let broken = reference.broken_points();
     println!("serial error {serial_error:.3e} m of {scale:.3e} m; {broken} broken points");
     assert!(broken > 0, "the run must break interfaces");
     for ranks in [2, 4] {
         let (whole, reports, loads) = distributed(&model, ranks, STEPS);
-        let difference = displacement_difference(&reference, &whole);
+        let difference = reference.largest_displacement_difference(&whole);
         let shared: usize = loads.iter().map(|l| l.interface_bodies).sum();
         let force = |r: &[FractureStepReport]| r.last().unwrap().loads[0].force[1];
         println!(
@@ -130,7 +124,7 @@ fn the_difference_shrinks_with_the_tolerance() {
             let model = scene_model(tolerance);
             let (reference, _) = serial(model.clone(), 300);
             let (whole, _, _) = distributed(&model, 3, 300);
-            displacement_difference(&reference, &whole)
+            reference.largest_displacement_difference(&whole)
         })
         .collect();
     println!(
@@ -146,18 +140,18 @@ fn a_run_resumed_on_another_process_count_continues_the_uninterrupted_run() {
     let model = scene_model(tolerance);
     let (reference, _) = serial(model.clone(), 400);
     let (tight, _) = serial(scene_model(tolerance / 100.0), 400);
-    let serial_error = displacement_difference(&reference, &tight);
+    let serial_error = reference.largest_displacement_difference(&tight);
     let (halfway, _, _) = distributed(&model, 2, 200);
     assert_eq!(halfway.step, 200);
     let (resumed, _, _) = distributed(&halfway, 3, 200);
     assert_eq!(resumed.step, 400);
-    let difference = displacement_difference(&reference, &resumed);
+    let difference = reference.largest_displacement_difference(&resumed);
     println!("2 then 3 processes: {difference:.3e} m (serial error {serial_error:.3e} m)");
     assert!(difference <= 10.0 * serial_error);
     let (same, _, _) = distributed(&halfway, 2, 200);
     let (straight, _, _) = distributed(&model, 2, 400);
     assert_eq!(
-        displacement_difference(&same, &straight),
+        same.largest_displacement_difference(&straight),
         0.0,
         "resume on the same count"
     );

@@ -423,6 +423,14 @@ impl FractureModel {
             && i.points.iter().all(|p| p.intensity == 0.0)
     }
 
+    /// Largest difference of a nodal displacement component between this model and `other`,
+    /// element by element (m): how far two runs of the same model ended apart.
+    pub fn largest_displacement_difference(&self, other: &FractureModel) -> f64 {
+        (self.elements.iter().zip(&other.elements))
+            .flat_map(|(a, b)| (0..6).map(|d| (a.displacement[d] - b.displacement[d]).abs()))
+            .fold(0.0, f64::max)
+    }
+
     /// Number of fully broken interfaces ([`FractureModel::is_broken`]).
     pub fn broken_interfaces(&self) -> usize {
         self.interfaces.iter().filter(|i| self.is_broken(i)).count()
