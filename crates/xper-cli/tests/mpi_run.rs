@@ -40,7 +40,9 @@ fn distance(a: &World, b: &World) -> f64 {
         .fold(0.0, f64::max)
 }
 
-fn run(ranks: usize, scene: &Path, out: &Path, extra: &[&str]) -> World {
+/// `xper run scene --out out --quiet extra..`: the plain binary for `ranks` 0, else under
+/// `mpirun -np ranks`; it must succeed.
+fn run_xper(ranks: usize, scene: &Path, out: &Path, extra: &[&str]) {
     let (scene, out) = (scene.to_str().unwrap(), out.to_str().unwrap());
     let mut args = vec!["run", scene, "--out", out, "--quiet"];
     args.extend_from_slice(extra);
@@ -49,7 +51,46 @@ fn run(ranks: usize, scene: &Path, out: &Path, extra: &[&str]) -> World {
     } else {
         mpirun(ranks, &args)
     });
-    checkpoint(Path::new(out))
+}
+
+fn run(ranks: usize, scene: &Path, out: &Path, extra: &[&str]) -> World {
+    run_xper(ranks, scene, out, extra);
+    checkpoint(out)
+}
+
+fn summary(out: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+}
+
+/// Checks the summary of a distributed run in `out` with `--compare-serial`: its process
+/// count, the difference it reports (`difference`, measured by the test), a positive
+/// efficiency, and `owned` bodies owned once over the ranks. Returns the summary.
+fn assert_distributed_summary(
+    out: &Path,
+    processes: usize,
+    difference: f64,
+    owned: u64,
+) -> serde_json::Value {
+    let summary = summary(out);
+    assert_eq!(summary["processes"], processes);
+    let comparison = &summary["serial_comparison"];
+    let reported = comparison["max_position_difference_m"].as_f64().unwrap();
+    assert!(
+        (reported - difference).abs() <= 1e-15,
+        "--compare-serial: {reported:e} vs {difference:e}"
+    );
+    assert!(comparison["efficiency"].as_f64().unwrap() > 0.0);
+    let counted: u64 = (summary["ranks"].as_array().unwrap().iter())
+        .map(|r| r["bodies"].as_u64().unwrap())
+        .sum();
+    assert_eq!(counted, owned, "every body owned by one process");
+    summary
+}
+
+/// Frames listed in `result.pvd` (one data set per part and step).
+fn data_sets(out: &Path) -> usize {
+    let pvd = std::fs::read_to_string(out.join("result.pvd")).unwrap();
+    pvd.matches("<DataSet").count()
 }
 
 #[test]
@@ -82,29 +123,8 @@ fn mpirun_xper_run_agrees_with_the_serial_run_and_resumes_on_another_count() {
             d <= 10.0 * spread,
             "{ranks} processes: {d:.3e} m vs {spread:.3e} m"
         );
-        let summary: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
-                .unwrap();
-        assert_eq!(summary["processes"], ranks);
-        let comparison = &summary["serial_comparison"];
-        let reported = comparison["max_position_difference_m"].as_f64().unwrap();
-        assert!(
-            (reported - d).abs() <= 1e-15,
-            "--compare-serial: {reported:e} vs {d:e}"
-        );
-        assert!(comparison["efficiency"].as_f64().unwrap() > 0.0);
-        let ranks_list = summary["ranks"].as_array().unwrap();
-        let owned: u64 = ranks_list
-            .iter()
-            .map(|r| r["bodies"].as_u64().unwrap())
-            .sum();
-        assert_eq!(owned, 400, "every disk owned by one process");
-        let pvd = std::fs::read_to_string(out.join("result.pvd")).unwrap();
-        assert_eq!(
-            pvd.matches("<DataSet").count(),
-            3 * 7,
-            "frames at 0, 50, ..., 300"
-        );
+        assert_distributed_summary(&out, ranks, d, 400);
+        assert_eq!(data_sets(&out), 3 * 7, "frames at 0, 50, ..., 300");
     }
     // Stopped at step 160 on 2 processes, resumed on 4 and on this process alone.
     let stopped = dir.join("resumed_np4");
@@ -166,15 +186,8 @@ fn fracture_scene(dir: &Path, name: &str, tolerance: &str) -> std::path::PathBuf
 }
 
 fn fracture_run(ranks: usize, scene: &Path, out: &Path, extra: &[&str]) -> Vec<[f64; 6]> {
-    let (scene, out) = (scene.to_str().unwrap(), out.to_str().unwrap());
-    let mut args = vec!["run", scene, "--out", out, "--quiet"];
-    args.extend_from_slice(extra);
-    assert_success(&if ranks == 0 {
-        xper(&args)
-    } else {
-        mpirun(ranks, &args)
-    });
-    xper_cli::run_fracture::checkpoint_displacements(Path::new(out))
+    run_xper(ranks, scene, out, extra);
+    xper_cli::run_fracture::checkpoint_displacements(out)
         .unwrap()
         .1
 }
@@ -205,37 +218,13 @@ fn mpirun_fracture_run_agrees_with_the_serial_run_and_resumes_on_another_count()
         d <= 10.0 * spread,
         "2 processes: {d:.3e} m vs {spread:.3e} m"
     );
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-    assert_eq!(summary["processes"], 2);
-    let reported = summary["serial_comparison"]["max_position_difference_m"]
-        .as_f64()
-        .unwrap();
-    assert!(
-        (reported - d).abs() <= 1e-15,
-        "--compare-serial: {reported:e} vs {d:e}"
-    );
-    let owned: u64 = (summary["ranks"].as_array().unwrap().iter())
-        .map(|r| r["bodies"].as_u64().unwrap())
-        .sum();
-    assert_eq!(
-        owned,
-        summary["elements"].as_u64().unwrap(),
-        "every element owned once"
-    );
-    let serial_summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("serial/summary.json")).unwrap())
-            .unwrap();
+    let elements = summary(&out)["elements"].as_u64().unwrap();
+    let summary = assert_distributed_summary(&out, 2, d, elements);
     assert_eq!(
         summary["final_broken_points"],
-        serial_summary["final_broken_points"]
+        self::summary(&dir.join("serial"))["final_broken_points"]
     );
-    let pvd = std::fs::read_to_string(out.join("result.pvd")).unwrap();
-    assert_eq!(
-        pvd.matches("<DataSet").count(),
-        2 * 5,
-        "frames at 0, 100, ..., 400"
-    );
+    assert_eq!(data_sets(&out), 2 * 5, "frames at 0, 100, ..., 400");
     // Stopped at step 200 on 2 processes, resumed on 3.
     let stopped = dir.join("resumed_np3");
     fracture_run(2, &scene, &stopped, &["--stop-at-step", "200"]);
