@@ -12,6 +12,7 @@ pub mod frames;
 pub mod run;
 pub mod run_distributed;
 pub mod run_fluid;
+pub mod run_fluid_distributed;
 pub mod run_fracture;
 pub mod run_fracture_distributed;
 pub mod solve;

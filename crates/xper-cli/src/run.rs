@@ -244,13 +244,7 @@ pub fn run_on(
         xper_scene::load_scene(&opts.scene).map_err(|e| CliError::BadInput(e.to_string()))?;
     let distributed = comm.filter(|c| c.size() > 1);
     if scene.fluid.is_some() {
-        if distributed.is_some() {
-            return Err(CliError::BadInput(format!(
-                "{}: fluid scenes run on one process (the distributed fluid is not built yet)",
-                opts.scene.display()
-            )));
-        }
-        return crate::run_fluid::run(opts, &scene, fnv1a(&text), quiet);
+        return crate::run_fluid::run(opts, &scene, fnv1a(&text), quiet, distributed);
     }
     let dumps = &scene.output.dump_problems;
     if !dumps.is_empty() && !cfg!(feature = "hdf5") {

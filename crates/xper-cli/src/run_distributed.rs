@@ -43,6 +43,8 @@ pub struct RankSummary {
     pub interface_bodies: usize,
     /// Bodies received by migration during the run.
     pub migrated_in: u64,
+    /// Fluid cells held (runs with a fluid).
+    pub cells: usize,
     /// Messages sent.
     pub messages: u64,
     /// Bytes sent.
@@ -190,6 +192,7 @@ pub fn rank_summaries(comm: &dyn Communicator, load: RankLoad, wall: f64) -> Vec
         stats.messages as f64,
         stats.bytes as f64,
         stats.time.as_secs_f64(),
+        load.cells as f64,
     ];
     (comm.all_gather(&mine).iter().enumerate())
         .map(|(rank, v)| RankSummary {
@@ -199,6 +202,7 @@ pub fn rank_summaries(comm: &dyn Communicator, load: RankLoad, wall: f64) -> Vec
             contacts: v[2] as usize,
             interface_bodies: v[3] as usize,
             migrated_in: v[4] as u64,
+            cells: v[8] as usize,
             messages: v[5] as u64,
             bytes: v[6] as u64,
             communication_s: v[7],

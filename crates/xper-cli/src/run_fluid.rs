@@ -2,17 +2,23 @@
 //! one fluid frame (`.vti`: velocity, pressure, vorticity, solid fraction) and the bodies and
 //! contacts (`.vtu`) per output step, `series.csv` (one row per step), `particles.csv` (each
 //! immersed disk at each step: position, velocity, hydrodynamic force), `series.png`,
-//! `particles.png`, `summary.json` and checkpoints (`--resume`).
+//! `particles.png`, `summary.json` and checkpoints (`--resume`). Under `mpirun` the grid is cut
+//! into blocks of rows, one per process ([`crate::run_fluid_distributed`]); rank 0 writes.
 
 use crate::frames::{bodies_grid, contacts_grid};
-use crate::run::{create_output_dir, progress_bar, read_checkpoint, run_status, RunOptions};
+use crate::run::{
+    create_output_dir, progress_bar, read_checkpoint, run_status, RunOptions, SerialComparison,
+};
+use crate::run_distributed::RankSummary;
+use crate::run_fluid_distributed::{compare_serial, DistributedFluidRun, FluidRun, SerialFluid};
 use crate::world_from_scene::world_from_scene;
 use crate::CliError;
 use serde::Serialize;
 use std::path::Path;
 use std::time::Instant;
+use xper_fluid::immersed::ImmersedForcing;
 use xper_fluid::{
-    CoupledReport, CoupledState, CoupledStepper, FluidBoundary, FluidParams, FluidState,
+    CoupledReport, CoupledState, FluidBoundary, FluidParams, FluidState, ImmersedDisk,
     InflowProfile, MacGrid, SideCondition, SolidIndicator,
 };
 use xper_io::{
@@ -140,6 +146,10 @@ struct Summary {
     non_converged_contact_steps: usize,
     peak_memory_bytes: Option<u64>,
     xper_version: &'static str,
+    processes: usize,
+    ranks: Vec<RankSummary>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    serial_comparison: Option<SerialComparison>,
 }
 
 struct Outputs<'a> {
@@ -158,12 +168,13 @@ impl Outputs<'_> {
     fn write_frame(
         &mut self,
         state: &CoupledState,
-        stepper: &CoupledStepper,
+        params: &FluidParams,
+        immersed: &[usize],
     ) -> Result<(), CliError> {
         let (world, step) = (&state.world, state.world.step);
         self.pvd
             .truncate_after(world.time - 1e-9 * world.time.max(1e-300));
-        let fluid = fluid_image(&state.fluid, stepper);
+        let fluid = fluid_image(state, params, immersed);
         let file = format!("frames/fluid_{step:08}.vti");
         write_vti(&self.dir.join(&file), &fluid).map_err(io_err)?;
         self.pvd.push(world.time, 0, file);
@@ -197,20 +208,14 @@ impl Outputs<'_> {
             .map_err(io_err)
     }
 
-    fn push(
-        &mut self,
-        state: &CoupledState,
-        stepper: &CoupledStepper,
-        r: &CoupledReport,
-        density: Real,
-    ) {
+    fn push(&mut self, state: &CoupledState, immersed: &[usize], r: &CoupledReport) {
         let (f, g) = (&r.fluid, &r.grains);
         self.series.push(vec![
             g.step as f64,
             f.time,
             f.dt,
             g.kinetic,
-            state.fluid.kinetic_energy(density),
+            f.kinetic_energy,
             f.max_speed,
             f.pressure.cycles as f64,
             f.pressure.relative_residual,
@@ -224,7 +229,7 @@ impl Outputs<'_> {
             g.times.total,
         ]);
         let bodies = &state.world.bodies;
-        for (&b, force) in stepper.immersed().iter().zip(&f.forces) {
+        for (&b, force) in immersed.iter().zip(&f.forces) {
             let (x, v) = (bodies.position[b], bodies.velocity[b]);
             self.particles.push(vec![
                 g.step as f64,
@@ -244,8 +249,34 @@ impl Outputs<'_> {
     }
 }
 
+/// The solid fraction of every face for the immersed disks where they are now.
+fn solid_fraction(
+    state: &CoupledState,
+    params: &FluidParams,
+    immersed: &[usize],
+) -> ImmersedForcing {
+    let bodies = &state.world.bodies;
+    let disks: Vec<ImmersedDisk> = immersed
+        .iter()
+        .filter_map(|&b| match bodies.shape[b] {
+            xper_bodies::Shape::Disk { radius } => Some(ImmersedDisk {
+                centre: bodies.position[b],
+                radius,
+                velocity: bodies.velocity[b],
+                angular_velocity: bodies.angular_velocity[b],
+            }),
+            _ => None,
+        })
+        .collect();
+    let grid = state.fluid.grid;
+    let mut forcing = ImmersedForcing::new(&grid);
+    forcing.mark(&grid, &params.boundary, &disks, params.indicator);
+    forcing
+}
+
 /// The fluid on its grid at cell centres: velocity, pressure, vorticity, solid fraction.
-fn fluid_image(fluid: &FluidState, stepper: &CoupledStepper) -> ImageGrid {
+fn fluid_image(state: &CoupledState, params: &FluidParams, immersed: &[usize]) -> ImageGrid {
+    let fluid = &state.fluid;
     let g = fluid.grid;
     let n = g.num_cells();
     let (mut velocity, mut pressure, mut vorticity, mut solid) = (
@@ -254,10 +285,8 @@ fn fluid_image(fluid: &FluidState, stepper: &CoupledStepper) -> ImageGrid {
         Vec::with_capacity(n),
         Vec::with_capacity(n),
     );
-    let fraction = [
-        stepper.fluid_solver().solid_fraction(0),
-        stepper.fluid_solver().solid_fraction(1),
-    ];
+    let forcing = solid_fraction(state, params, immersed);
+    let fraction = [forcing.fraction(0), forcing.fraction(1)];
     for j in 0..g.ny {
         for i in 0..g.nx {
             let v = fluid.cell_velocity(i, j);
@@ -286,14 +315,25 @@ fn fluid_image(fluid: &FluidState, stepper: &CoupledStepper) -> ImageGrid {
     }
 }
 
-/// Runs a fluid scene (already loaded and validated) to `scene.steps x scene.dt` seconds.
-pub fn run(opts: &RunOptions, scene: &Scene, scene_hash: u64, quiet: bool) -> Result<(), CliError> {
+/// Runs a fluid scene (already loaded and validated) to `scene.steps x scene.dt` seconds, on
+/// this process or, with `comm` of more than one process, on the blocks of a split grid.
+pub fn run(
+    opts: &RunOptions,
+    scene: &Scene,
+    scene_hash: u64,
+    quiet: bool,
+    comm: Option<&dyn xper_domain::Communicator>,
+) -> Result<(), CliError> {
     let desc = scene
         .fluid
         .as_ref()
         .ok_or_else(|| CliError::BadInput("not a fluid scene".into()))?;
     let params = fluid_params(desc, scene.dt);
-    create_output_dir(&opts.out.join("frames"))?;
+    let distributed = comm.filter(|c| c.size() > 1);
+    let root = distributed.is_none_or(|c| c.rank() == 0);
+    if root {
+        create_output_dir(&opts.out.join("frames"))?;
+    }
     let mut out = Outputs {
         dir: &opts.out,
         series: SeriesTable::new(&FLUID_SERIES_COLUMNS),
@@ -318,25 +358,43 @@ pub fn run(opts: &RunOptions, scene: &Scene, scene_hash: u64, quiet: bool) -> Re
     } else {
         coupled_state(scene, desc, &params)
     };
-    let mut stepper = CoupledStepper::new(&params, &state)
-        .map_err(|e| CliError::BadInput(format!("{}: {e}", opts.scene.display())))?;
-    if !opts.resume {
-        out.write_frame(&state, &stepper)?;
+    let setup =
+        |e: xper_fluid::FluidError| CliError::BadInput(format!("{}: {e}", opts.scene.display()));
+    let mut runner: Box<dyn FluidRun + '_> = match distributed {
+        Some(comm) => Box::new(DistributedFluidRun::new(comm, &params, &state).map_err(setup)?),
+        None => Box::new(SerialFluid::new(&params, &state).map_err(setup)?),
+    };
+    let immersed = runner.immersed().to_vec();
+    if !opts.resume && root {
+        out.write_frame(&state, &params, &immersed)?;
     }
+    let compare_from =
+        (opts.compare_serial && root && distributed.is_some()).then(|| state.clone());
     let duration = scene.steps as Real * scene.dt;
     let end_reached = |time: Real| time >= duration * (1.0 - 1e-12);
-    let bar = progress_bar(quiet, scene.steps, (state.world.time / scene.dt) as u64);
+    let bar = progress_bar(
+        quiet || !root,
+        scene.steps,
+        (state.world.time / scene.dt) as u64,
+    );
     let started = Instant::now();
+    let mut stepping = 0.0;
     let mut failure = None;
     while !end_reached(state.world.time) && opts.stop_at_step.is_none_or(|s| state.world.step < s) {
-        match stepper.step(&params, &mut state) {
+        match runner.step(&mut state) {
             Ok(report) => {
-                out.push(&state, &stepper, &report, params.density);
+                stepping += report.fluid.times[3] + report.grains.times.total;
+                out.push(&state, &immersed, &report);
                 let step = state.world.step;
-                if step % scene.output.frame_every == 0 || end_reached(state.world.time) {
-                    out.write_frame(&state, &stepper)?;
+                let frame = step % scene.output.frame_every == 0 || end_reached(state.world.time);
+                let checkpoint = step % scene.output.checkpoint_every == 0;
+                if frame || checkpoint {
+                    runner.sync(&mut state);
                 }
-                if step % scene.output.checkpoint_every == 0 {
+                if frame && root {
+                    out.write_frame(&state, &params, &immersed)?;
+                }
+                if checkpoint && root {
                     out.write_checkpoint(&state)?;
                 }
                 if step % 10 == 0 {
@@ -351,6 +409,8 @@ pub fn run(opts: &RunOptions, scene: &Scene, scene_hash: u64, quiet: bool) -> Re
                 }
             }
             Err(e) => {
+                // Every process meets a failure at the same step: the forces, norms and time
+                // step are the whole grid's and the grains are stepped alike everywhere.
                 failure = Some(format!(
                     "step {} (t = {:.6e} s): {e}; the last checkpoint is kept in {}",
                     state.world.step + 1,
@@ -362,28 +422,45 @@ pub fn run(opts: &RunOptions, scene: &Scene, scene_hash: u64, quiet: bool) -> Re
         }
     }
     bar.finish_and_clear();
+    let wall = started.elapsed().as_secs_f64();
+    if failure.is_none() {
+        runner.sync(&mut state);
+    }
+    let ranks = runner.rank_summaries(wall);
+    let processes = runner.processes();
+    let comparison = match compare_from.filter(|_| failure.is_none()) {
+        Some(start) => Some(compare_serial(&params, start, &state, stepping, processes)?),
+        None => None,
+    };
+    if !root {
+        return match failure {
+            Some(message) => Err(CliError::Runtime(message)),
+            None => Ok(()),
+        };
+    }
     if failure.is_none() {
         out.write_checkpoint(&state)?;
     } else {
         out.write_tables()?;
     }
     let status = run_status(failure.is_some(), end_reached(state.world.time));
-    write_summary(
+    let mut summary = summary(
         &out,
         scene,
         &state,
-        &stepper,
+        immersed.len(),
         status,
         failure.clone().unwrap_or_default(),
         &opts.scene,
-    )?;
+    );
+    (summary.processes, summary.ranks, summary.serial_comparison) = (processes, ranks, comparison);
+    write_json_atomic(&out.dir.join("summary.json"), &summary).map_err(io_err)?;
     write_plots(&out, &opts.out, &scene.name)?;
     if !quiet {
         eprintln!(
-            "{status}: {} steps to t = {:.4e} s in {:.2} s, outputs in {}",
+            "{status}: {} steps to t = {:.4e} s in {wall:.2} s on {processes} process(es), outputs in {}",
             state.world.step,
             state.world.time,
-            started.elapsed().as_secs_f64(),
             opts.out.display()
         );
     }
@@ -393,29 +470,29 @@ pub fn run(opts: &RunOptions, scene: &Scene, scene_hash: u64, quiet: bool) -> Re
     }
 }
 
-fn write_summary(
+fn summary(
     out: &Outputs,
     scene: &Scene,
     state: &CoupledState,
-    stepper: &CoupledStepper,
+    immersed_disks: usize,
     status: &'static str,
     message: String,
     file: &Path,
-) -> Result<(), CliError> {
+) -> Summary {
     let col = |name: &str| out.series.column(name).unwrap_or_default();
     let (cycles, fluid_time) = (
         col("pressure_cycles"),
         col("fluid_time").iter().sum::<f64>(),
     );
     let grid = state.fluid.grid;
-    let summary = Summary {
+    Summary {
         scene: scene.name.clone(),
         scene_file: file.display().to_string(),
         status,
         message,
         cells: [grid.nx, grid.ny],
         cell_size: grid.h,
-        immersed_disks: stepper.immersed().len(),
+        immersed_disks,
         bodies: state.world.bodies.len(),
         steps: state.world.step,
         simulated_time: state.world.time,
@@ -428,8 +505,10 @@ fn write_summary(
         non_converged_contact_steps: col("converged").iter().filter(|&&c| c == 0.0).count(),
         peak_memory_bytes: xper_io::peak_memory_bytes(),
         xper_version: env!("CARGO_PKG_VERSION"),
-    };
-    write_json_atomic(&out.dir.join("summary.json"), &summary).map_err(io_err)
+        processes: 1,
+        ranks: Vec::new(),
+        serial_comparison: None,
+    }
 }
 
 /// `series.png` (energies, pressure solve, divergence, time step) and `particles.png`

@@ -243,6 +243,87 @@ fn mpirun_fracture_run_agrees_with_the_serial_run_and_resumes_on_another_count()
     );
 }
 
+/// The two-grain sedimentation scene at 8 cells per diameter (32 x 320 cells) cut to 300
+/// steps, with the pressure tolerance `tolerance` (the grains fall about 0.2 mm).
+fn two_grains_scene(dir: &Path, name: &str, tolerance: &str) -> std::path::PathBuf {
+    let source = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes/two_grains_sedimentation/scene.toml");
+    let text = std::fs::read_to_string(source)
+        .unwrap()
+        .replace("duration = 2.0", "duration = 0.03")
+        .replace("frame_every = 200", "frame_every = 100")
+        .replace("checkpoint_every = 2000", "checkpoint_every = 100")
+        .replace(
+            "cells_per_diameter = 16",
+            &format!("cells_per_diameter = 8\npressure_tolerance = {tolerance}"),
+        );
+    let scene = dir.join(name);
+    std::fs::write(&scene, text).unwrap();
+    scene
+}
+
+/// The grains' positions in the checkpoint of a fluid run.
+fn grains(dir: &Path) -> Vec<f64> {
+    let bytes = std::fs::read(dir.join("checkpoint.bin")).unwrap();
+    let (_, state): (u64, xper_fluid::CoupledState) = bincode::deserialize(&bytes).unwrap();
+    (state.world.bodies.position.iter())
+        .flat_map(|p| [p.x, p.y])
+        .collect()
+}
+
+fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
+}
+
+/// The grid cut into blocks of rows: 2 and 4 processes (grains across the cuts) against the
+/// serial run, the serial error measured at pressure tolerances 1e-5 and 1e-7; stopped on 2
+/// and resumed on 3.
+#[test]
+fn mpirun_fluid_run_agrees_with_the_serial_run_and_resumes_on_another_count() {
+    let dir = temp_dir("mpi_fluid");
+    let scene = two_grains_scene(&dir, "grains.toml", "1e-5");
+    let finer = two_grains_scene(&dir, "grains_finer.toml", "1e-7");
+    run_xper(0, &scene, &dir.join("serial"), &[]);
+    run_xper(0, &finer, &dir.join("finer"), &[]);
+    let serial = grains(&dir.join("serial"));
+    let spread = largest_difference(&serial, &grains(&dir.join("finer")));
+    assert!(spread > 0.0, "the two tolerances gave the same run");
+    for ranks in [2, 4] {
+        let out = dir.join(format!("np{ranks}"));
+        run_xper(ranks, &scene, &out, &["--compare-serial"]);
+        let d = largest_difference(&grains(&out), &serial);
+        eprintln!("{ranks} processes: {d:.3e} m from serial (serial error {spread:.3e} m)");
+        assert!(
+            d <= 10.0 * spread,
+            "{ranks} processes: {d:.3e} m vs {spread:.3e} m"
+        );
+        let summary = summary(&out);
+        assert_eq!(summary["processes"], ranks);
+        let cells: u64 = (summary["ranks"].as_array().unwrap().iter())
+            .map(|r| r["cells"].as_u64().unwrap())
+            .sum();
+        assert_eq!(cells, 32 * 320, "every cell held by one process");
+        let reported = summary["serial_comparison"]["max_position_difference_m"]
+            .as_f64()
+            .unwrap();
+        assert!(reported <= 10.0 * spread, "--compare-serial: {reported:e}");
+        assert_eq!(data_sets(&out), 3 * 4, "frames at 0, 100, 200, 300");
+    }
+    let stopped = dir.join("resumed");
+    run_xper(2, &scene, &stopped, &["--stop-at-step", "100"]);
+    run_xper(3, &scene, &stopped, &["--resume"]);
+    let d = largest_difference(&grains(&stopped), &serial);
+    assert!(
+        d <= 10.0 * spread,
+        "resumed on 3: {d:.3e} m vs {spread:.3e} m"
+    );
+    let series = std::fs::read_to_string(stopped.join("series.csv")).unwrap();
+    assert_eq!(series.lines().count(), 301, "header and one row per step");
+}
+
 /// `mpirun -np 2 xper run scene` exits with code 2 and a message containing `expected`.
 fn refused_on_two_processes(scene: &Path, out: &Path, expected: &str) {
     let (scene, out) = (scene.to_str().unwrap(), out.to_str().unwrap());

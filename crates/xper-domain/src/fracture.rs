@@ -161,7 +161,7 @@ impl<'c, C: Communicator + ?Sized> DistributedFracture<'c, C> {
             shadows,
             contacts: 2 * self.part.interfaces.len(),
             interface_bodies: self.solve.interface.shared_count(),
-            migrated_in: 0,
+            ..RankLoad::default()
         }
     }
 }

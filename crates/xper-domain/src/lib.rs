@@ -9,12 +9,17 @@
 //! dynamics analysis by a domain decomposition approach", Comput. Mech. 49 (2012) 709, which
 //! follows Renouf, Dubois and Alart, J. Comput. Appl. Math. 168 (2004) 375.
 //!
+//! Grains in a fluid ([`fluid::DistributedFluid`]) split the grid into blocks of rows with
+//! halo exchange and solve the pressure by a multigrid over the blocks
+//! ([`xper_poisson::StripMultigrid`]).
+//!
 //! Processes talk through the [`Communicator`] trait: [`ThreadCommunicator`] runs the ranks as
 //! threads of one process (tests, no MPI needed), `MpiCommunicator` (cargo feature `mpi`) over
 //! Open MPI. The algorithms are tested on the first and run unchanged on the second.
 
 pub mod communicator;
 pub mod fixtures;
+pub mod fluid;
 pub mod fracture;
 pub mod interface;
 #[cfg(feature = "mpi")]
@@ -24,9 +29,11 @@ pub mod partition;
 pub mod shared_solve;
 pub mod split;
 pub mod stepper;
+pub mod strips;
 mod threads;
 
 pub use communicator::{CommStats, Communicator, SingleProcess};
+pub use fluid::DistributedFluid;
 pub use fracture::DistributedFracture;
 pub use interface::InterfaceMap;
 #[cfg(feature = "mpi")]

@@ -60,6 +60,8 @@ pub struct RankLoad {
     pub interface_bodies: usize,
     /// Bodies received by migration since the start.
     pub migrated_in: u64,
+    /// Fluid cells held (runs with a fluid).
+    pub cells: usize,
 }
 
 const STATE: usize = 7;

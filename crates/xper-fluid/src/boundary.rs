@@ -61,6 +61,21 @@ pub enum SideCondition {
     },
     /// Zero normal derivative of the velocity and zero pressure.
     Outflow,
+    /// The side is shared with the neighbouring block of a grid split among processes: its
+    /// ghost values are the neighbour's rows, copied by the halo exchange
+    /// ([`crate::BlockLinks::exchange_halo`]), and the faces on it belong to the block whose
+    /// low side it is. Never read from a scene.
+    #[serde(skip)]
+    Neighbour,
+}
+
+impl SideCondition {
+    /// Whether the faces on this side, as the low side of the block, are computed by the
+    /// block itself (periodic copies and a neighbour's faces are not imposed).
+    #[inline]
+    fn faces_are_unknowns(self) -> bool {
+        matches!(self, SideCondition::Periodic | SideCondition::Neighbour)
+    }
 }
 
 /// The conditions on the four sides.
@@ -121,6 +136,21 @@ impl FluidBoundary {
         self.sides(d)[0] == SideCondition::Periodic
     }
 
+    /// The conditions of a block of rows `rows` of a grid of `ny` rows split among processes:
+    /// the sides towards another block (or, for periodic bottom and top, across them when
+    /// there are several blocks) become [`SideCondition::Neighbour`].
+    pub fn block(&self, rows: std::ops::Range<usize>, ny: usize, blocks: usize) -> Self {
+        let periodic = self.is_periodic(1) && blocks > 1;
+        let mut block = *self;
+        if rows.start > 0 || periodic {
+            block.bottom = SideCondition::Neighbour;
+        }
+        if rows.end < ny || periodic {
+            block.top = SideCondition::Neighbour;
+        }
+        block
+    }
+
     /// Checks that periodic sides come in pairs.
     pub fn validate(&self) -> Result<(), String> {
         for (d, name) in ["left/right", "bottom/top"].iter().enumerate() {
@@ -139,6 +169,8 @@ impl FluidBoundary {
         let map = |c: SideCondition| match c {
             SideCondition::Periodic => PressureCondition::Periodic,
             SideCondition::Outflow => PressureCondition::Dirichlet,
+            // A block's pressure is solved over the whole grid, with the whole grid's sides.
+            SideCondition::Neighbour => PressureCondition::Periodic,
             _ => PressureCondition::Neumann,
         };
         Boundary {
@@ -153,7 +185,7 @@ impl FluidBoundary {
     /// every face not on a side where the normal velocity is imposed or extrapolated.
     pub fn predicted_faces(&self, grid: &MacGrid, d: usize) -> std::ops::Range<isize> {
         let n = grid.cells(d) as isize;
-        if self.is_periodic(d) {
+        if self.sides(d)[0].faces_are_unknowns() {
             0..n
         } else {
             1..n
@@ -168,7 +200,11 @@ impl FluidBoundary {
             return 0..n;
         }
         let [lo, hi] = self.sides(d);
-        let start = if lo == SideCondition::Outflow { 0 } else { 1 };
+        let start = if lo == SideCondition::Outflow || lo.faces_are_unknowns() {
+            0
+        } else {
+            1
+        };
         let end = if hi == SideCondition::Outflow {
             n + 1
         } else {
@@ -222,6 +258,7 @@ impl FluidBoundary {
                             };
                         }
                         SideCondition::Outflow => {}
+                        SideCondition::Neighbour => continue,
                     }
                     let tangential = &mut u[e];
                     let value = match condition {
@@ -239,6 +276,7 @@ impl FluidBoundary {
                             2.0 * velocity - tangential[at(inside, k)]
                         }
                         SideCondition::Outflow => tangential[at(inside, k)],
+                        SideCondition::Neighbour => unreachable!("skipped above"),
                     };
                     tangential[at(ghost, k)] = value;
                 }

@@ -14,7 +14,10 @@
 //! Immersed bodies are the world's disks (moving or fixed, e.g. an obstacle); walls only carry
 //! contacts, the fluid's walls being the sides of its domain.
 
-use crate::{FluidError, FluidParams, FluidSolver, FluidState, FluidStepReport, ImmersedDisk};
+use crate::{
+    BlockLinks, FluidError, FluidParams, FluidSolver, FluidState, FluidStepReport, ImmersedDisk,
+    MacGrid,
+};
 use serde::{Deserialize, Serialize};
 use xper_bodies::Shape;
 use xper_math::{Real, DIM, DOFS};
@@ -80,6 +83,8 @@ impl std::error::Error for CoupledError {}
 /// The coupled stepper: the fluid solver, the contact stepper, and the immersed bodies.
 pub struct CoupledStepper {
     fluid: FluidSolver,
+    /// The whole grid (a block's stepper holds one block of it).
+    domain: MacGrid,
     grains: MoreauJean,
     immersed: Vec<usize>,
     disks: Vec<ImmersedDisk>,
@@ -92,18 +97,41 @@ impl CoupledStepper {
     /// largest step (the world's `dt` is overwritten by each step's).
     pub fn new(params: &FluidParams, state: &CoupledState) -> Result<Self, FluidError> {
         let fluid = FluidSolver::new(state.fluid.grid, params)?;
+        Ok(Self::with_solver(fluid, state.fluid.grid, params, state))
+    }
+
+    /// A stepper for one block of a grid split among processes: `state.fluid` holds the
+    /// block, `domain` is the whole grid and `params` carry the block's sides
+    /// ([`crate::FluidBoundary::block`]); every block holds all the grains. Stepped by
+    /// [`CoupledStepper::step_with`].
+    pub fn new_block(
+        params: &FluidParams,
+        state: &CoupledState,
+        domain: MacGrid,
+    ) -> Result<Self, FluidError> {
+        let fluid = FluidSolver::new_block(state.fluid.grid, params)?;
+        Ok(Self::with_solver(fluid, domain, params, state))
+    }
+
+    fn with_solver(
+        fluid: FluidSolver,
+        domain: MacGrid,
+        params: &FluidParams,
+        state: &CoupledState,
+    ) -> Self {
         let bodies = &state.world.bodies;
         let immersed = (0..bodies.len())
             .filter(|&b| matches!(bodies.shape[b], Shape::Disk { .. }))
             .collect();
-        Ok(CoupledStepper {
+        CoupledStepper {
             fluid,
+            domain,
             grains: MoreauJean::new(),
             immersed,
             disks: Vec::new(),
             forces: Vec::new(),
             largest_dt: params.dt_max,
-        })
+        }
     }
 
     /// Body indices of the immersed disks.
@@ -121,6 +149,27 @@ impl CoupledStepper {
         &mut self,
         params: &FluidParams,
         state: &mut CoupledState,
+    ) -> Result<CoupledReport, CoupledError> {
+        self.step_by_stages(params, state, None)
+    }
+
+    /// One coupled step of a block of a split grid (see [`FluidSolver::step_with`]): the
+    /// fluid's halos, sums and pressure solve go through `links`; the hydrodynamic forces are
+    /// the whole grid's, so every block moves the grains identically.
+    pub fn step_with(
+        &mut self,
+        params: &FluidParams,
+        state: &mut CoupledState,
+        links: &mut dyn BlockLinks,
+    ) -> Result<CoupledReport, CoupledError> {
+        self.step_by_stages(params, state, Some(links))
+    }
+
+    fn step_by_stages(
+        &mut self,
+        params: &FluidParams,
+        state: &mut CoupledState,
+        mut links: Option<&mut dyn BlockLinks>,
     ) -> Result<CoupledReport, CoupledError> {
         // Stage: the immersed disks as the fluid sees them.
         let bodies = &state.world.bodies;
@@ -142,7 +191,7 @@ impl CoupledStepper {
         }
 
         // Stage: grains reaching a periodic side stop the run (their footprint would be cut).
-        let grid = &state.fluid.grid;
+        let grid = &self.domain;
         let (low, high) = (grid.origin, grid.origin + grid.extent());
         for (&b, disk) in self.immersed.iter().zip(&self.disks) {
             let reach = disk.radius + grid.h;
@@ -159,17 +208,24 @@ impl CoupledStepper {
             }
         }
 
-        // Stage: time step.
+        // Stage: time step, from the largest speed of the whole grid.
+        let mut speed = [state.fluid.max_speed().max(grain_speed)];
+        if let Some(links) = links.as_deref_mut() {
+            links.max(&mut speed);
+        }
         let dt = self
             .fluid
-            .stable_dt(params, &state.fluid, grain_speed)
+            .stable_dt_for(params, speed[0])
             .min(self.largest_dt);
 
         // Stage: fluid.
-        let fluid = self
-            .fluid
-            .step(params, &mut state.fluid, dt, &self.disks)
-            .map_err(CoupledError::Fluid)?;
+        let fluid = match links {
+            Some(links) => self
+                .fluid
+                .step_with(params, &mut state.fluid, dt, &self.disks, links),
+            None => self.fluid.step(params, &mut state.fluid, dt, &self.disks),
+        }
+        .map_err(CoupledError::Fluid)?;
 
         // Stage: grains under hydrodynamic forces and buoyancy.
         let world = &mut state.world;

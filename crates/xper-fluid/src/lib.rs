@@ -15,6 +15,7 @@
 //! The grid is 2D (the `DIM` of `xper_math`); the stencils are written per component with
 //! neighbour offsets, so a 3D grid adds a third offset rather than a second copy.
 
+pub mod blocks;
 pub mod boundary;
 pub mod grid;
 pub mod immersed;
@@ -22,6 +23,7 @@ pub mod momentum;
 pub mod projection;
 pub mod solver;
 
+pub use blocks::{BlockLinks, WholeGrid};
 pub use boundary::{FluidBoundary, InflowProfile, SideCondition};
 pub use grid::MacGrid;
 pub use immersed::{HydrodynamicForce, ImmersedDisk, InnerMomentum, SolidIndicator};

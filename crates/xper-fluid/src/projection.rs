@@ -9,13 +9,14 @@
 //! correction equals `(dt / rho)` times the residual of the pressure solve: the velocity is as
 //! divergence-free as the multigrid tolerance makes it.
 
+use crate::blocks::BlockLinks;
 use crate::boundary::FluidBoundary;
 use crate::grid::MacGrid;
 use xper_math::{Real, DIM};
-use xper_poisson::{Multigrid, SolveError, SolveInfo};
+use xper_poisson::{SolveError, SolveInfo};
 
-/// Writes the divergence of every cell into `out` (row-major, unpadded) and returns its
-/// Euclidean norm.
+/// Writes the divergence of every cell into `out` (row-major, unpadded) and returns the sum of
+/// its squares.
 pub fn divergence(grid: &MacGrid, u: &[Vec<Real>; DIM], out: &mut [Real]) -> Real {
     let (nx, inv_h) = (grid.nx, 1.0 / grid.h);
     let mut sum = 0.0;
@@ -35,12 +36,11 @@ pub fn divergence(grid: &MacGrid, u: &[Vec<Real>; DIM], out: &mut [Real]) -> Rea
             sum += *div * *div;
         }
     }
-    sum.sqrt()
+    sum
 }
 
 /// Workspaces of the projection.
 pub struct Projection {
-    multigrid: Multigrid,
     rhs: Vec<Real>,
     correction: Vec<Real>,
 }
@@ -58,9 +58,8 @@ pub struct ProjectionInfo {
 
 impl Projection {
     /// Workspaces for `grid`.
-    pub fn new(grid: &MacGrid, multigrid: Multigrid) -> Self {
+    pub fn new(grid: &MacGrid) -> Self {
         Projection {
-            multigrid,
             rhs: vec![0.0; grid.num_cells()],
             correction: grid.zeros(),
         }
@@ -68,10 +67,12 @@ impl Projection {
 
     /// Projects `u` (boundary values already set) onto divergence-free fields, adds the
     /// pressure increment to `p` (padded). `phi` (unpadded) holds the previous increment on
-    /// entry, the warm start, and the new one on exit.
+    /// entry, the warm start, and the new one on exit. On a block of a split grid, `links`
+    /// solves over the whole grid and completes the halos and norms.
     #[allow(clippy::too_many_arguments)]
     pub fn project(
         &mut self,
+        links: &mut dyn BlockLinks,
         grid: &MacGrid,
         boundary: &FluidBoundary,
         dt: Real,
@@ -80,13 +81,14 @@ impl Projection {
         p: &mut [Real],
         phi: &mut [Real],
     ) -> Result<ProjectionInfo, SolveError> {
-        let divergence_before = divergence(grid, u, &mut self.rhs);
+        let mut squares = [divergence(grid, u, &mut self.rhs), 0.0];
         let scale = density / dt;
         for r in &mut self.rhs {
             *r *= scale;
         }
-        let solve = self.multigrid.solve(&self.rhs, phi)?;
+        let solve = links.solve_pressure(&self.rhs, phi)?;
         self.fill_correction(grid, boundary, phi);
+        links.exchange_halo(grid, &mut [&mut self.correction]);
         let factor = dt / (density * grid.h);
         let c = &self.correction;
         for (d, ud) in u.iter_mut().enumerate() {
@@ -107,11 +109,13 @@ impl Projection {
         }
         boundary.fill_velocity(grid, u);
         boundary.fill_pressure(grid, p);
-        let divergence_after = divergence(grid, u, &mut self.rhs);
+        exchange_velocity_and_pressure(links, grid, u, p);
+        squares[1] = divergence(grid, u, &mut self.rhs);
+        links.sum(&mut squares);
         Ok(ProjectionInfo {
             solve,
-            divergence_before,
-            divergence_after,
+            divergence_before: squares[0].sqrt(),
+            divergence_after: squares[1].sqrt(),
         })
     }
 
@@ -146,4 +150,15 @@ impl Projection {
             }
         }
     }
+}
+
+/// Completes the halos of the velocity components and the pressure (padded arrays).
+pub fn exchange_velocity_and_pressure(
+    links: &mut dyn BlockLinks,
+    grid: &MacGrid,
+    u: &mut [Vec<Real>; DIM],
+    p: &mut [Real],
+) {
+    let [u0, u1] = u;
+    links.exchange_halo(grid, &mut [u0.as_mut_slice(), u1.as_mut_slice(), p]);
 }

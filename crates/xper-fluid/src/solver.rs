@@ -1,17 +1,37 @@
 //! One fluid time step as a sequence of named stages (Basilisk style): boundary values,
 //! momentum predictor, immersed forcing, projection, grain forces.
 
+use crate::blocks::{BlockLinks, WholeGrid};
 use crate::boundary::FluidBoundary;
 use crate::grid::MacGrid;
 use crate::immersed::{
     HydrodynamicForce, ImmersedDisk, ImmersedForcing, InnerMomentum, SolidIndicator,
 };
 use crate::momentum::{predict, PredictorCoefficients};
-use crate::projection::Projection;
+use crate::projection::{exchange_velocity_and_pressure, Projection};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 use xper_math::{Real, Vector, DIM};
 use xper_poisson::{GridShape, Multigrid, MultigridParams, SolveError, SolveInfo};
+
+/// The parameters of the pressure multigrid of `params` over the whole `grid`.
+pub fn pressure_multigrid(
+    grid: &MacGrid,
+    params: &FluidParams,
+) -> (GridShape, xper_poisson::Boundary, MultigridParams) {
+    let shape = GridShape {
+        nx: grid.nx,
+        ny: grid.ny,
+        hx: grid.h,
+        hy: grid.h,
+    };
+    let multigrid_params = MultigridParams {
+        relative_tolerance: params.pressure_tolerance,
+        max_cycles: params.pressure_max_cycles,
+        ..MultigridParams::default()
+    };
+    (shape, params.boundary.pressure_boundary(), multigrid_params)
+}
 
 /// Physical and numerical parameters of the fluid (SI units).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -209,6 +229,8 @@ pub struct FluidStepReport {
     pub divergence: [Real; 2],
     /// Largest velocity component after the step (m/s).
     pub max_speed: Real,
+    /// Kinetic energy of the fluid after the step ([`FluidState::kinetic_energy`], J/m).
+    pub kinetic_energy: Real,
     /// Force and torque of the fluid on each grain.
     pub forces: Vec<HydrodynamicForce>,
     /// Wall time of the stages: predictor, forcing, projection, total (s).
@@ -249,6 +271,8 @@ impl std::error::Error for FluidError {}
 /// The fluid stepper and its workspaces.
 pub struct FluidSolver {
     grid: MacGrid,
+    /// The serial pressure solver of a solver built for the whole grid.
+    whole: Option<WholeGrid>,
     projection: Projection,
     forcing: ImmersedForcing,
     predicted: [Vec<Real>; DIM],
@@ -256,32 +280,30 @@ pub struct FluidSolver {
 }
 
 impl FluidSolver {
-    /// A solver for `grid` (checks the parameters, builds the multigrid hierarchy).
+    /// A solver for the whole `grid` (checks the parameters, builds the multigrid hierarchy).
     pub fn new(grid: MacGrid, params: &FluidParams) -> Result<Self, FluidError> {
+        let mut solver = Self::new_block(grid, params)?;
+        let (shape, boundary, multigrid_params) = pressure_multigrid(&grid, params);
+        let multigrid = Multigrid::new(shape, boundary, multigrid_params)
+            .map_err(|e| FluidError::Setup(e.to_string()))?;
+        solver.whole = Some(WholeGrid { multigrid });
+        Ok(solver)
+    }
+
+    /// A solver for one block of a split grid (`grid` the block's rows, `params` with the
+    /// block's sides, [`FluidBoundary::block`]), stepped by [`FluidSolver::step_with`].
+    pub fn new_block(grid: MacGrid, params: &FluidParams) -> Result<Self, FluidError> {
         params.validate().map_err(FluidError::Setup)?;
-        if grid.nx < 2 || grid.ny < 2 || grid.h.is_nan() || grid.h <= 0.0 {
+        if grid.nx < 2 || grid.ny < 1 || grid.h.is_nan() || grid.h <= 0.0 {
             return Err(FluidError::Setup(format!(
                 "the grid needs at least 2 x 2 cells of positive size, got {} x {} of {}",
                 grid.nx, grid.ny, grid.h
             )));
         }
-        let shape = GridShape {
-            nx: grid.nx,
-            ny: grid.ny,
-            hx: grid.h,
-            hy: grid.h,
-        };
-        let multigrid_params = MultigridParams {
-            relative_tolerance: params.pressure_tolerance,
-            max_cycles: params.pressure_max_cycles,
-            ..MultigridParams::default()
-        };
-        let multigrid =
-            Multigrid::new(shape, params.boundary.pressure_boundary(), multigrid_params)
-                .map_err(|e| FluidError::Setup(e.to_string()))?;
         Ok(FluidSolver {
             grid,
-            projection: Projection::new(&grid, multigrid),
+            whole: None,
+            projection: Projection::new(&grid),
             forcing: ImmersedForcing::new(&grid),
             predicted: grid.zero_velocity(),
             inner: Vec::new(),
@@ -291,9 +313,13 @@ impl FluidSolver {
     /// The largest stable time step for the current velocities and grains moving at up to
     /// `grain_speed` (m/s).
     pub fn stable_dt(&self, params: &FluidParams, state: &FluidState, grain_speed: Real) -> Real {
+        self.stable_dt_for(params, state.max_speed().max(grain_speed))
+    }
+
+    /// The largest stable time step for velocities up to `speed` (m/s).
+    pub fn stable_dt_for(&self, params: &FluidParams, speed: Real) -> Real {
         let h = self.grid.h;
         let nu = params.kinematic_viscosity();
-        let speed = state.max_speed().max(grain_speed);
         let mut dt = params
             .dt_max
             .min(params.viscous_safety * h * h / (2.0 * DIM as Real * nu));
@@ -314,6 +340,25 @@ impl FluidSolver {
         dt: Real,
         disks: &[ImmersedDisk],
     ) -> Result<FluidStepReport, FluidError> {
+        let mut whole = self.whole.take().ok_or_else(|| {
+            FluidError::Setup("a block of a split grid is stepped by step_with".into())
+        })?;
+        let report = self.step_with(params, state, dt, disks, &mut whole);
+        self.whole = Some(whole);
+        report
+    }
+
+    /// [`FluidSolver::step`] on a block of a split grid, or on the whole grid with
+    /// [`WholeGrid`]: the halos, sums and pressure solve go through `links`. The forces and
+    /// the fluid momentum inside the grains (`state.inner`) are the whole grid's.
+    pub fn step_with(
+        &mut self,
+        params: &FluidParams,
+        state: &mut FluidState,
+        dt: Real,
+        disks: &[ImmersedDisk],
+        links: &mut dyn BlockLinks,
+    ) -> Result<FluidStepReport, FluidError> {
         let start = Instant::now();
         let grid = self.grid;
         let boundary = &params.boundary;
@@ -325,6 +370,7 @@ impl FluidSolver {
         // Stage: boundary values and the grains' footprint.
         boundary.fill_velocity(&grid, &mut state.velocity);
         boundary.fill_pressure(&grid, &mut state.pressure);
+        exchange_velocity_and_pressure(links, &grid, &mut state.velocity, &mut state.pressure);
         self.forcing.mark(&grid, boundary, disks, params.indicator);
         if state.inner.len() != disks.len() {
             self.forcing.inner_momentum(
@@ -334,6 +380,9 @@ impl FluidSolver {
                 &state.velocity,
                 &mut state.inner,
             );
+            let mut sums = pack(&[], &state.inner);
+            links.sum(&mut sums);
+            unpack(&sums, &mut [], &mut state.inner);
         }
 
         // Stage: momentum predictor.
@@ -365,6 +414,8 @@ impl FluidSolver {
             &mut self.predicted,
             &mut report.forces,
         );
+        let [u0, u1] = &mut self.predicted;
+        links.exchange_halo(&grid, &mut [u0.as_mut_slice(), u1.as_mut_slice()]);
         report.times[1] = t_forcing.elapsed().as_secs_f64();
 
         // Stage: projection.
@@ -372,6 +423,7 @@ impl FluidSolver {
         let info = self
             .projection
             .project(
+                links,
                 &grid,
                 boundary,
                 dt,
@@ -392,6 +444,9 @@ impl FluidSolver {
             &state.velocity,
             &mut self.inner,
         );
+        let mut sums = pack(&report.forces, &self.inner);
+        links.sum(&mut sums);
+        unpack(&sums, &mut report.forces, &mut self.inner);
         for ((force, new), old) in report.forces.iter_mut().zip(&self.inner).zip(&state.inner) {
             force.force += (new.linear - old.linear) / dt;
             force.torque += (new.angular - old.angular) / dt;
@@ -403,7 +458,12 @@ impl FluidSolver {
         report.time = state.time;
         report.pressure = info.solve;
         report.divergence = [info.divergence_before, info.divergence_after];
-        report.max_speed = state.max_speed();
+        let mut figures = [state.max_speed()];
+        links.max(&mut figures);
+        report.max_speed = figures[0];
+        let mut energy = [state.kinetic_energy(params.density)];
+        links.sum(&mut energy);
+        report.kinetic_energy = energy[0];
         if !report.max_speed.is_finite() {
             return Err(FluidError::NonFinite { step: state.step });
         }
@@ -414,5 +474,31 @@ impl FluidSolver {
     /// Solid fraction of each face of component `d` at the last step (padded layout).
     pub fn solid_fraction(&self, d: usize) -> &[Real] {
         self.forcing.fraction(d)
+    }
+}
+
+/// The forces (force, torque) then the inner momenta (linear, angular) as one array, for one
+/// reduction over the blocks.
+fn pack(forces: &[HydrodynamicForce], inner: &[InnerMomentum]) -> Vec<Real> {
+    let mut out = Vec::with_capacity(3 * (forces.len() + inner.len()));
+    for f in forces {
+        out.extend([f.force.x, f.force.y, f.torque]);
+    }
+    for m in inner {
+        out.extend([m.linear.x, m.linear.y, m.angular]);
+    }
+    out
+}
+
+/// The inverse of [`pack`].
+fn unpack(values: &[Real], forces: &mut [HydrodynamicForce], inner: &mut [InnerMomentum]) {
+    let (f, m) = values.split_at(3 * forces.len());
+    for (force, v) in forces.iter_mut().zip(f.chunks_exact(3)) {
+        force.force = Vector::new(v[0], v[1]);
+        force.torque = v[2];
+    }
+    for (momentum, v) in inner.iter_mut().zip(m.chunks_exact(3)) {
+        momentum.linear = Vector::new(v[0], v[1]);
+        momentum.angular = v[2];
     }
 }

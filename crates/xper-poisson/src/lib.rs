@@ -85,9 +85,13 @@ mod coarse;
 mod level;
 mod multigrid;
 mod operator;
+pub mod strip_multigrid;
+pub mod strips;
 mod transfer;
 
 pub use multigrid::Multigrid;
+pub use strip_multigrid::StripMultigrid;
+pub use strips::{OneStrip, RowLinks, StripLayout};
 
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -307,6 +311,15 @@ pub enum SetupError {
         /// Its value.
         value: f64,
     },
+    /// The strip layout does not cut the rows into non-empty strips, or names no such strip.
+    BadStrips {
+        /// The row cuts.
+        starts: Vec<usize>,
+        /// Rows of the grid.
+        ny: usize,
+        /// The strip asked for.
+        strip: usize,
+    },
 }
 
 impl fmt::Display for SetupError {
@@ -335,6 +348,11 @@ impl fmt::Display for SetupError {
             SetupError::BadParameter { name, value } => {
                 write!(f, "multigrid parameter {name} = {value} is out of range")
             }
+            SetupError::BadStrips { starts, ny, strip } => write!(
+                f,
+                "strip {strip} of the row cuts {starts:?}: the cuts must rise from 0 to {ny} \
+                 and the strip must exist"
+            ),
         }
     }
 }

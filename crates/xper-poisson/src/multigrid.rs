@@ -61,7 +61,11 @@ fn sum_squares(r: &[f64]) -> f64 {
     acc.iter().sum::<f64>() + tail
 }
 
-fn validate(shape: &GridShape, boundary: &Boundary, p: &MultigridParams) -> Result<(), SetupError> {
+pub(crate) fn validate(
+    shape: &GridShape,
+    boundary: &Boundary,
+    p: &MultigridParams,
+) -> Result<(), SetupError> {
     if shape.nx == 0 || shape.ny == 0 || shape.nx.checked_mul(shape.ny).is_none() {
         return Err(SetupError::NoCells {
             nx: shape.nx,

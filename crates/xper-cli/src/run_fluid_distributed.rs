@@ -1,0 +1,145 @@
+//! The two ways `xper run` advances a scene with a fluid: on this process ([`SerialFluid`]) or
+//! on the processes of a communicator ([`DistributedFluidRun`], under `mpirun`: the grid cut
+//! into blocks of rows), behind one trait so the run loop and its outputs are the same.
+
+use std::time::Instant;
+
+use xper_domain::{Communicator, DistributedFluid};
+use xper_fluid::{CoupledError, CoupledReport, CoupledState, CoupledStepper, FluidParams};
+
+use crate::run::SerialComparison;
+use crate::run_distributed::RankSummary;
+use crate::CliError;
+
+/// A run with a fluid advanced step by step. `whole` is the state the outputs are written
+/// from: on the writing process it holds the grains and the fluid's time after every step and
+/// the whole fluid after [`FluidRun::sync`].
+pub trait FluidRun {
+    /// One step.
+    fn step(&mut self, whole: &mut CoupledState) -> Result<CoupledReport, CoupledError>;
+    /// Brings the whole fluid into `whole` on the writing process (collective: every process
+    /// calls it at the same steps).
+    fn sync(&mut self, whole: &mut CoupledState);
+    /// Whether this process writes the outputs.
+    fn is_root(&self) -> bool;
+    /// Number of processes.
+    fn processes(&self) -> usize;
+    /// Body indices of the immersed disks.
+    fn immersed(&self) -> &[usize];
+    /// Each process's load and communication over a run of `wall` seconds (collective; empty
+    /// on one process).
+    fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary>;
+}
+
+/// A run on this process.
+pub struct SerialFluid {
+    params: FluidParams,
+    stepper: CoupledStepper,
+}
+
+impl SerialFluid {
+    /// The stepper of `state`.
+    pub fn new(params: &FluidParams, state: &CoupledState) -> Result<Self, xper_fluid::FluidError> {
+        Ok(SerialFluid {
+            params: params.clone(),
+            stepper: CoupledStepper::new(params, state)?,
+        })
+    }
+}
+
+impl FluidRun for SerialFluid {
+    fn step(&mut self, whole: &mut CoupledState) -> Result<CoupledReport, CoupledError> {
+        self.stepper.step(&self.params, whole)
+    }
+    fn sync(&mut self, _whole: &mut CoupledState) {}
+    fn is_root(&self) -> bool {
+        true
+    }
+    fn processes(&self) -> usize {
+        1
+    }
+    fn immersed(&self) -> &[usize] {
+        self.stepper.immersed()
+    }
+    fn rank_summaries(&mut self, _wall: f64) -> Vec<RankSummary> {
+        Vec::new()
+    }
+}
+
+/// A run on the processes of a communicator ([`DistributedFluid`]).
+pub struct DistributedFluidRun<'c> {
+    run: DistributedFluid<'c, dyn Communicator + 'c>,
+    comm: &'c dyn Communicator,
+}
+
+impl<'c> DistributedFluidRun<'c> {
+    /// Distributes `whole` (the same fresh or restored state on every process).
+    pub fn new(
+        comm: &'c dyn Communicator,
+        params: &FluidParams,
+        whole: &CoupledState,
+    ) -> Result<Self, xper_fluid::FluidError> {
+        Ok(DistributedFluidRun {
+            run: DistributedFluid::new(comm, params, whole)?,
+            comm,
+        })
+    }
+}
+
+impl FluidRun for DistributedFluidRun<'_> {
+    fn step(&mut self, whole: &mut CoupledState) -> Result<CoupledReport, CoupledError> {
+        let report = self.run.step()?;
+        let block = self.run.state();
+        whole.world.clone_from(&block.world);
+        whole.fluid.time = block.fluid.time;
+        whole.fluid.step = block.fluid.step;
+        Ok(report)
+    }
+    fn sync(&mut self, whole: &mut CoupledState) {
+        self.run.gather(whole);
+    }
+    fn is_root(&self) -> bool {
+        self.comm.rank() == 0
+    }
+    fn processes(&self) -> usize {
+        self.comm.size()
+    }
+    fn immersed(&self) -> &[usize] {
+        self.run.immersed()
+    }
+    fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary> {
+        crate::run_distributed::rank_summaries(self.comm, self.run.load(), wall)
+    }
+}
+
+/// Runs `start` on this process up to `end`'s step and compares (`--compare-serial`): the
+/// largest distance between a grain's positions at the end of the two runs.
+pub fn compare_serial(
+    params: &FluidParams,
+    mut start: CoupledState,
+    end: &CoupledState,
+    distributed_wall: f64,
+    processes: usize,
+) -> Result<SerialComparison, CliError> {
+    let failed = |e: String| CliError::Runtime(format!("--compare-serial: serial run: {e}"));
+    let steps = end.world.step - start.world.step;
+    let mut stepper = CoupledStepper::new(params, &start).map_err(|e| failed(e.to_string()))?;
+    let clock = Instant::now();
+    while start.world.step < end.world.step {
+        stepper
+            .step(params, &mut start)
+            .map_err(|e| failed(e.to_string()))?;
+    }
+    let serial = clock.elapsed().as_secs_f64();
+    let difference = (start.world.bodies.position.iter())
+        .zip(&end.world.bodies.position)
+        .map(|(a, b)| (a - b).norm())
+        .fold(0.0, f64::max);
+    Ok(SerialComparison::new(
+        steps,
+        distributed_wall,
+        serial,
+        processes,
+        difference,
+    ))
+}

@@ -1,0 +1,240 @@
+//! Distributed grains in a fluid: the grid cut into horizontal blocks of rows, one per process.
+//!
+//! 1. **Partition.** [`StripLayout::balanced`] cuts the rows into nearly equal blocks at
+//!    multiples of a power of two, so that the pressure multigrid coarsens the blocks without
+//!    cutting a coarse cell. Each process holds its block of the fluid ([`FluidState`] on the
+//!    block's [`MacGrid`]) and every grain (there are few grains and many cells: the grains'
+//!    contact step is repeated by every process, which gets the same forces and so the same
+//!    bits, and a grain straddling a cut needs no migration).
+//! 2. **Step.** [`CoupledStepper::step_with`] runs the serial stages on the block, with
+//!    [`BlockLinks`] for what crosses blocks: the halo rows (one below, two above) after every
+//!    change of the velocity, pressure or pressure correction; the forcing and the fluid
+//!    momentum inside each grain summed over blocks (each face is forced by one block, so a
+//!    grain across a cut is counted once); norms and the largest speed (the time step) reduced;
+//!    the pressure solved by [`StripMultigrid`] with its rows exchanged after each smoothing
+//!    colour.
+//! 3. **Gather** (outputs, checkpoints): rank 0 receives every block's rows and holds the whole
+//!    fluid, from which a run resumes on any number of processes.
+
+use crate::communicator::Communicator;
+use crate::stepper::RankLoad;
+use crate::strips::{exchange_with_neighbours, strip_neighbours, StripComm};
+use xper_fluid::blocks::{HALO_ABOVE, HALO_BELOW};
+use xper_fluid::solver::pressure_multigrid;
+use xper_fluid::{
+    BlockLinks, CoupledError, CoupledReport, CoupledState, CoupledStepper, FluidError, FluidParams,
+    FluidState, MacGrid,
+};
+use xper_math::{Real, Vector};
+use xper_poisson::{SolveError, SolveInfo, StripLayout, StripMultigrid};
+
+/// The links of one block: halo rows with the neighbours, reductions over `comm`, the pressure
+/// by the strip multigrid.
+struct BlockComm<'c, C: Communicator + ?Sized> {
+    rows: StripComm<'c, C>,
+    multigrid: StripMultigrid,
+}
+
+impl<C: Communicator + ?Sized> BlockLinks for BlockComm<'_, C> {
+    fn exchange_halo(&mut self, grid: &MacGrid, fields: &mut [&mut [Real]]) {
+        let (w, n) = (grid.width(), grid.ny);
+        let row = |j: isize| ((j + 1) as usize) * w;
+        let [below, above] = self.rows.neighbours;
+        let pack = |fields: &[&mut [Real]], from: isize, count: usize| {
+            let mut out = Vec::with_capacity(fields.len() * count * w);
+            for field in fields {
+                out.extend_from_slice(&field[row(from)..row(from) + count * w]);
+            }
+            out
+        };
+        let to_below = below.map(|_| pack(fields, 0, HALO_ABOVE));
+        let to_above = above.map(|_| pack(fields, n as isize - HALO_BELOW as isize, HALO_BELOW));
+        let [from_below, from_above] =
+            exchange_with_neighbours(self.rows.comm, self.rows.neighbours, to_below, to_above);
+        let unpack = |fields: &mut [&mut [Real]], data: &[Real], to: isize, count: usize| {
+            for (field, part) in fields.iter_mut().zip(data.chunks_exact(count * w)) {
+                field[row(to)..row(to) + count * w].copy_from_slice(part);
+            }
+        };
+        if let Some(data) = from_below {
+            unpack(fields, &data, -(HALO_BELOW as isize), HALO_BELOW);
+        }
+        if let Some(data) = from_above {
+            unpack(fields, &data, n as isize, HALO_ABOVE);
+        }
+    }
+
+    fn sum(&mut self, values: &mut [Real]) {
+        self.rows.comm.all_reduce_sum(values);
+    }
+
+    fn max(&mut self, values: &mut [Real]) {
+        self.rows.comm.all_reduce_max(values);
+    }
+
+    fn solve_pressure(&mut self, rhs: &[Real], phi: &mut [Real]) -> Result<SolveInfo, SolveError> {
+        self.multigrid.solve(&mut self.rows, rhs, phi)
+    }
+}
+
+/// Grains in a fluid stepped by the processes of `comm` (see the module documentation).
+pub struct DistributedFluid<'c, C: Communicator + ?Sized> {
+    comm: &'c C,
+    layout: StripLayout,
+    domain: MacGrid,
+    params: FluidParams,
+    state: CoupledState,
+    stepper: CoupledStepper,
+    links: BlockComm<'c, C>,
+}
+
+/// The rows `rows` of a padded array of the whole grid of width `w`, with the ghost row below
+/// and the two above.
+fn block_rows(whole: &[Real], w: usize, rows: &std::ops::Range<usize>) -> Vec<Real> {
+    whole[rows.start * w..(rows.end + 3) * w].to_vec()
+}
+
+impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
+    /// Cuts `whole` (the same state on every process, fresh or from a checkpoint) into blocks
+    /// of rows and keeps this process's. Collective.
+    pub fn new(
+        comm: &'c C,
+        params: &FluidParams,
+        whole: &CoupledState,
+    ) -> Result<Self, FluidError> {
+        let domain = whole.fluid.grid;
+        let (me, size) = (comm.rank(), comm.size());
+        let layout = StripLayout::balanced(domain.nx, domain.ny, size)
+            .map_err(|why| FluidError::Setup(format!("{why} (one block per process)")))?;
+        if (0..size).any(|s| layout.rows(s).len() < HALO_ABOVE) {
+            return Err(FluidError::Setup(format!(
+                "{} rows are too few for {size} processes: every block needs at least {HALO_ABOVE} rows",
+                domain.ny
+            )));
+        }
+        let rows = layout.rows(me);
+        let grid = MacGrid {
+            ny: rows.len(),
+            origin: domain.origin + Vector::new(0.0, rows.start as Real * domain.h),
+            ..domain
+        };
+        let mut block_params = params.clone();
+        block_params.boundary = params.boundary.block(rows.clone(), domain.ny, size);
+        let (w, nx) = (domain.width(), domain.nx);
+        let fluid = &whole.fluid;
+        let state = CoupledState {
+            fluid: FluidState {
+                grid,
+                velocity: [0, 1].map(|d| block_rows(&fluid.velocity[d], w, &rows)),
+                pressure: block_rows(&fluid.pressure, w, &rows),
+                increment: fluid.increment[rows.start * nx..rows.end * nx].to_vec(),
+                time: fluid.time,
+                step: fluid.step,
+                inner: fluid.inner.clone(),
+            },
+            world: whole.world.clone(),
+        };
+        let stepper = CoupledStepper::new_block(&block_params, &state, domain)?;
+        let (shape, boundary, multigrid_params) = pressure_multigrid(&domain, params);
+        let multigrid = StripMultigrid::new(shape, boundary, multigrid_params, layout.clone(), me)
+            .map_err(|e| FluidError::Setup(e.to_string()))?;
+        let neighbours = strip_neighbours(me, size, params.boundary.is_periodic(1));
+        Ok(DistributedFluid {
+            comm,
+            layout,
+            domain,
+            params: block_params,
+            state,
+            stepper,
+            links: BlockComm {
+                rows: StripComm { comm, neighbours },
+                multigrid,
+            },
+        })
+    }
+
+    /// One coupled step of the whole grid (collective); the report's forces, norms and energy
+    /// are the whole grid's, the grains' report is every process's own (identical) one.
+    pub fn step(&mut self) -> Result<CoupledReport, CoupledError> {
+        self.stepper
+            .step_with(&self.params, &mut self.state, &mut self.links)
+    }
+
+    /// This process's block and grains.
+    pub fn state(&self) -> &CoupledState {
+        &self.state
+    }
+
+    /// The rows of each process.
+    pub fn layout(&self) -> &StripLayout {
+        &self.layout
+    }
+
+    /// The immersed bodies (as [`CoupledStepper::immersed`]).
+    pub fn immersed(&self) -> &[usize] {
+        self.stepper.immersed()
+    }
+
+    /// This process's share: the cells of its block; every process holds every grain.
+    pub fn load(&self) -> RankLoad {
+        RankLoad {
+            bodies: self.state.world.bodies.len(),
+            cells: self.state.fluid.grid.num_cells(),
+            contacts: self.state.world.contacts.len(),
+            ..RankLoad::default()
+        }
+    }
+
+    /// Gathers the whole fluid and the grains into `whole` on rank 0 (other ranks leave it
+    /// unchanged). Collective.
+    pub fn gather(&self, whole: &mut CoupledState) {
+        let (me, size) = (self.comm.rank(), self.comm.size());
+        let (w, nx) = (self.domain.width(), self.domain.nx);
+        // Rows sent by strip `s` (padded row indices of the whole grid): its own rows, plus the
+        // ghost row below for the first strip and the two above for the last.
+        let sent = |s: usize| {
+            let rows = self.layout.rows(s);
+            let low = if s == 0 { 0 } else { rows.start + 1 };
+            let high = if s + 1 == size {
+                rows.end + 3
+            } else {
+                rows.end + 1
+            };
+            (low, high, rows)
+        };
+        let pack = |fluid: &FluidState| {
+            let (low, high, rows) = sent(me);
+            let (from, to) = ((low - rows.start) * w, (high - rows.start) * w);
+            let mut out = Vec::new();
+            for d in 0..2 {
+                out.extend_from_slice(&fluid.velocity[d][from..to]);
+            }
+            out.extend_from_slice(&fluid.pressure[from..to]);
+            out.extend_from_slice(&fluid.increment);
+            out
+        };
+        if me != 0 {
+            self.comm.exchange(&[(0, pack(&self.state.fluid))], &[]);
+            return;
+        }
+        let sources: Vec<usize> = (1..size).collect();
+        let received = self.comm.exchange(&[], &sources);
+        let own = pack(&self.state.fluid);
+        let fluid = &mut whole.fluid;
+        for (s, data) in std::iter::once(&own).chain(&received).enumerate() {
+            let (low, high, rows) = sent(s);
+            let span = (high - low) * w;
+            let mut parts = data.chunks(span);
+            let [u0, u1] = &mut fluid.velocity;
+            for field in [u0, u1, &mut fluid.pressure] {
+                field[low * w..high * w].copy_from_slice(parts.next().unwrap_or_default());
+            }
+            let increment = &data[3 * span..];
+            fluid.increment[rows.start * nx..rows.end * nx].copy_from_slice(increment);
+        }
+        fluid.time = self.state.fluid.time;
+        fluid.step = self.state.fluid.step;
+        fluid.inner.clone_from(&self.state.fluid.inner);
+        whole.world.clone_from(&self.state.world);
+    }
+}

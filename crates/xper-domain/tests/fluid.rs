@@ -1,0 +1,254 @@
+//! The distributed fluid against the serial one: the strip multigrid on its own, then the
+//! paper's two-grain sedimentation (BRIEF.md section 6, application 3) at 8 cells per diameter
+//! (32 x 320 cells), the grains placed across the cuts between blocks.
+//!
+//! The measure of agreement: the largest difference of a grain position (and of a face
+//! velocity) between the runs, against the serial run's own error, the difference between the
+//! serial run at the pressure tolerance 1e-5 and at 1e-7 (at the default 1e-8 every run agrees to round-off, which would measure nothing). The pressure multigrid stops at its
+//! tolerance, not at the solution, and the strip multigrid is a different iteration (other
+//! smoothing order, the coarse grid gathered), so a distributed run may differ from the serial
+//! one by a small multiple of that error, and by less when the tolerance is tightened.
+
+use xper_bodies::{Body, BodySet};
+use xper_domain::{run_on_threads, DistributedFluid, RankLoad};
+use xper_fluid::{CoupledState, CoupledStepper, FluidBoundary, FluidParams, FluidState, MacGrid};
+use xper_laws::LawTable;
+use xper_math::Vector;
+use xper_nscd::{StepParams, World};
+use xper_poisson::{
+    Boundary, GridShape, Multigrid, MultigridParams, SideCondition, StripLayout, StripMultigrid,
+};
+
+const STEPS: usize = 400;
+const DIAMETER: f64 = 8e-4;
+
+fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
+    a.iter()
+        .zip(b)
+        .fold(0.0, |m: f64, (x, y)| m.max((x - y).abs()))
+}
+
+/// Strips on 1 to 4 thread processes solve the serial multigrid's discrete problem: both at
+/// a relative residual of 1e-12 agree to 1e-8 of the solution's size.
+#[test]
+fn the_strip_multigrid_on_several_processes_agrees_with_the_serial_multigrid() {
+    use SideCondition::{Dirichlet, Neumann, Periodic};
+    let boundaries = [
+        Boundary::all(Neumann),
+        Boundary::all(Periodic),
+        Boundary {
+            top: Dirichlet,
+            ..Boundary::all(Neumann)
+        },
+    ];
+    let (nx, ny) = (64, 256);
+    let shape = GridShape {
+        nx,
+        ny,
+        hx: 1.0 / nx as f64,
+        hy: 1.0 / nx as f64,
+    };
+    let params = MultigridParams {
+        relative_tolerance: 1e-12,
+        ..MultigridParams::default()
+    };
+    let mut seed = 12345u64;
+    let rhs: Vec<f64> = (0..nx * ny)
+        .map(|_| {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        })
+        .collect();
+    for boundary in boundaries {
+        let mut expected = vec![0.0; nx * ny];
+        Multigrid::new(shape, boundary, params)
+            .unwrap()
+            .solve(&rhs, &mut expected)
+            .unwrap();
+        let size = expected.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for ranks in 1..=4 {
+            let pieces = run_on_threads(ranks, |comm| {
+                use xper_domain::Communicator;
+                let layout = StripLayout::balanced(nx, ny, ranks).unwrap();
+                let rows = layout.rows(comm.rank());
+                let mut solver =
+                    StripMultigrid::new(shape, boundary, params, layout, comm.rank()).unwrap();
+                let periodic = boundary.bottom == Periodic;
+                let mut links = xper_domain::strips::StripComm {
+                    comm,
+                    neighbours: xper_domain::strips::strip_neighbours(comm.rank(), ranks, periodic),
+                };
+                let local = &rhs[rows.start * nx..rows.end * nx];
+                let mut phi = vec![0.0; local.len()];
+                let info = solver.solve(&mut links, local, &mut phi).unwrap();
+                (phi, info)
+            });
+            let cycles = pieces[0].1.cycles;
+            assert!(pieces.iter().all(|p| p.1.cycles == cycles));
+            let phi: Vec<f64> = pieces.into_iter().flat_map(|p| p.0).collect();
+            let difference = largest_difference(&phi, &expected);
+            assert!(
+                difference <= 1e-8 * size,
+                "{boundary:?} on {ranks}: difference {difference:e} of {size:e} ({cycles} cycles)"
+            );
+            assert!(cycles <= 14, "{boundary:?} on {ranks}: {cycles} cycles");
+        }
+    }
+}
+
+/// The two-grain sedimentation box (4d x 40d, fluid 1000 kg/m^3 and 4e-3 Pa s, grains 1.2
+/// times denser) at 8 cells per diameter, grains at (2d, 20d) and (2.005d, 22d): the lower
+/// one across the cut between two blocks (row 160 of 320), the upper one near the cut of the
+/// top pair of four blocks.
+fn two_grains(tolerance: f64) -> (FluidParams, CoupledState) {
+    let mut params = FluidParams::new(1000.0, 4e-3, FluidBoundary::closed_box());
+    params.dt_max = 1e-4;
+    params.pressure_tolerance = tolerance;
+    let grid = MacGrid {
+        nx: 32,
+        ny: 320,
+        h: DIAMETER / 8.0,
+        origin: Vector::zeros(),
+    };
+    let mut bodies = BodySet::new();
+    for centre in [
+        Vector::new(2.0 * DIAMETER, 20.0 * DIAMETER),
+        Vector::new(2.005 * DIAMETER, 22.0 * DIAMETER),
+    ] {
+        bodies.insert(Body::disk(DIAMETER / 2.0, 1200.0, centre));
+    }
+    let world_params = StepParams {
+        dt: 1e-4,
+        theta: 0.5,
+        gravity: Vector::new(0.0, -9.81),
+        alert_distance: 1e-5,
+        nlgs: Default::default(),
+        solver: xper_nscd::VelocitySolver::Nlgs,
+        projection_tolerance: None,
+    };
+    let state = CoupledState {
+        fluid: FluidState::at_rest(grid, &params.boundary),
+        world: World::new(bodies, LawTable::new(1), world_params),
+    };
+    (params, state)
+}
+
+fn serial(params: &FluidParams, mut state: CoupledState, steps: usize) -> CoupledState {
+    let mut stepper = CoupledStepper::new(params, &state).unwrap();
+    for _ in 0..steps {
+        stepper.step(params, &mut state).unwrap();
+    }
+    state
+}
+
+/// The run of `state` on `ranks` thread processes: the gathered state and each rank's load.
+fn distributed(
+    params: &FluidParams,
+    state: &CoupledState,
+    ranks: usize,
+    steps: usize,
+) -> (CoupledState, Vec<RankLoad>) {
+    let out = run_on_threads(ranks, |comm| {
+        let mut run = DistributedFluid::new(comm, params, state).unwrap();
+        for _ in 0..steps {
+            run.step().unwrap();
+        }
+        let mut whole = state.clone();
+        run.gather(&mut whole);
+        (whole, run.load())
+    });
+    let loads = out.iter().map(|o| o.1).collect();
+    (out.into_iter().next().unwrap().0, loads)
+}
+
+fn grain_difference(a: &CoupledState, b: &CoupledState) -> f64 {
+    let flat = |s: &CoupledState| -> Vec<f64> {
+        s.world
+            .bodies
+            .position
+            .iter()
+            .flat_map(|p| [p.x, p.y])
+            .collect()
+    };
+    largest_difference(&flat(a), &flat(b))
+}
+
+fn velocity_difference(a: &CoupledState, b: &CoupledState) -> f64 {
+    (0..2)
+        .map(|d| largest_difference(&a.fluid.velocity[d], &b.fluid.velocity[d]))
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn two_grain_sedimentation_on_1_2_and_4_processes_agrees_with_the_serial_run() {
+    let (params, start) = two_grains(1e-5);
+    let reference = serial(&params, start.clone(), STEPS);
+    let (tight_params, _) = two_grains(1e-7);
+    let tight = serial(&tight_params, start.clone(), STEPS);
+    let serial_error = grain_difference(&reference, &tight);
+    let serial_velocity_error = velocity_difference(&reference, &tight);
+    let fall = start.world.bodies.position[0].y - reference.world.bodies.position[0].y;
+    assert!(
+        fall > 2.0 * reference.fluid.grid.h,
+        "the grains fell {fall:e} m"
+    );
+    for ranks in [1, 2, 4] {
+        let (whole, loads) = distributed(&params, &start, ranks, STEPS);
+        let difference = grain_difference(&whole, &reference);
+        let velocity = velocity_difference(&whole, &reference);
+        eprintln!(
+            "{ranks} processes: grains {difference:e} m (serial error {serial_error:e}), \
+             velocity {velocity:e} m/s (serial error {serial_velocity_error:e}), fall {fall:e} m"
+        );
+        assert!(
+            difference <= 10.0 * serial_error.max(1e-15),
+            "{ranks} processes: grains differ by {difference:e} m, serial error {serial_error:e}"
+        );
+        assert!(
+            velocity <= 10.0 * serial_velocity_error,
+            "{ranks} processes: velocity differs by {velocity:e}, serial error {serial_velocity_error:e}"
+        );
+        assert_eq!(whole.world.step, reference.world.step);
+        let cells: usize = loads.iter().map(|l| l.cells).sum();
+        assert_eq!(cells, 32 * 320, "every cell is held once");
+    }
+}
+
+#[test]
+fn the_distributed_error_shrinks_with_the_pressure_tolerance() {
+    let mut differences = Vec::new();
+    for tolerance in [1e-7, 1e-10] {
+        let (params, start) = two_grains(tolerance);
+        let reference = serial(&params, start.clone(), STEPS / 2);
+        let (whole, _) = distributed(&params, &start, 3, STEPS / 2);
+        differences.push(velocity_difference(&whole, &reference));
+    }
+    assert!(
+        differences[1] < 0.05 * differences[0],
+        "velocity differences {differences:?} at tolerances 1e-7 and 1e-10"
+    );
+}
+
+#[test]
+fn a_run_stopped_on_2_processes_resumes_on_3_and_matches_the_serial_run() {
+    let (params, start) = two_grains(1e-5);
+    let reference = serial(&params, start.clone(), STEPS);
+    let (tight_params, _) = two_grains(1e-7);
+    let serial_error = grain_difference(&reference, &serial(&tight_params, start.clone(), STEPS));
+    let (halfway, _) = distributed(&params, &start, 2, STEPS / 2);
+    let (resumed, _) = distributed(&params, &halfway, 3, STEPS / 2);
+    let difference = grain_difference(&resumed, &reference);
+    assert!(
+        difference <= 10.0 * serial_error,
+        "resumed on 3: {difference:e} m, serial error {serial_error:e}"
+    );
+    let (again, _) = distributed(&params, &halfway, 2, STEPS / 2);
+    let (straight, _) = distributed(&params, &start, 2, STEPS);
+    assert_eq!(
+        grain_difference(&again, &straight),
+        0.0,
+        "resumed on the same count, the run is exact"
+    );
+}
