@@ -9,6 +9,9 @@
 #   - box100k, the first STEPS_100K steps (default 100: free fall and first contacts).
 #   - nooru_mohamed (the paper's mesh, 36,351 elements), the first STEPS_NM steps (default
 #     500: loading, damage at both notches).
+#   - two_grains_sedimentation (64 x 640 cells, the paper's mesh), the first STEPS_FLUID steps
+#     (default 2000: 0.2 s of fall), and glowinski_sedimentation (160 x 640 cells), the first
+#     DURATION_GLOWINSKI seconds (default 0.5).
 # Weak scaling: a deposit of 2500 disks per process on 1, 2 and 4 processes (oversubscribed on
 # a 2-core machine), 300 steps; reported as communication volume per step per process.
 # CASES (default "rigid fracture weak") selects parts; the table and scaling.json cover every
@@ -19,7 +22,9 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMPI_MCA_rmaps_base_oversubscribe=1 OMPI_MCA_mpi_yield_when_idle=1
 STEPS_100K=${STEPS_100K:-100}
 STEPS_NM=${STEPS_NM:-500}
-CASES=${CASES:-rigid fracture weak}
+STEPS_FLUID=${STEPS_FLUID:-2000}
+DURATION_GLOWINSKI=${DURATION_GLOWINSKI:-0.5}
+CASES=${CASES:-rigid fracture fluid weak}
 cargo build --release -p xper-cli --features mpi
 XPER=target/release/xper
 OUT=bench-results/scaling
@@ -40,9 +45,17 @@ no_outputs() { printf '\n[output]\nframe_every = %s\ncheckpoint_every = %s\n' "$
 sed -e "s/^steps = .*/steps = $STEPS_NM/" -e "s/^frame_every = .*/frame_every = $STEPS_NM/" \
   -e "s/^checkpoint_every = .*/checkpoint_every = $STEPS_NM/" scenes/nooru_mohamed/scene.toml \
   > "$OUT/scenes/nooru_mohamed_head.toml"
+fluid_head() { # scene duration
+  sed -e "s/^duration = .*/duration = $2/" -e "s/^frame_every = .*/frame_every = 1000000/" \
+    -e "s/^checkpoint_every = .*/checkpoint_every = 1000000/" "scenes/$1/scene.toml"
+}
+fluid_head two_grains_sedimentation "$(python3 -c "print($STEPS_FLUID * 1e-4)")" \
+  > "$OUT/scenes/two_grains_head.toml"
+fluid_head glowinski_sedimentation "$DURATION_GLOWINSKI" > "$OUT/scenes/glowinski_head.toml"
 strong=()
 [[ " $CASES " == *" rigid "* ]] && strong+=(box10k box100k_head)
 [[ " $CASES " == *" fracture "* ]] && strong+=(nooru_mohamed_head)
+[[ " $CASES " == *" fluid "* ]] && strong+=(two_grains_head glowinski_head)
 for name in "${strong[@]}"; do
   scene="$OUT/scenes/$name.toml"
   rm -rf "$OUT/serial_$name"

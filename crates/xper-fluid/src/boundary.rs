@@ -26,6 +26,17 @@ pub enum InflowProfile {
         /// Inward speed at the middle of the side (m/s).
         max_speed: Real,
     },
+    /// The part of a [`InflowProfile::Parabolic`] side held by a block of a split grid: its
+    /// cells are `offset..offset + m` of the side's `cells`. Never read from a scene.
+    #[serde(skip)]
+    ParabolicPart {
+        /// Inward speed at the middle of the whole side (m/s).
+        max_speed: Real,
+        /// Cells of the side before the block's.
+        offset: usize,
+        /// Cells of the whole side.
+        cells: usize,
+    },
 }
 
 impl InflowProfile {
@@ -33,10 +44,21 @@ impl InflowProfile {
     pub fn speed(&self, s: Real, length: Real) -> Real {
         match *self {
             InflowProfile::Uniform { speed } => speed,
-            InflowProfile::Parabolic { max_speed } => {
+            InflowProfile::Parabolic { max_speed }
+            | InflowProfile::ParabolicPart { max_speed, .. } => {
                 4.0 * max_speed * s * (length - s) / (length * length)
             }
         }
+    }
+
+    /// Inward speed on the face of cell `k` of a side of `m` cells of size `h` (for a block,
+    /// the side's cells are placed within the whole side).
+    pub fn speed_on_cell(&self, k: isize, m: isize, h: Real) -> Real {
+        let (offset, cells) = match *self {
+            InflowProfile::ParabolicPart { offset, cells, .. } => (offset as Real, cells as Real),
+            _ => (0.0, m as Real),
+        };
+        self.speed((k as Real + 0.5 + offset) * h, cells * h)
     }
 }
 
@@ -142,6 +164,20 @@ impl FluidBoundary {
     pub fn block(&self, rows: std::ops::Range<usize>, ny: usize, blocks: usize) -> Self {
         let periodic = self.is_periodic(1) && blocks > 1;
         let mut block = *self;
+        for side in [&mut block.left, &mut block.right] {
+            if let SideCondition::Inflow {
+                profile: InflowProfile::Parabolic { max_speed },
+            } = *side
+            {
+                *side = SideCondition::Inflow {
+                    profile: InflowProfile::ParabolicPart {
+                        max_speed,
+                        offset: rows.start,
+                        cells: ny,
+                    },
+                };
+            }
+        }
         if rows.start > 0 || periodic {
             block.bottom = SideCondition::Neighbour;
         }
@@ -221,7 +257,6 @@ impl FluidBoundary {
             let n = grid.cells(a) as isize;
             let e = 1 - a;
             let m = grid.cells(e) as isize;
-            let length = m as Real * grid.h;
             let at = |along_a: isize, along_e: isize| {
                 if a == 0 {
                     grid.index(along_a, along_e)
@@ -249,10 +284,9 @@ impl FluidBoundary {
                             normal[at(face, k)] = 0.0
                         }
                         SideCondition::Inflow { profile } => {
-                            let s = (k as Real + 0.5) * grid.h;
                             let inside_side = (0..m).contains(&k);
                             normal[at(face, k)] = if inside_side {
-                                inward * profile.speed(s, length)
+                                inward * profile.speed_on_cell(k, m, grid.h)
                             } else {
                                 0.0
                             };

@@ -66,7 +66,7 @@ pub struct StripLayout {
 }
 
 /// Coarse grids at most this large are gathered and solved whole on every strip.
-pub const GATHERED_CELLS: usize = 4096;
+pub const GATHERED_CELLS: usize = 1024;
 
 impl StripLayout {
     /// `strips` strips of nearly equal height over an `nx x ny` grid, cut at multiples of the
@@ -115,6 +115,7 @@ pub(crate) struct StripLevel {
     pub f: Vec<f64>,
     pub r: Vec<f64>,
     inverse_diagonal: Vec<f64>,
+    diagonal: Vec<f64>,
     /// Whether the bottom and top ghost rows come from another strip (or this one, periodic).
     linked: [bool; 2],
     boundary: Boundary,
@@ -141,7 +142,7 @@ impl StripLevel {
         let periodic_y = boundary.bottom == SideCondition::Periodic;
         let linked = [rows.start > 0 || periodic_y, rows.end < ny || periodic_y];
         let padded = (nx + 2) * (rows.len() + 2);
-        let mut inverse_diagonal = Vec::with_capacity(nx * rows.len());
+        let mut diagonal = Vec::with_capacity(nx * rows.len());
         for j in rows.clone() {
             let s_south = if j == 0 && !linked[0] {
                 fold(boundary.bottom)
@@ -160,8 +161,7 @@ impl StripLevel {
                 } else {
                     0.0
                 };
-                let diagonal = -cx * (2.0 - s_west - s_east) - cy * (2.0 - s_south - s_north);
-                inverse_diagonal.push(1.0 / diagonal);
+                diagonal.push(-cx * (2.0 - s_west - s_east) - cy * (2.0 - s_south - s_north));
             }
         }
         StripLevel {
@@ -173,7 +173,8 @@ impl StripLevel {
             u: vec![0.0; padded],
             f: vec![0.0; padded],
             r: vec![0.0; padded],
-            inverse_diagonal,
+            inverse_diagonal: diagonal.iter().map(|d| 1.0 / d).collect(),
+            diagonal,
             linked,
             boundary,
         }
@@ -250,15 +251,19 @@ impl StripLevel {
         let (nx, w) = (self.nx, self.width());
         let (cx, cy) = (1.0 / (self.hx * self.hx), 1.0 / (self.hy * self.hy));
         for j in 0..self.rows {
-            let row = self.index(0, j as isize);
-            let first = (colour + self.first_row + j) % 2;
+            // The row with its two ghosts, and the rows below and above, as separate slices.
+            let start = self.index(-1, j as isize);
+            let (before, after) = self.u.split_at_mut(start);
+            let (here, rest) = after.split_at_mut(nx + 2);
+            let below = &before[start - w..start - w + nx + 2];
+            let above = &rest[w - nx - 2..w];
+            let f = &self.f[start + 1..start + 1 + nx];
             let inverse = &self.inverse_diagonal[nx * j..nx * (j + 1)];
+            let first = (colour + self.first_row + j) % 2;
             for i in (first..nx).step_by(2) {
-                let k = row + i;
-                let u = &self.u;
-                let neighbours = cx * (u[k - 1] + u[k + 1]) + cy * (u[k - w] + u[k + w]);
-                let target = (self.f[k] - neighbours) * inverse[i];
-                self.u[k] += omega * (target - self.u[k]);
+                let neighbours = cx * (here[i] + here[i + 2]) + cy * (below[i + 1] + above[i + 1]);
+                let target = (f[i] - neighbours) * inverse[i];
+                here[i + 1] += omega * (target - here[i + 1]);
             }
         }
     }
@@ -270,15 +275,23 @@ impl StripLevel {
         let (cx, cy) = (1.0 / (self.hx * self.hx), 1.0 / (self.hy * self.hy));
         let mut squares = 0.0;
         for j in 0..self.rows {
-            let row = self.index(0, j as isize);
-            let inverse = &self.inverse_diagonal[nx * j..nx * (j + 1)];
-            for (i, inv) in inverse.iter().enumerate() {
-                let k = row + i;
-                let u = &self.u;
-                let lap = cx * (u[k - 1] + u[k + 1]) + cy * (u[k - w] + u[k + w]) + u[k] / inv;
-                let r = self.f[k] - lap;
-                self.r[k] = r;
-                squares += r * r;
+            let start = self.index(-1, j as isize);
+            let u = &self.u;
+            let (below, here, above) = (
+                &u[start - w + 1..start - w + 1 + nx],
+                &u[start..start + nx + 2],
+                &u[start + w + 1..start + w + 1 + nx],
+            );
+            let f = &self.f[start + 1..start + 1 + nx];
+            let r = &mut self.r[start + 1..start + 1 + nx];
+            let diagonal = &self.diagonal[nx * j..nx * (j + 1)];
+            for i in 0..nx {
+                let lap = cx * (here[i] + here[i + 2])
+                    + cy * (below[i] + above[i])
+                    + diagonal[i] * here[i + 1];
+                let value = f[i] - lap;
+                r[i] = value;
+                squares += value * value;
             }
         }
         squares
@@ -301,16 +314,18 @@ impl StripLevel {
     /// weights 9/16, 3/16, 3/16, 1/16 of the nearest coarse centres.
     pub fn prolong(&mut self, coarse: &mut StripLevel, links: &mut dyn RowLinks) {
         coarse.fill_ghosts(links, true);
-        let wc = coarse.width() as isize;
+        let (nx, wc) = (self.nx, coarse.width());
         for j in 0..self.rows {
-            let (jc, sy) = (j / 2, if j % 2 == 0 { -wc } else { wc });
-            for i in 0..self.nx {
-                let (ic, sx) = (i / 2, if i % 2 == 0 { -1 } else { 1 });
-                let kc = coarse.index(ic as isize, jc as isize) as isize;
-                let c = |offset: isize| coarse.u[(kc + offset) as usize];
-                let value = 0.5625 * c(0) + 0.1875 * (c(sx) + c(sy)) + 0.0625 * c(sx + sy);
-                let k = self.index(i as isize, j as isize);
-                self.u[k] += value;
+            // The coarse row of this fine row and the nearer of its neighbours.
+            let centre = coarse.index(-1, (j / 2) as isize);
+            let other = if j % 2 == 0 { centre - wc } else { centre + wc };
+            let (near, far) = (&coarse.u[centre..centre + wc], &coarse.u[other..other + wc]);
+            let start = self.index(0, j as isize);
+            let row = &mut self.u[start..start + nx];
+            for (i, u) in row.iter_mut().enumerate() {
+                let ic = i / 2 + 1;
+                let side = if i % 2 == 0 { ic - 1 } else { ic + 1 };
+                *u += 0.5625 * near[ic] + 0.1875 * (near[side] + far[ic]) + 0.0625 * far[side];
             }
         }
     }
