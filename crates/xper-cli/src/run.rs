@@ -71,6 +71,34 @@ pub struct SerialComparison {
 }
 
 impl SerialComparison {
+    /// `--compare-serial`: advances `start` on this process by `step` until `step_of` reaches
+    /// `end_step`, timed, and compares the result by `difference` with a distributed run of
+    /// `distributed.0` seconds on `distributed.1` processes.
+    pub fn rerun<S, E: std::fmt::Display>(
+        mut start: S,
+        end_step: u64,
+        step_of: impl Fn(&S) -> u64,
+        mut step: impl FnMut(&mut S) -> Result<(), E>,
+        difference: impl FnOnce(&S) -> f64,
+        distributed: (f64, usize),
+    ) -> Result<Self, CliError> {
+        let steps = end_step - step_of(&start);
+        let clock = Instant::now();
+        while step_of(&start) < end_step {
+            step(&mut start)
+                .map_err(|e| CliError::Runtime(format!("--compare-serial: serial run: {e}")))?;
+        }
+        let serial = clock.elapsed().as_secs_f64();
+        let (wall, processes) = distributed;
+        Ok(Self::new(
+            steps,
+            wall,
+            serial,
+            processes,
+            difference(&start),
+        ))
+    }
+
     /// The comparison of `steps` steps run in `distributed` seconds on `processes` processes
     /// and in `serial` seconds on one, ending `difference` apart.
     pub fn new(
@@ -417,30 +445,28 @@ struct RunFacts {
 
 /// Runs `start` on this process up to `end`'s step and compares (`--compare-serial`).
 fn compare_serial(
-    mut start: World,
+    start: World,
     end: &World,
     distributed_wall: f64,
     processes: usize,
 ) -> Result<SerialComparison, CliError> {
-    let steps = end.step - start.step;
     let mut stepper = xper_nscd::MoreauJean::new();
-    let clock = Instant::now();
-    while start.step < end.step {
-        stepper
-            .step(&mut start)
-            .map_err(|e| CliError::Runtime(format!("--compare-serial: serial run: {e}")))?;
-    }
-    let serial = clock.elapsed().as_secs_f64();
-    let difference = (0..start.bodies.len())
-        .map(|b| (start.bodies.position[b] - end.bodies.position[b]).norm())
-        .fold(0.0, f64::max);
-    Ok(SerialComparison::new(
-        steps,
-        distributed_wall,
-        serial,
-        processes,
-        difference,
-    ))
+    SerialComparison::rerun(
+        start,
+        end.step,
+        |w: &World| w.step,
+        |w| stepper.step(w).map(drop),
+        |w| largest_position_difference(w, end),
+        (distributed_wall, processes),
+    )
+}
+
+/// The largest distance between a body's positions in two worlds of the same bodies (m).
+pub fn largest_position_difference(a: &World, b: &World) -> f64 {
+    (a.bodies.position.iter())
+        .zip(&b.bodies.position)
+        .map(|(p, q)| (p - q).norm())
+        .fold(0.0, f64::max)
 }
 
 /// The file of the problem of step `step` (1-based) under the output directory `out`.

@@ -2,8 +2,6 @@
 //! on the processes of a communicator ([`DistributedFluidRun`], under `mpirun`: the grid cut
 //! into blocks of rows), behind one trait so the run loop and its outputs are the same.
 
-use std::time::Instant;
-
 use xper_domain::{Communicator, DistributedFluid};
 use xper_fluid::{CoupledError, CoupledReport, CoupledState, CoupledStepper, FluidParams};
 
@@ -116,30 +114,19 @@ impl FluidRun for DistributedFluidRun<'_> {
 /// largest distance between a grain's positions at the end of the two runs.
 pub fn compare_serial(
     params: &FluidParams,
-    mut start: CoupledState,
+    start: CoupledState,
     end: &CoupledState,
     distributed_wall: f64,
     processes: usize,
 ) -> Result<SerialComparison, CliError> {
-    let failed = |e: String| CliError::Runtime(format!("--compare-serial: serial run: {e}"));
-    let steps = end.world.step - start.world.step;
-    let mut stepper = CoupledStepper::new(params, &start).map_err(|e| failed(e.to_string()))?;
-    let clock = Instant::now();
-    while start.world.step < end.world.step {
-        stepper
-            .step(params, &mut start)
-            .map_err(|e| failed(e.to_string()))?;
-    }
-    let serial = clock.elapsed().as_secs_f64();
-    let difference = (start.world.bodies.position.iter())
-        .zip(&end.world.bodies.position)
-        .map(|(a, b)| (a - b).norm())
-        .fold(0.0, f64::max);
-    Ok(SerialComparison::new(
-        steps,
-        distributed_wall,
-        serial,
-        processes,
-        difference,
-    ))
+    let mut stepper = CoupledStepper::new(params, &start)
+        .map_err(|e| CliError::Runtime(format!("--compare-serial: serial run: {e}")))?;
+    SerialComparison::rerun(
+        start,
+        end.world.step,
+        |s: &CoupledState| s.world.step,
+        |s| stepper.step(params, s).map(drop),
+        |s| crate::run::largest_position_difference(&s.world, &end.world),
+        (distributed_wall, processes),
+    )
 }

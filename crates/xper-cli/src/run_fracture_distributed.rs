@@ -2,8 +2,6 @@
 //! on the processes of a communicator ([`DistributedFractureRun`], under `mpirun`), behind one
 //! trait so the run loop and its outputs are the same.
 
-use std::time::Instant;
-
 use xper_domain::{Communicator, DistributedFracture};
 use xper_fracture::{FractureModel, FractureStepError, FractureStepReport, FractureStepper};
 
@@ -92,25 +90,18 @@ impl FractureRun for DistributedFractureRun<'_> {
 /// Runs `start` on this process up to `end`'s step and compares (`--compare-serial`): the
 /// largest difference of a nodal displacement stands for the position difference.
 pub fn compare_serial(
-    mut start: FractureModel,
+    start: FractureModel,
     end: &FractureModel,
     distributed_wall: f64,
     processes: usize,
 ) -> Result<SerialComparison, CliError> {
-    let steps = end.step - start.step;
     let mut stepper = FractureStepper::new();
-    let clock = Instant::now();
-    while start.step < end.step {
-        stepper
-            .step(&mut start)
-            .map_err(|e| CliError::Runtime(format!("--compare-serial: serial run: {e}")))?;
-    }
-    let serial = clock.elapsed().as_secs_f64();
-    Ok(SerialComparison::new(
-        steps,
-        distributed_wall,
-        serial,
-        processes,
-        start.largest_displacement_difference(end),
-    ))
+    SerialComparison::rerun(
+        start,
+        end.step,
+        |m: &FractureModel| m.step,
+        |m| stepper.step(m).map(drop),
+        |m| m.largest_displacement_difference(end),
+        (distributed_wall, processes),
+    )
 }

@@ -139,11 +139,6 @@ impl CoupledStepper {
         &self.immersed
     }
 
-    /// The fluid solver (e.g. for the solid fraction of the last step).
-    pub fn fluid_solver(&self) -> &FluidSolver {
-        &self.fluid
-    }
-
     /// One coupled step.
     pub fn step(
         &mut self,

@@ -470,11 +470,6 @@ impl FluidSolver {
         report.times[3] = start.elapsed().as_secs_f64();
         Ok(report)
     }
-
-    /// Solid fraction of each face of component `d` at the last step (padded layout).
-    pub fn solid_fraction(&self, d: usize) -> &[Real] {
-        self.forcing.fraction(d)
-    }
 }
 
 /// The forces (force, torque) then the inner momenta (linear, angular) as one array, for one
