@@ -12,6 +12,10 @@
 //! ([`projection`], `xper_poisson`). [`FluidSolver::step`] runs the stages in that order; the
 //! force of the fluid on each grain comes out of the step for the contact dynamics to use.
 //!
+//! On several processes the grid is cut into blocks of rows: [`FluidSolver::step_with`] runs
+//! the same stages on a block, with what crosses blocks (halo rows, sums, the pressure solve)
+//! behind [`BlockLinks`] ([`blocks`]).
+//!
 //! The grid is 2D (the `DIM` of `xper_math`); the stencils are written per component with
 //! neighbour offsets, so a 3D grid adds a third offset rather than a second copy.
 

@@ -294,7 +294,7 @@ impl FluidSolver {
     /// block's sides, [`FluidBoundary::block`]), stepped by [`FluidSolver::step_with`].
     pub fn new_block(grid: MacGrid, params: &FluidParams) -> Result<Self, FluidError> {
         params.validate().map_err(FluidError::Setup)?;
-        if grid.nx < 2 || grid.ny < 1 || grid.h.is_nan() || grid.h <= 0.0 {
+        if grid.nx < 2 || grid.ny < 2 || grid.h.is_nan() || grid.h <= 0.0 {
             return Err(FluidError::Setup(format!(
                 "the grid needs at least 2 x 2 cells of positive size, got {} x {} of {}",
                 grid.nx, grid.ny, grid.h
