@@ -351,7 +351,8 @@ impl fmt::Display for SetupError {
             SetupError::BadStrips { starts, ny, strip } => write!(
                 f,
                 "strip {strip} of the row cuts {starts:?}: the cuts must rise from 0 to {ny} \
-                 and the strip must exist"
+                 by at least {} rows and the strip must exist",
+                crate::strips::MIN_STRIP_ROWS
             ),
         }
     }

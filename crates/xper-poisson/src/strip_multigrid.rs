@@ -3,16 +3,19 @@
 //! rows of its strip ([`StripLayout`]).
 //!
 //! The strip levels coarsen by two in both directions while the strips stay whole numbers of
-//! coarse rows ([`StripLayout::balanced`] cuts them so); on each level a red-black SOR sweep
-//! exchanges the strips' edge rows after each colour ([`RowLinks`]), the residual is restricted
-//! by four-cell averages and the correction prolongated bilinearly, as in the serial solver.
+//! at least [`MIN_STRIP_ROWS`] coarse rows ([`StripLayout::balanced`] cuts them so); on each
+//! level a red-black SOR sweep exchanges two edge rows with each neighbouring strip once
+//! ([`RowLinks`]) and the residual after the last sweep is computed within it, the residual is
+//! restricted by four-cell averages and the correction prolongated bilinearly, as in the serial
+//! solver. A V-cycle thus exchanges rows four times per level with the default V(2,1) (twice
+//! per sweep before), and the residual that ends a cycle costs one more exchange.
 //! The coarsest strip level (at most [`crate::strips::GATHERED_CELLS`] cells in all) is
 //! gathered on every process and solved whole by the serial [`crate::Multigrid`]; every
 //! process gets the same bits, so no broadcast is needed (the agglomeration of Trottenberg et
 //! al., "Multigrid", section 6.3). Convergence is judged on the global residual norm (one sum
 //! per cycle), so every process stops at the same cycle.
 
-use crate::strips::{RowLinks, StripLayout, StripLevel};
+use crate::strips::{RowLinks, StripLayout, StripLevel, MIN_STRIP_ROWS};
 use crate::{Boundary, GridShape, Multigrid, MultigridParams, SetupError, SolveError, SolveInfo};
 
 /// Relative tolerance of the gathered coarse solve inside a cycle: an approximate coarse
@@ -45,7 +48,10 @@ impl StripMultigrid {
         crate::multigrid::validate(&shape, &boundary, &params)?;
         if layout.starts.first() != Some(&0)
             || layout.starts.last() != Some(&shape.ny)
-            || layout.starts.windows(2).any(|w| w[0] >= w[1])
+            || layout
+                .starts
+                .windows(2)
+                .any(|w| w[0] + MIN_STRIP_ROWS > w[1])
             || strip >= layout.strips()
         {
             return Err(SetupError::BadStrips {
@@ -66,6 +72,7 @@ impl StripMultigrid {
         while nx % 2 == 0
             && nx >= 4
             && starts.iter().all(|s| s % 2 == 0)
+            && starts.windows(2).all(|w| w[1] - w[0] >= 2 * MIN_STRIP_ROWS)
             && nx * ny > crate::strips::GATHERED_CELLS
         {
             for s in &mut starts {
@@ -138,6 +145,7 @@ impl StripMultigrid {
                 squares[0] += value * value;
             }
         }
+        fine.rhs_changed();
         links.sum(&mut squares);
         let rhs_norm = squares[0].sqrt();
         let mut info = SolveInfo {
@@ -159,10 +167,13 @@ impl StripMultigrid {
         let mut cycles = 0;
         let mut work = 1.0;
         while norm > target && cycles < self.params.max_cycles {
-            work += self.cycle(0, links);
-            let mut squares = [self.levels[0].residual(links)];
+            let (cycle_work, fused) = self.cycle(0, links);
+            work += cycle_work + 1.0;
+            let mut squares = [match fused {
+                Some(squares) => squares,
+                None => self.levels[0].residual(links),
+            }];
             links.sum(&mut squares);
-            work += 1.0;
             norm = squares[0].sqrt();
             cycles += 1;
             if !norm.is_finite() {
@@ -202,43 +213,53 @@ impl StripMultigrid {
     }
 
     /// One V-cycle from level `l` (its `u` the guess, `f` the rhs); returns its work in
-    /// finest-grid sweeps of this strip.
-    fn cycle(&mut self, l: usize, links: &mut dyn RowLinks) -> f64 {
+    /// finest-grid sweeps of this strip and, on the finest level when the cycle ends with a
+    /// sweep, this strip's `sum r^2` after the cycle (computed within the last sweep).
+    fn cycle(&mut self, l: usize, links: &mut dyn RowLinks) -> (f64, Option<f64>) {
         let p = self.params;
         let scale = self.levels[l].cells() as f64 / self.levels[0].cells() as f64;
         if l + 1 == self.levels.len() {
-            self.solve_gathered(links);
-            return scale;
+            self.solve_gathered(links, l > 0);
+            return (scale, None);
         }
         let (upper, lower) = self.levels.split_at_mut(l + 1);
         let (fine, coarse) = (&mut upper[l], &mut lower[0]);
-        for _ in 0..p.pre_smoothing {
-            fine.sweep(p.omega, links);
+        for k in 0..p.pre_smoothing {
+            fine.sweep(p.omega, links, k + 1 == p.pre_smoothing);
         }
-        fine.residual(links);
+        if p.pre_smoothing == 0 {
+            fine.residual(links);
+        }
         coarse.u.fill(0.0);
         fine.restrict(coarse);
         let mut work = scale * (p.pre_smoothing as f64 + 1.5);
-        work += self.cycle(l + 1, links);
+        work += self.cycle(l + 1, links).0;
         let (upper, lower) = self.levels.split_at_mut(l + 1);
         let (fine, coarse) = (&mut upper[l], &mut lower[0]);
         fine.prolong(coarse, links);
-        for _ in 0..p.post_smoothing {
-            fine.sweep(p.omega, links);
+        let mut squares = None;
+        for k in 0..p.post_smoothing {
+            let last = l == 0 && k + 1 == p.post_smoothing;
+            let sum = fine.sweep(p.omega, links, last);
+            squares = last.then_some(sum);
         }
-        work + scale * (0.5 + p.post_smoothing as f64)
+        (work + scale * (0.5 + p.post_smoothing as f64), squares)
     }
 
     /// Corrects the coarsest strip level by a whole solve: its residual gathered from every
-    /// strip, the serial multigrid run on every process, each adding its rows.
-    fn solve_gathered(&mut self, links: &mut dyn RowLinks) {
+    /// strip, the serial multigrid run on every process, each adding its rows. With
+    /// `zero_guess` (a coarse level, its `u` zero on entry) the residual is the rhs itself.
+    fn solve_gathered(&mut self, links: &mut dyn RowLinks, zero_guess: bool) {
         let level = self.levels.last_mut().expect("at least one level");
         let nx = level.nx;
-        level.residual(links);
+        if !zero_guess {
+            level.residual(links);
+        }
+        let source = if zero_guess { &level.f } else { &level.r };
         let mut local = Vec::with_capacity(level.cells());
         for j in 0..level.rows {
             let k = level.index(0, j as isize);
-            local.extend_from_slice(&level.r[k..k + nx]);
+            local.extend_from_slice(&source[k..k + nx]);
         }
         let whole = links.gather(&local);
         self.coarse_rhs.copy_from_slice(&whole);

@@ -1,9 +1,10 @@
 //! The grid cut into horizontal strips, one per process, and one multigrid level of a strip.
 //!
 //! Strip `s` holds the global rows `starts[s]..starts[s + 1]` and every column. A level keeps
-//! one ghost layer around its cells (padded arrays of `(nx + 2) x (rows + 2)` entries); the
-//! ghost rows towards another strip (or across a periodic bottom/top) are filled by
-//! [`RowLinks::exchange_rows`], the ghost columns of periodic left/right sides by a local copy.
+//! one ghost column on each side and two ghost rows below and above its cells (padded arrays
+//! of `(nx + 2) x (rows + 4)` entries); the ghost rows towards another strip (or across a
+//! periodic bottom/top) are filled by [`RowLinks::exchange_rows`], the ghost columns of
+//! periodic left/right sides by a local copy.
 //!
 //! The 5-point operator is written with the boundary rules of the Neumann and Dirichlet sides
 //! folded into a per-cell diagonal (Trottenberg et al., "Multigrid", section 5.6): with the
@@ -70,19 +71,19 @@ pub const GATHERED_CELLS: usize = 1024;
 
 impl StripLayout {
     /// `strips` strips of nearly equal height over an `nx x ny` grid, cut at multiples of the
-    /// largest power of two `2^k` that divides `nx` and `ny`, leaves every strip at least one
-    /// block of `2^k` rows, and is not beyond what brings the grid down to
+    /// largest power of two `2^k` that divides `nx` and `ny`, leaves every strip at least
+    /// [`MIN_STRIP_ROWS`] blocks of `2^k` rows, and is not beyond what brings the grid down to
     /// [`GATHERED_CELLS`]: the strips then coarsen `k` times without cutting a coarse cell.
     pub fn balanced(nx: usize, ny: usize, strips: usize) -> Result<Self, String> {
-        if strips == 0 || ny < strips {
+        if strips == 0 || ny < MIN_STRIP_ROWS * strips {
             return Err(format!(
-                "{ny} rows cannot be shared among {strips} strips (at least one row each)"
+                "{ny} rows cannot be shared among {strips} strips (at least {MIN_STRIP_ROWS} rows each)"
             ));
         }
         let mut unit = 1;
         while nx.is_multiple_of(2 * unit)
             && ny.is_multiple_of(2 * unit)
-            && ny / (2 * unit) >= strips
+            && ny / (2 * unit) >= MIN_STRIP_ROWS * strips
             && (nx / unit) * (ny / unit) > GATHERED_CELLS
         {
             unit *= 2;
@@ -103,21 +104,46 @@ impl StripLayout {
     }
 }
 
-/// One level of one strip: the correction `u`, the rhs `f` and the residual `r`.
+/// Ghost rows on each side of a strip level. Two let a strip, after one exchange, compute the
+/// red half-sweep of its neighbours' edge rows itself, so a red-black sweep needs one exchange
+/// instead of one per colour (the redundant-computation halo of Douglas et al., "Cache
+/// optimization for structured and unstructured grid multigrid", ETNA 10, 2000).
+const GHOST_ROWS: usize = 2;
+
+/// Strips at least this many rows high on every level, so the two ghost rows of a strip come
+/// from its neighbour alone.
+pub const MIN_STRIP_ROWS: usize = GHOST_ROWS;
+
+/// The folded diagonal `D` of one row's cells: the cells `1..nx - 1`, the first and the last.
+#[derive(Clone, Copy, Debug)]
+struct RowDiagonal {
+    interior: f64,
+    first: f64,
+    last: f64,
+}
+
+/// One level of one strip: the correction `u`, the rhs `f` and the residual `r`, padded with
+/// one ghost column on each side and [`GHOST_ROWS`] ghost rows below and above.
 pub(crate) struct StripLevel {
     pub nx: usize,
     pub rows: usize,
     /// Global index of local row 0.
     pub first_row: usize,
-    pub hx: f64,
-    pub hy: f64,
+    cx: f64,
+    cy: f64,
     pub u: Vec<f64>,
     pub f: Vec<f64>,
     pub r: Vec<f64>,
-    inverse_diagonal: Vec<f64>,
-    diagonal: Vec<f64>,
+    /// The diagonal of local rows `-1..=rows` (entry `j + 1`). The ghost rows' are those of a
+    /// row inside the grid in y: they are relaxed only when linked, and then their other
+    /// neighbour lies in the same neighbouring strip.
+    diagonals: Vec<RowDiagonal>,
     /// Whether the bottom and top ghost rows come from another strip (or this one, periodic).
     linked: [bool; 2],
+    /// Whether the ghost rows next to the cells hold the neighbours' current `f` (needed to
+    /// relax the ghost rows); cleared by [`StripLevel::rhs_changed`].
+    rhs_ghosts_current: bool,
+    periodic_x: bool,
     boundary: Boundary,
 }
 
@@ -141,8 +167,18 @@ impl StripLevel {
         let (cx, cy) = (1.0 / (hx * hx), 1.0 / (hy * hy));
         let periodic_y = boundary.bottom == SideCondition::Periodic;
         let linked = [rows.start > 0 || periodic_y, rows.end < ny || periodic_y];
-        let padded = (nx + 2) * (rows.len() + 2);
-        let mut diagonal = Vec::with_capacity(nx * rows.len());
+        let padded = (nx + 2) * (rows.len() + 2 * GHOST_ROWS);
+        let (s_west, s_east) = (fold(boundary.left), fold(boundary.right));
+        let diagonal = |s_south: f64, s_north: f64| {
+            let y = -cy * (2.0 - s_south - s_north);
+            let first = if nx == 1 { s_west + s_east } else { s_west };
+            RowDiagonal {
+                interior: y - 2.0 * cx,
+                first: y - cx * (2.0 - first),
+                last: y - cx * (2.0 - s_east),
+            }
+        };
+        let mut diagonals = vec![diagonal(0.0, 0.0)];
         for j in rows.clone() {
             let s_south = if j == 0 && !linked[0] {
                 fold(boundary.bottom)
@@ -154,28 +190,22 @@ impl StripLevel {
             } else {
                 0.0
             };
-            for i in 0..nx {
-                let s_west = if i == 0 { fold(boundary.left) } else { 0.0 };
-                let s_east = if i + 1 == nx {
-                    fold(boundary.right)
-                } else {
-                    0.0
-                };
-                diagonal.push(-cx * (2.0 - s_west - s_east) - cy * (2.0 - s_south - s_north));
-            }
+            diagonals.push(diagonal(s_south, s_north));
         }
+        diagonals.push(diagonal(0.0, 0.0));
         StripLevel {
             nx,
             rows: rows.len(),
             first_row: rows.start,
-            hx,
-            hy,
+            cx,
+            cy,
             u: vec![0.0; padded],
             f: vec![0.0; padded],
             r: vec![0.0; padded],
-            inverse_diagonal: diagonal.iter().map(|d| 1.0 / d).collect(),
-            diagonal,
+            diagonals,
             linked,
+            rhs_ghosts_current: false,
+            periodic_x: boundary.left == SideCondition::Periodic,
             boundary,
         }
     }
@@ -185,28 +215,26 @@ impl StripLevel {
         self.nx + 2
     }
 
-    /// Padded index of local cell `(i, j)`, `i, j >= -1`.
+    /// Padded index of local cell `(i, j)`, `i >= -1`, `j >= -GHOST_ROWS`.
     #[inline]
     pub fn index(&self, i: isize, j: isize) -> usize {
-        (i + 1) as usize + self.width() * (j + 1) as usize
+        (i + 1) as usize + self.width() * (j + GHOST_ROWS as isize) as usize
     }
 
     pub fn cells(&self) -> usize {
         self.nx * self.rows
     }
 
-    /// Fills the ghosts of `u`: periodic columns copied, the linked rows exchanged (whole
-    /// padded rows, so corners follow), the other sides' ghosts zero, or, with `reflect`, the
-    /// boundary rule (`+-` the interior, for the bilinear prolongation).
-    pub fn fill_ghosts(&mut self, links: &mut dyn RowLinks, reflect: bool) {
+    /// Ghost columns of every row of `u`: copies across periodic sides, else zero or, with
+    /// `reflect`, the boundary rule (`+-` the interior, for the bilinear prolongation).
+    fn fill_ghost_columns(&mut self, reflect: bool) {
         let (nx, w) = (self.nx, self.width());
-        let periodic_x = self.boundary.left == SideCondition::Periodic;
         let rule = |c: SideCondition| if reflect { fold(c) } else { 0.0 };
         let (s_left, s_right) = (rule(self.boundary.left), rule(self.boundary.right));
         for j in 0..self.rows as isize {
             let row = self.index(-1, j);
             let u = &mut self.u[row..row + w];
-            if periodic_x {
+            if self.periodic_x {
                 u[0] = u[nx];
                 u[nx + 1] = u[1];
             } else {
@@ -214,100 +242,230 @@ impl StripLevel {
                 u[nx + 1] = s_right * u[nx];
             }
         }
-        let (low, high) = (self.index(-1, 0), self.index(-1, self.rows as isize - 1));
+    }
+
+    /// Fills `depth` ghost rows on each side of `u`: the linked ones exchanged with the
+    /// neighbouring strips (whole padded rows, so corners follow), the others zero or, with
+    /// `reflect` (depth 1), the boundary rule applied to the edge row.
+    fn exchange_ghost_rows(&mut self, links: &mut dyn RowLinks, depth: usize, reflect: bool) {
+        let w = self.width();
+        let rows = self.rows as isize;
+        let depth_rows = depth as isize;
+        let (low, high) = (self.index(-1, 0), self.index(-1, rows - depth_rows));
         let received = links.exchange_rows(
-            self.linked[0].then(|| &self.u[low..low + w]),
-            self.linked[1].then(|| &self.u[high..high + w]),
+            self.linked[0].then(|| &self.u[low..low + depth * w]),
+            self.linked[1].then(|| &self.u[high..high + depth * w]),
         );
         let [from_below, from_above] = received;
-        let (below, above) = (self.index(-1, -1), self.index(-1, self.rows as isize));
-        let sides = [
-            (from_below, below, low, self.boundary.bottom),
-            (from_above, above, high, self.boundary.top),
+        let (below, above) = (self.index(-1, -depth_rows), self.index(-1, rows));
+        let edges = [
+            (from_below, below, self.index(-1, 0), self.boundary.bottom),
+            (
+                from_above,
+                above,
+                self.index(-1, rows - 1),
+                self.boundary.top,
+            ),
         ];
-        for (received, ghost, inside, condition) in sides {
+        for (received, ghost, inside, condition) in edges {
             match received {
-                Some(row) => self.u[ghost..ghost + w].copy_from_slice(&row),
+                Some(values) => self.u[ghost..ghost + depth * w].copy_from_slice(&values),
                 None => {
-                    let s = rule(condition);
+                    let s = if reflect { fold(condition) } else { 0.0 };
+                    let near = if ghost < inside {
+                        ghost + (depth - 1) * w
+                    } else {
+                        ghost
+                    };
+                    self.u[ghost..ghost + depth * w].fill(0.0);
                     for k in 0..w {
-                        self.u[ghost + k] = s * self.u[inside + k];
+                        self.u[near + k] = s * self.u[inside + k];
                     }
                 }
             }
         }
     }
 
-    /// One red-black SOR sweep: the cells of colour 0 (`i + j` even, global `j`) then those of
-    /// colour 1, the ghosts refreshed before each half.
-    pub fn sweep(&mut self, omega: f64, links: &mut dyn RowLinks) {
-        for colour in 0..2 {
-            self.fill_ghosts(links, false);
-            self.relax(colour, omega);
-        }
+    /// Records that `f` changed, so the next sweep also exchanges the edge rows of `f`.
+    pub fn rhs_changed(&mut self) {
+        self.rhs_ghosts_current = false;
     }
 
-    fn relax(&mut self, colour: usize, omega: f64) {
-        let (nx, w) = (self.nx, self.width());
-        let (cx, cy) = (1.0 / (self.hx * self.hx), 1.0 / (self.hy * self.hy));
-        for j in 0..self.rows {
-            // The row with its two ghosts, and the rows below and above, as separate slices.
-            let start = self.index(-1, j as isize);
-            let (before, after) = self.u.split_at_mut(start);
-            let (here, rest) = after.split_at_mut(nx + 2);
-            let below = &before[start - w..start - w + nx + 2];
-            let above = &rest[w - nx - 2..w];
-            let f = &self.f[start + 1..start + 1 + nx];
-            let inverse = &self.inverse_diagonal[nx * j..nx * (j + 1)];
-            let first = (colour + self.first_row + j) % 2;
-            for i in (first..nx).step_by(2) {
-                let neighbours = cx * (here[i] + here[i + 2]) + cy * (below[i + 1] + above[i + 1]);
-                let target = (f[i] - neighbours) * inverse[i];
-                here[i + 1] += omega * (target - here[i + 1]);
+    /// Fills the ghost rows of `u` two deep for a sweep, and, when it changed, the ghost rows
+    /// of `f` next to the cells, in the same messages (the `u` rows, then the `f` row).
+    fn exchange_for_sweep(&mut self, links: &mut dyn RowLinks) {
+        if self.rhs_ghosts_current {
+            return self.exchange_ghost_rows(links, GHOST_ROWS, false);
+        }
+        let (w, rows) = (self.width(), self.rows as isize);
+        let message = |level: &Self, first: isize, edge: isize| {
+            let start = level.index(-1, first);
+            let mut values = level.u[start..start + GHOST_ROWS * w].to_vec();
+            let edge = level.index(-1, edge);
+            values.extend_from_slice(&level.f[edge..edge + w]);
+            values
+        };
+        let to_below = self.linked[0].then(|| message(self, 0, 0));
+        let to_above = self.linked[1].then(|| message(self, rows - GHOST_ROWS as isize, rows - 1));
+        let received = links.exchange_rows(to_below.as_deref(), to_above.as_deref());
+        let ghosts = [
+            (self.index(-1, -(GHOST_ROWS as isize)), self.index(-1, -1)),
+            (self.index(-1, rows), self.index(-1, rows)),
+        ];
+        for (values, (u_ghost, f_ghost)) in received.into_iter().zip(ghosts) {
+            if let Some(values) = values {
+                let (u, f) = values.split_at(GHOST_ROWS * w);
+                self.u[u_ghost..u_ghost + GHOST_ROWS * w].copy_from_slice(u);
+                self.f[f_ghost..f_ghost + w].copy_from_slice(f);
             }
         }
+        for (side, first) in [(0, -(GHOST_ROWS as isize)), (1, rows)] {
+            if !self.linked[side] {
+                let start = self.index(-1, first);
+                self.u[start..start + GHOST_ROWS * w].fill(0.0);
+            }
+        }
+        self.rhs_ghosts_current = true;
     }
 
-    /// `r = f - Lap u` on every cell (ghosts refreshed first); returns `sum r^2`.
-    pub fn residual(&mut self, links: &mut dyn RowLinks) -> f64 {
-        self.fill_ghosts(links, false);
+    /// Fills the ghosts of `u` next to the cells (one row or column deep).
+    pub fn fill_ghosts(&mut self, links: &mut dyn RowLinks, reflect: bool) {
+        self.fill_ghost_columns(reflect);
+        self.exchange_ghost_rows(links, 1, reflect);
+    }
+
+    /// Relaxes the cells of `colour` (`i + j` even or odd, global `j`) of local row `j`, then
+    /// refreshes the row's periodic ghost columns.
+    #[inline]
+    fn relax_row(&mut self, j: isize, colour: usize, omega: f64) {
         let (nx, w) = (self.nx, self.width());
-        let (cx, cy) = (1.0 / (self.hx * self.hx), 1.0 / (self.hy * self.hy));
+        let (cx, cy) = (self.cx, self.cy);
+        let diagonal = self.diagonals[(j + 1) as usize];
+        let start = self.index(-1, j);
+        let (before, after) = self.u.split_at_mut(start);
+        let (here, rest) = after.split_at_mut(w);
+        let below = &before[start - w..];
+        let above = &rest[..w];
+        let f = &self.f[start..start + w];
+        let parity = (colour as isize + self.first_row as isize + j).rem_euclid(2) as usize;
+        let keep = 1.0 - omega;
+        let scale = omega / diagonal.interior;
+        // The interior cells of the colour, padded index p = i + 1 for 1 <= i <= nx - 2.
+        let mut p = 3 - parity;
+        while p < nx {
+            let neighbours = cx * (here[p - 1] + here[p + 1]) + cy * (below[p] + above[p]);
+            here[p] = keep * here[p] + scale * (f[p] - neighbours);
+            p += 2;
+        }
+        let ends = [
+            (parity == 0, 1, diagonal.first),
+            (nx > 1 && (nx - 1) % 2 == parity, nx, diagonal.last),
+        ];
+        for (relaxed, p, d) in ends {
+            if relaxed {
+                let neighbours = cx * (here[p - 1] + here[p + 1]) + cy * (below[p] + above[p]);
+                here[p] = keep * here[p] + omega * (f[p] - neighbours) / d;
+            }
+        }
+        if self.periodic_x {
+            here[0] = here[nx];
+            here[nx + 1] = here[1];
+        }
+    }
+
+    /// Writes `r = f - Lap u` on local row `j` (ghosts current); returns its `sum r^2`.
+    #[inline]
+    fn residual_row(&mut self, j: isize) -> f64 {
+        let (nx, w) = (self.nx, self.width());
+        let (cx, cy) = (self.cx, self.cy);
+        let diagonal = self.diagonals[(j + 1) as usize];
+        let start = self.index(-1, j);
+        let u = &self.u[start - w..start + 2 * w];
+        let (below, here, above) = (&u[..w], &u[w..2 * w], &u[2 * w..]);
+        let f = &self.f[start + 1..start + 1 + nx];
+        let r = &mut self.r[start + 1..start + 1 + nx];
+        let d = diagonal.interior;
+        let (west, centre, east) = (&here[..nx], &here[1..nx + 1], &here[2..nx + 2]);
+        let (south, north) = (&below[1..nx + 1], &above[1..nx + 1]);
+        for i in 0..nx {
+            let lap = cx * (west[i] + east[i]) + cy * (south[i] + north[i]) + d * centre[i];
+            r[i] = f[i] - lap;
+        }
+        // The end cells' own diagonals (with one cell, `first` holds both sides' rules).
+        r[0] -= (diagonal.first - d) * centre[0];
+        if nx > 1 {
+            r[nx - 1] -= (diagonal.last - d) * centre[nx - 1];
+        }
+        let mut partial = [0.0; 4];
+        let chunks = r.chunks_exact(4);
+        let tail: f64 = chunks.remainder().iter().map(|v| v * v).sum();
+        for chunk in chunks {
+            for (p, v) in partial.iter_mut().zip(chunk) {
+                *p += v * v;
+            }
+        }
+        partial.iter().sum::<f64>() + tail
+    }
+
+    /// One red-black SOR sweep (all cells of colour 0, `i + j` even with global `j`, then
+    /// those of colour 1) after one exchange of two rows with each neighbour: the strip first
+    /// relaxes the red cells of its two linked ghost rows (their neighbours are all present),
+    /// then pipelines red on row `s` with black on row `s - 1`. The result is that of a sweep
+    /// over the whole grid.
+    ///
+    /// With `residual`, also writes `r` (the inner rows within the sweep, the edge rows after
+    /// one more exchange of one row) and returns `sum r^2` over the strip; else returns 0.
+    pub fn sweep(&mut self, omega: f64, links: &mut dyn RowLinks, residual: bool) -> f64 {
+        let rows = self.rows as isize;
+        self.fill_ghost_columns(false);
+        self.exchange_for_sweep(links);
+        if self.linked[0] {
+            self.relax_row(-1, 0, omega);
+        }
+        if self.linked[1] {
+            self.relax_row(rows, 0, omega);
+        }
         let mut squares = 0.0;
-        for j in 0..self.rows {
-            let start = self.index(-1, j as isize);
-            let u = &self.u;
-            let (below, here, above) = (
-                &u[start - w + 1..start - w + 1 + nx],
-                &u[start..start + nx + 2],
-                &u[start + w + 1..start + w + 1 + nx],
-            );
-            let f = &self.f[start + 1..start + 1 + nx];
-            let r = &mut self.r[start + 1..start + 1 + nx];
-            let diagonal = &self.diagonal[nx * j..nx * (j + 1)];
-            for i in 0..nx {
-                let lap = cx * (here[i] + here[i + 2])
-                    + cy * (below[i] + above[i])
-                    + diagonal[i] * here[i + 1];
-                let value = f[i] - lap;
-                r[i] = value;
-                squares += value * value;
+        for s in 0..rows + 2 {
+            if s < rows {
+                self.relax_row(s, 0, omega);
+            }
+            if (1..=rows).contains(&s) {
+                self.relax_row(s - 1, 1, omega);
+            }
+            if residual && (3..=rows).contains(&s) {
+                squares += self.residual_row(s - 2);
+            }
+        }
+        if residual {
+            self.exchange_ghost_rows(links, 1, false);
+            squares += self.residual_row(0);
+            if rows > 1 {
+                squares += self.residual_row(rows - 1);
             }
         }
         squares
     }
 
+    /// `r = f - Lap u` on every cell (ghosts refreshed first); returns `sum r^2`.
+    pub fn residual(&mut self, links: &mut dyn RowLinks) -> f64 {
+        self.fill_ghosts(links, false);
+        (0..self.rows as isize).map(|j| self.residual_row(j)).sum()
+    }
+
     /// The coarse rhs: the average of `r` over the four fine cells of each coarse cell.
     pub fn restrict(&self, coarse: &mut StripLevel) {
+        let w = self.width();
         for jc in 0..coarse.rows {
-            for ic in 0..coarse.nx {
-                let k = self.index(2 * ic as isize, 2 * jc as isize);
-                let w = self.width();
-                let sum = self.r[k] + self.r[k + 1] + self.r[k + w] + self.r[k + w + 1];
-                let kc = coarse.index(ic as isize, jc as isize);
-                coarse.f[kc] = 0.25 * sum;
+            let fine = self.index(0, 2 * jc as isize);
+            let (low, high) = (&self.r[fine..fine + w], &self.r[fine + w..fine + 2 * w]);
+            let kc = coarse.index(0, jc as isize);
+            for (ic, f) in coarse.f[kc..kc + coarse.nx].iter_mut().enumerate() {
+                let sum = low[2 * ic] + low[2 * ic + 1] + high[2 * ic] + high[2 * ic + 1];
+                *f = 0.25 * sum;
             }
         }
+        coarse.rhs_changed();
     }
 
     /// Adds the bilinear interpolation of the coarse correction (its ghosts reflected) to `u`:
@@ -322,10 +480,11 @@ impl StripLevel {
             let (near, far) = (&coarse.u[centre..centre + wc], &coarse.u[other..other + wc]);
             let start = self.index(0, j as isize);
             let row = &mut self.u[start..start + nx];
-            for (i, u) in row.iter_mut().enumerate() {
-                let ic = i / 2 + 1;
-                let side = if i % 2 == 0 { ic - 1 } else { ic + 1 };
-                *u += 0.5625 * near[ic] + 0.1875 * (near[side] + far[ic]) + 0.0625 * far[side];
+            for (ic, pair) in row.chunks_exact_mut(2).enumerate() {
+                let (left, centre, right) = (ic, ic + 1, ic + 2);
+                let common = 0.5625 * near[centre] + 0.1875 * far[centre];
+                pair[0] += common + 0.1875 * near[left] + 0.0625 * far[left];
+                pair[1] += common + 0.1875 * near[right] + 0.0625 * far[right];
             }
         }
     }
