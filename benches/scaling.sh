@@ -13,8 +13,9 @@
 #     (default 2000: 0.2 s of fall), and glowinski_sedimentation (160 x 640 cells), the first
 #     DURATION_GLOWINSKI seconds (default 0.5).
 # Weak scaling: a deposit of 2500 disks per process on 1, 2 and 4 processes (oversubscribed on
-# a 2-core machine), 300 steps; reported as communication volume per step per process.
-# CASES (default "rigid fracture weak") selects parts; the table and scaling.json cover every
+# a 2-core machine), 300 steps; and a fluid column of 64 x 320 cells per process with one
+# grain per block, 300 steps; reported as communication volume per step per process.
+# CASES (default "rigid fracture fluid weak weakfluid") selects parts; the table and scaling.json cover every
 # run found under bench-results/scaling.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,7 +25,7 @@ STEPS_100K=${STEPS_100K:-100}
 STEPS_NM=${STEPS_NM:-500}
 STEPS_FLUID=${STEPS_FLUID:-2000}
 DURATION_GLOWINSKI=${DURATION_GLOWINSKI:-0.5}
-CASES=${CASES:-rigid fracture fluid weak}
+CASES=${CASES:-rigid fracture fluid weak weakfluid}
 cargo build --release -p xper-cli --features mpi
 XPER=target/release/xper
 OUT=bench-results/scaling
@@ -104,6 +105,50 @@ group = "grains"
 walls = "walls"
 TOML
   run "$np" "$OUT/scenes/weak_np$np.toml" "$OUT/weak_np$np"
+done
+
+# Weak scaling of the fluid: a column 64 cells wide and 320 rows high per process (the paper's
+# two-grain mesh, h = 5e-5 m), one grain falling in each process's block, 300 steps.
+[[ " $CASES " == *" weakfluid "* ]] && for np in 1 2 4; do
+  height=$(python3 -c "print(0.016 * $np)")
+  {
+    cat <<TOML
+[scene]
+name = "weakfluid_np$np"
+dt = 1e-4
+duration = 0.03
+gravity = [0.0, -9.81]
+
+[output]
+frame_every = 1000000
+checkpoint_every = 1000000
+
+[[materials]]
+name = "grain"
+density = 1200.0
+
+[[laws]]
+between = ["grain", "wall"]
+kind = "signorini_coulomb"
+friction = 0.5
+
+[[walls]]
+from = [0.0, 0.0]
+to = [0.0032, 0.0]
+group = "wall"
+
+[fluid]
+density = 1000.0
+viscosity = 4e-3
+domain = [[0.0, 0.0], [0.0032, $height]]
+cells_per_diameter = 16
+TOML
+    for ((k = 0; k < np; k++)); do
+      printf '\n[[bodies]]\nshape = "disk"\ncenter = [0.0016, %s]\nradius = 0.0004\nmaterial = "grain"\ngroup = "grain"\n' \
+        "$(python3 -c "print(0.016 * $k + 0.008)")"
+    done
+  } > "$OUT/scenes/weakfluid_np$np.toml"
+  run "$np" "$OUT/scenes/weakfluid_np$np.toml" "$OUT/weakfluid_np$np"
 done
 
 python3 - "$OUT" <<'PY'

@@ -61,6 +61,30 @@ pub trait Communicator {
     }
 }
 
+/// [`Communicator::all_to_all`] when `among` is `None`; else the same exchange restricted to
+/// the ranks of `among` (a symmetric relation: each of them calls it with this rank among its
+/// own), `sends[r]` empty for every other rank `r`. Returns what each rank sent here, indexed
+/// by rank (empty for ranks outside `among`, `sends[rank]` kept). Latency then grows with the
+/// number of neighbours instead of the number of processes.
+pub fn exchange_by_rank<C: Communicator + ?Sized>(
+    comm: &C,
+    sends: &[Vec<f64>],
+    among: Option<&[usize]>,
+) -> Vec<Vec<f64>> {
+    let Some(among) = among else {
+        return comm.all_to_all(sends);
+    };
+    let me = comm.rank();
+    debug_assert!((0..comm.size()).all(|r| r == me || among.contains(&r) || sends[r].is_empty()));
+    let outgoing: Vec<(usize, Vec<f64>)> = among.iter().map(|&r| (r, sends[r].clone())).collect();
+    let mut received = vec![Vec::new(); comm.size()];
+    for (&r, message) in among.iter().zip(comm.exchange(&outgoing, among)) {
+        received[r] = message;
+    }
+    received[me] = sends[me].clone();
+    received
+}
+
 /// The group of one process: every collective returns its input.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct SingleProcess;

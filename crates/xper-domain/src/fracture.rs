@@ -80,7 +80,7 @@ impl<'c, C: Communicator + ?Sized> DistributedFracture<'c, C> {
         };
         let part = whole.part(&elements, &shadow, &interfaces, energy);
         let ids: Vec<u64> = elements.iter().map(|&e| u64::from(e)).collect();
-        let interface = InterfaceMap::build(comm, &ids, &part_owners, &vec![true; ids.len()]);
+        let interface = InterfaceMap::build(comm, &ids, &part_owners, &vec![true; ids.len()], None);
         DistributedFracture {
             comm,
             part,

@@ -6,7 +6,7 @@
 //! the copies' velocities is the velocity the whole body gets from the impulses of all its
 //! contacts (Visseq et al., Comput. Mech. 49 (2012) 709, section 3).
 
-use crate::communicator::Communicator;
+use crate::communicator::{exchange_by_rank, Communicator};
 use xper_nscd::SolverBody;
 
 /// The shared bodies of one process and the processes it shares them with.
@@ -23,12 +23,16 @@ impl InterfaceMap {
     /// Builds the map collectively (every rank calls it): `global_ids[b]` and `owners[b]` of
     /// each local body `b`, and `shared[b]`, false for bodies every process has identically
     /// (walls and other bodies whose velocity is imposed), which are never exchanged. Every
-    /// rank must hold the bodies it owns; ids are below 2^53.
+    /// rank must hold the bodies it owns; ids are below 2^53. With `among`, the messages go to
+    /// those ranks only: they must include every owner of a copy held here and every holder of
+    /// a copy of a body owned here (the partition's neighbours, see
+    /// [`crate::communicator::exchange_by_rank`]); else to every rank.
     pub fn build<C: Communicator + ?Sized>(
         comm: &C,
         global_ids: &[u64],
         owners: &[u32],
         shared: &[bool],
+        among: Option<&[usize]>,
     ) -> Self {
         let (me, size) = (comm.rank(), comm.size());
         // Round 1: tell each owner which of its bodies this rank holds a copy of.
@@ -38,7 +42,7 @@ impl InterfaceMap {
                 asks[owners[b] as usize].push(global_ids[b] as f64);
             }
         }
-        let asked = comm.all_to_all(&asks);
+        let asked = exchange_by_rank(comm, &asks, among);
         // The owner lists the holders of each of its asked-for bodies: itself and the askers.
         let mut holders: std::collections::BTreeMap<u64, Vec<usize>> = Default::default();
         for (rank, ids) in asked.iter().enumerate() {
@@ -61,7 +65,7 @@ impl InterfaceMap {
                 replies[r].extend(ranks.iter().map(|&x| x as f64));
             }
         }
-        let answers = comm.all_to_all(&replies);
+        let answers = exchange_by_rank(comm, &replies, among);
         let mut ranks_of: std::collections::HashMap<u64, Vec<usize>> = Default::default();
         for message in &answers {
             let mut k = 0;

@@ -90,6 +90,49 @@ impl Bisection {
         }
         parts.sort_unstable();
     }
+
+    /// Each part's region as a box `[lo, hi)` (unbounded sides at `+-infinity`), by part.
+    pub fn regions(&self) -> Vec<(Vector, Vector)> {
+        let everywhere = (
+            Vector::repeat(Real::NEG_INFINITY),
+            Vector::repeat(Real::INFINITY),
+        );
+        let mut regions = vec![everywhere; self.parts];
+        let mut stack = vec![(&self.root, everywhere)];
+        while let Some((node, (lo, hi))) = stack.pop() {
+            match node {
+                Node::Part(p) => regions[*p as usize] = (lo, hi),
+                Node::Cut {
+                    axis,
+                    cut,
+                    below,
+                    above,
+                } => {
+                    let (mut below_hi, mut above_lo) = (hi, lo);
+                    below_hi[*axis] = *cut;
+                    above_lo[*axis] = *cut;
+                    stack.push((below, (lo, below_hi)));
+                    stack.push((above, (above_lo, hi)));
+                }
+            }
+        }
+        regions
+    }
+
+    /// The other parts whose regions come within `distance` of `part`'s, in increasing order:
+    /// every part [`Bisection::parts_near`] can return for a point of `part`'s region. The
+    /// relation is symmetric, so two processes agree on being neighbours.
+    pub fn neighbours(&self, part: u32, distance: Real) -> Vec<u32> {
+        let regions = self.regions();
+        let (lo, hi) = regions[part as usize];
+        (0..self.parts as u32)
+            .filter(|&q| q != part)
+            .filter(|&q| {
+                let (lo_q, hi_q) = regions[q as usize];
+                (0..DIM).all(|a| lo[a] - distance < hi_q[a] && lo_q[a] < hi[a] + distance)
+            })
+            .collect()
+    }
 }
 
 fn build(points: &[Vector], ids: &mut [u32], first_part: u32, parts: usize) -> Node {
@@ -160,6 +203,44 @@ mod tests {
                 }
             }
             assert!(near.contains(&bisection.part_of(x)));
+        }
+    }
+
+    /// Brute force on a lattice: every part met within the distance of a point is among the
+    /// neighbours of the point's part, and the relation is symmetric.
+    #[test]
+    fn neighbours_hold_every_part_near_a_point_of_the_region() {
+        let points = lattice(24, 0.3);
+        for parts in [2, 5, 9, 16] {
+            let bisection = Bisection::new(&points, parts);
+            let all: Vec<Vec<u32>> = (0..parts as u32)
+                .map(|p| bisection.neighbours(p, 1.2))
+                .collect();
+            let mut near = Vec::new();
+            for x in &points {
+                let p = bisection.part_of(x);
+                bisection.parts_near(x, 1.2, &mut near);
+                for q in near.iter().filter(|&&q| q != p) {
+                    assert!(
+                        all[p as usize].contains(q),
+                        "{parts} parts: {q} near {x:?} in {p}"
+                    );
+                }
+            }
+            for (p, list) in all.iter().enumerate() {
+                for &q in list {
+                    assert!(
+                        all[q as usize].contains(&(p as u32)),
+                        "{p} -> {q} not symmetric"
+                    );
+                }
+            }
+            if parts == 16 {
+                assert!(
+                    all.iter().all(|list| list.len() < 15),
+                    "every part a neighbour"
+                );
+            }
         }
     }
 

@@ -27,6 +27,9 @@ pub struct SharedNlgs<'c, C: Communicator + ?Sized> {
     pub movable: Vec<bool>,
     /// Interface bodies of the last solve (the largest over the step's solves).
     pub shared_bodies: usize,
+    /// The ranks holding copies of this process's bodies or owning its copies (the
+    /// partition's neighbours); `None`: any rank.
+    pub neighbours: Option<Vec<usize>>,
 }
 
 impl<'c, C: Communicator + ?Sized> SharedNlgs<'c, C> {
@@ -38,6 +41,7 @@ impl<'c, C: Communicator + ?Sized> SharedNlgs<'c, C> {
             owners: Vec::new(),
             movable: Vec::new(),
             shared_bodies: 0,
+            neighbours: None,
         }
     }
 }
@@ -62,7 +66,8 @@ impl<C: Communicator + ?Sized> ContactSolve for SharedNlgs<'_, C> {
                 shared[b as usize] |= self.movable[b as usize];
             }
         }
-        let interface = InterfaceMap::build(self.comm, &self.ids, &self.owners, &shared);
+        let among = self.neighbours.as_deref();
+        let interface = InterfaceMap::build(self.comm, &self.ids, &self.owners, &shared, among);
         self.shared_bodies = interface.shared_count();
         let split = self.shared_bodies > 0;
         let (masses, blocks): (Vec<_>, Vec<_>) = if split {

@@ -10,6 +10,12 @@
 //! 2. shadows: each owner sends the state of its bodies to every process whose region lies
 //!    within the halo `2 r_max + alert` (a contact partner of one of that process's bodies
 //!    cannot be farther);
+//!
+//! Between re-partitions every message of stages 1 to 3 goes to the partition's neighbours only
+//! (the regions within the halo of this one, [`Bisection::neighbours`]): a body migrates to a
+//! neighbour unless it crossed a whole region in one step, which stage 4 detects for the next
+//! step's migration to fall back to an all-to-all. The number of messages per step and
+//! process is then bounded by the number of neighbours, not of processes.
 //! 3. local step: the process's bodies (owned, shadow copies, and the immovable ones that every
 //!    process holds) in increasing global id, so that contacts are detected with the same body
 //!    order, normal and feature as in a serial run; `MoreauJean::step_with` keeps the contacts
@@ -22,7 +28,7 @@
 //! world on rank 0 for outputs and checkpoints, which are therefore those of a serial run, and a
 //! checkpoint written with any number of processes resumes with any other.
 
-use crate::communicator::Communicator;
+use crate::communicator::{exchange_by_rank, Communicator};
 use crate::partition::Bisection;
 use crate::shared_solve::SharedNlgs;
 use xper_bodies::{BodySet, Ownership};
@@ -81,6 +87,11 @@ pub struct DistributedStepper<'c, C: Communicator + ?Sized> {
     partition: Bisection,
     partitioned_at: u64,
     halo: Real,
+    /// The ranks whose regions lie within the halo of this one (symmetric).
+    neighbours: Vec<usize>,
+    /// Whether a body owned somewhere is now in a region that is not its owner's neighbour
+    /// (found by stage 4): the next migration then goes to every process.
+    far_migration: bool,
     local: World,
     local_of: Vec<u32>,
     stepper: MoreauJean,
@@ -117,6 +128,8 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
             partition: Bisection::new(&[], 1),
             partitioned_at: world.step,
             halo,
+            neighbours: Vec::new(),
+            far_migration: false,
             local_of: vec![u32::MAX; n],
             all: world,
             local,
@@ -151,6 +164,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
         self.build_local(&shadows);
         let mut solver = SharedNlgs::new(self.comm);
         solver.ids = self.local.bodies.id.clone();
+        solver.neighbours = Some(self.neighbours.clone());
         let me = self.comm.rank() as u32;
         solver.owners = (self.local.bodies.ownership.iter())
             .map(|o| match o {
@@ -194,6 +208,10 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
         self.partition = Bisection::new(&points, self.comm.size());
         self.partitioned_at = self.all.step;
         let me = self.comm.rank() as u32;
+        self.neighbours = (self.partition.neighbours(me, self.halo).into_iter())
+            .map(|q| q as usize)
+            .collect();
+        self.far_migration = false;
         self.owned = ids
             .into_iter()
             .filter(|&b| {
@@ -204,7 +222,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
             .collect();
         let carried = std::mem::take(&mut self.carried);
         if gather {
-            self.send_contacts(carried);
+            self.send_contacts(carried, false);
         } else {
             let mut owned = vec![false; self.movable.len()];
             for &b in &self.owned {
@@ -233,28 +251,29 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
             p == me
         });
         let sends: Vec<Vec<f64>> = leaving.iter().map(|ids| self.states_of(ids)).collect();
-        for message in self.comm.all_to_all(&sends) {
+        let near = !self.far_migration;
+        let among = near.then_some(self.neighbours.as_slice());
+        for message in exchange_by_rank(self.comm, &sends, among) {
             let arrived = self.read_states(&message);
             self.load.migrated_in += arrived.len() as u64;
             self.owned.extend(arrived);
         }
         self.owned.sort_unstable();
         let carried = std::mem::take(&mut self.carried);
-        self.send_contacts(carried);
+        self.send_contacts(carried, near);
     }
 
-    /// Sends each contact to the process owning its owner body (by the current partition);
-    /// keeps those of this process.
-    fn send_contacts(&mut self, contacts: Vec<Contact>) {
+    /// Sends each contact to the process owning its owner body (by the current partition),
+    /// to the neighbours only when `near` (no body went farther); keeps those of this process.
+    fn send_contacts(&mut self, contacts: Vec<Contact>, near: bool) {
         let mut sends = vec![Vec::new(); self.comm.size()];
         for c in &contacts {
             let b = contact_owner_body(&self.all.bodies, c.bodies[0] as _, c.bodies[1] as _);
             let p = self.partition.part_of(&self.all.bodies.position[b]);
             write_contact(&mut sends[p as usize], c);
         }
-        self.carried = self
-            .comm
-            .all_to_all(&sends)
+        let among = near.then_some(self.neighbours.as_slice());
+        self.carried = exchange_by_rank(self.comm, &sends, among)
             .iter()
             .flat_map(|m| m.chunks_exact(CONTACT).map(read_contact))
             .collect();
@@ -273,7 +292,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
                 write_state(&mut sends[p as usize], &self.all.bodies, b);
             }
         }
-        let received = self.comm.all_to_all(&sends);
+        let received = exchange_by_rank(self.comm, &sends, Some(&self.neighbours));
         let mut shadows = Vec::new();
         for (rank, message) in received.iter().enumerate() {
             for b in self.read_states(message) {
@@ -366,8 +385,16 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
     }
 
     /// Stage 4: totals over processes into `report` and the global energy budget, with the
-    /// serial run's blow-up check.
+    /// serial run's blow-up check; whether any body left for a region that is not a neighbour
+    /// of its owner's.
     fn totals(&mut self, report: &mut StepReport) -> Result<(), StepError> {
+        let me = self.comm.rank() as u32;
+        let far = self.owned.iter().any(|&b| {
+            let p = self
+                .partition
+                .part_of(&self.all.bodies.position[b as usize]);
+            p != me && !self.neighbours.contains(&(p as usize))
+        });
         let e = self.local.energy;
         let mut sums = [
             report.contacts as f64,
@@ -379,8 +406,9 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
             report.potential,
         ];
         self.comm.all_reduce_sum(&mut sums);
-        let mut maxima = [report.max_overlap];
+        let mut maxima = [report.max_overlap, if far { 1.0 } else { 0.0 }];
         self.comm.all_reduce_max(&mut maxima);
+        self.far_migration = maxima[1] > 0.0;
         let budget = &mut self.all.energy;
         budget.dissipated += sums[2];
         budget.external_work += sums[3];

@@ -16,8 +16,13 @@ type RankResult = (Vec<(u64, [Real; 3])>, xper_solver::SolveInfo, usize);
 fn distributed(problem: &RigidProblem, owners: &[u32], ranks: usize, tol: Real) -> Vec<RankResult> {
     run_on_threads(ranks, |comm| {
         let local = split_problem(problem, owners, comm.rank() as u32);
-        let interface =
-            InterfaceMap::build(comm, &local.global_ids, &local.owners, &local.shared());
+        let interface = InterfaceMap::build(
+            comm,
+            &local.global_ids,
+            &local.owners,
+            &local.shared(),
+            None,
+        );
         let mut op = local.operator(&interface);
         let mut impulses = local.problem.impulses.clone();
         let info = distributed_nlgs(
@@ -105,7 +110,13 @@ fn interface_multiplicities_match_a_direct_count_and_runs_repeat_bit_for_bit() {
     }
     let maps = run_on_threads(ranks, |comm| {
         let local = split_problem(&problem, &owners, comm.rank() as u32);
-        let map = InterfaceMap::build(comm, &local.global_ids, &local.owners, &local.shared());
+        let map = InterfaceMap::build(
+            comm,
+            &local.global_ids,
+            &local.owners,
+            &local.shared(),
+            None,
+        );
         (local, map)
     });
     for (local, map) in &maps {

@@ -193,3 +193,32 @@ fn runs_repeat_bit_for_bit() {
     assert_eq!(a.bodies.position, b.bodies.position);
     assert_eq!(a.contacts, b.contacts);
 }
+
+/// Regression for neighbour-only migration: a disk that crosses two whole regions in one step
+/// lands in a region that is not a neighbour of its owner's; the step that follows must send
+/// it there anyway (stage 4 finds it and the migration falls back to every process). Free
+/// flight, no contact: the run must be the serial one bit for bit, no body lost.
+#[test]
+fn a_body_crossing_regions_in_one_step_migrates_to_a_process_that_is_not_a_neighbour() {
+    use xper_bodies::Body;
+    use xper_math::Vector;
+    let mut world = deposit_world();
+    let mut bodies = xper_bodies::BodySet::new();
+    for k in 0..8 {
+        bodies.insert(Body::disk(0.01, 1000.0, Vector::new(k as Real, 0.0)));
+    }
+    // 2.5 m per 1 ms step along the row, 1 m above it: from region 0 past regions 1 and 2.
+    bodies.insert(
+        Body::disk(0.01, 1000.0, Vector::new(0.2, 1.0)).with_velocity(Vector::new(2500.0, 0.0)),
+    );
+    world.bodies = bodies;
+    world.contacts.contacts.clear();
+    world.params.gravity = Vector::zeros();
+    let steps = 3;
+    let reference = serial(world.clone(), steps);
+    let (four, loads) = distributed(&world, 4, steps, 50);
+    assert_eq!(four.bodies.position, reference.bodies.position);
+    let owned: usize = loads.iter().map(|l| l.bodies).sum();
+    assert_eq!(owned, 9, "bodies owned after the run: {loads:?}");
+    assert!(loads.iter().map(|l| l.migrated_in).sum::<u64>() >= 2);
+}

@@ -34,6 +34,8 @@ pub struct StripMultigrid {
     coarse: Multigrid,
     coarse_rhs: Vec<f64>,
     coarse_solution: Vec<f64>,
+    /// The row cuts of the coarsest strip level.
+    coarse_starts: Vec<usize>,
 }
 
 impl StripMultigrid {
@@ -98,6 +100,7 @@ impl StripMultigrid {
             coarse,
             coarse_rhs: vec![0.0; nx * ny],
             coarse_solution: vec![0.0; nx * ny],
+            coarse_starts: starts,
         })
     }
 
@@ -256,13 +259,20 @@ impl StripMultigrid {
             level.residual(links);
         }
         let source = if zero_guess { &level.f } else { &level.r };
-        let mut local = Vec::with_capacity(level.cells());
+        // Every strip sends as many rows as the highest one (zeros after its own).
+        let starts = &self.coarse_starts;
+        let highest = starts.windows(2).map(|w| w[1] - w[0]).max().unwrap_or(0);
+        let mut local = vec![0.0; highest * nx];
         for j in 0..level.rows {
             let k = level.index(0, j as isize);
-            local.extend_from_slice(&source[k..k + nx]);
+            local[nx * j..nx * (j + 1)].copy_from_slice(&source[k..k + nx]);
         }
         let whole = links.gather(&local);
-        self.coarse_rhs.copy_from_slice(&whole);
+        for (s, rows) in starts.windows(2).enumerate() {
+            let cells = nx * (rows[1] - rows[0]);
+            let from = s * highest * nx;
+            self.coarse_rhs[nx * rows[0]..nx * rows[1]].copy_from_slice(&whole[from..from + cells]);
+        }
         self.coarse_solution.fill(0.0);
         // A coarse solve that stops short of its tolerance still returns its last iterate,
         // a valid correction; the outer cycles judge the convergence.

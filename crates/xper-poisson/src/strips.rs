@@ -37,7 +37,8 @@ pub trait RowLinks {
     ) -> [Option<Vec<f64>>; 2];
     /// Replaces each value by its sum over the strips (the same bits on every strip).
     fn sum(&mut self, values: &mut [f64]);
-    /// Every strip's `values` concatenated in strip order, on every strip.
+    /// Every strip's `values` concatenated in strip order, on every strip. Every strip passes
+    /// the same number of values (so one fixed-size collective can carry them).
     fn gather(&mut self, values: &[f64]) -> Vec<f64>;
 }
 

@@ -50,7 +50,13 @@ fn main() {
     }
     let owners = Bisection::new(&world.bodies.position, size).assign(&world.bodies.position);
     let local = split_problem(&problem, &owners, rank as u32);
-    let interface = InterfaceMap::build(&comm, &local.global_ids, &local.owners, &local.shared());
+    let interface = InterfaceMap::build(
+        &comm,
+        &local.global_ids,
+        &local.owners,
+        &local.shared(),
+        None,
+    );
     let mut op = local.operator(&interface);
     let mut impulses = local.problem.impulses.clone();
     let start = std::time::Instant::now();
