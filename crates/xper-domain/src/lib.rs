@@ -18,6 +18,7 @@
 //! Open MPI. The algorithms are tested on the first and run unchanged on the second.
 
 pub mod communicator;
+mod distributed_bisection;
 pub mod fixtures;
 pub mod fluid;
 pub mod fracture;

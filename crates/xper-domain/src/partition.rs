@@ -8,7 +8,7 @@ use xper_math::{Real, Vector, DIM};
 
 /// A node of the bisection tree.
 #[derive(Clone, Debug, PartialEq)]
-enum Node {
+pub(crate) enum Node {
     /// Points with `x[axis] < cut` go to `below`, the others to `above`.
     Cut {
         axis: usize,
@@ -36,6 +36,10 @@ impl Bisection {
         assert!(parts > 0, "a partition needs at least one part");
         let mut order: Vec<u32> = (0..points.len() as u32).collect();
         let root = build(points, &mut order, 0, parts);
+        Bisection { root, parts }
+    }
+
+    pub(crate) fn from_root(root: Node, parts: usize) -> Self {
         Bisection { root, parts }
     }
 

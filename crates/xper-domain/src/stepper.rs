@@ -3,8 +3,9 @@
 //! Each step is a sequence of named stages, every one collective:
 //!
 //! ```text
-//! 1. partition: every `rebalance_every` steps the states of all bodies are gathered and space
-//!    is cut again by recursive coordinate bisection (equal numbers of movable bodies);
+//! 1. partition: every `rebalance_every` steps space is cut again by recursive coordinate
+//!    bisection (equal numbers of movable bodies), found by reductions over the owned bodies'
+//!    positions without gathering them, and the bodies in another region go to its owner;
 //!    in between, a body whose centre left its owner's region migrates to the region's owner.
 //!    Contacts follow the body that owns them, carrying their impulses (the warm start);
 //! 2. shadows: each owner sends the state of its bodies to every process whose region lies
@@ -188,52 +189,51 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
         Ok(report)
     }
 
-    /// Stage 1 at a re-partition: every body's state to every process, new cuts, contacts sent
-    /// to the owners of their bodies. At the start (`gather` false) every process already has
-    /// the whole world.
-    fn partition_space(&mut self, gather: bool) {
-        if gather {
-            let mine = vec![self.states_of(&self.owned); self.comm.size()];
-            for message in self.comm.all_to_all(&mine) {
-                self.read_states(&message);
-            }
-        }
-        let ids: Vec<u32> = (0..self.movable.len() as u32)
-            .filter(|&b| self.movable[b as usize])
-            .collect();
-        let points: Vec<Vector> = ids
-            .iter()
-            .map(|&b| self.all.bodies.position[b as usize])
-            .collect();
-        self.partition = Bisection::new(&points, self.comm.size());
-        self.partitioned_at = self.all.step;
+    /// Stage 1 at a re-partition: space cut again from the owned bodies' positions by
+    /// reductions only ([`Bisection::distributed`]), the bodies that fall in another region
+    /// sent to its owner with the contacts they own (to any process). At the start (`spread`
+    /// false) every process has the whole world and keeps the bodies of its region.
+    fn partition_space(&mut self, spread: bool) {
         let me = self.comm.rank() as u32;
+        let bodies = &self.all.bodies;
+        // The cuts depend on the points alone, not on which process holds them: at the start
+        // rank 0 offers them all, so a run resumed from a checkpoint is cut as the
+        // uninterrupted run was at that step.
+        let points: Vec<Vector> = if spread {
+            (self.owned.iter())
+                .map(|&b| bodies.position[b as usize])
+                .collect()
+        } else if me == 0 {
+            (0..self.movable.len())
+                .filter(|&b| self.movable[b])
+                .map(|b| bodies.position[b])
+                .collect()
+        } else {
+            Vec::new()
+        };
+        self.partition = Bisection::distributed(self.comm, &points, self.comm.size());
+        self.partitioned_at = self.all.step;
         self.neighbours = (self.partition.neighbours(me, self.halo).into_iter())
             .map(|q| q as usize)
             .collect();
-        self.far_migration = false;
-        self.owned = ids
-            .into_iter()
-            .filter(|&b| {
-                self.partition
-                    .part_of(&self.all.bodies.position[b as usize])
-                    == me
-            })
-            .collect();
-        let carried = std::mem::take(&mut self.carried);
-        if gather {
-            self.send_contacts(carried, false);
-        } else {
-            let mut owned = vec![false; self.movable.len()];
-            for &b in &self.owned {
-                owned[b as usize] = true;
-            }
-            let bodies = &self.all.bodies;
-            self.carried = carried
-                .into_iter()
-                .filter(|c| owned[contact_owner_body(bodies, c.bodies[0] as _, c.bodies[1] as _)])
-                .collect();
+        if spread {
+            self.far_migration = true;
+            self.migrate();
+            self.far_migration = false;
+            return;
         }
+        let partition = &self.partition;
+        self.owned = (0..self.movable.len() as u32)
+            .filter(|&b| self.movable[b as usize])
+            .filter(|&b| partition.part_of(&bodies.position[b as usize]) == me)
+            .collect();
+        let mut owned = vec![false; self.movable.len()];
+        for &b in &self.owned {
+            owned[b as usize] = true;
+        }
+        self.carried
+            .retain(|c| owned[contact_owner_body(bodies, c.bodies[0] as _, c.bodies[1] as _)]);
+        self.far_migration = false;
     }
 
     /// Stage 1 between re-partitions: bodies whose centre left this region go to its owner,
