@@ -247,32 +247,63 @@ impl StripLevel {
 
     /// Fills `depth` ghost rows on each side of `u`: the linked ones exchanged with the
     /// neighbouring strips (whole padded rows, so corners follow), the others zero or, with
-    /// `reflect` (depth 1), the boundary rule applied to the edge row.
-    fn exchange_ghost_rows(&mut self, links: &mut dyn RowLinks, depth: usize, reflect: bool) {
-        let w = self.width();
-        let rows = self.rows as isize;
+    /// `reflect` (depth 1), the boundary rule applied to the edge row. With `rhs`, the same
+    /// messages also carry the edge row of `f` into the ghost row of `f` next to the cells.
+    fn exchange_ghost_rows(
+        &mut self,
+        links: &mut dyn RowLinks,
+        depth: usize,
+        reflect: bool,
+        rhs: bool,
+    ) {
+        let (w, rows) = (self.width(), self.rows as isize);
         let depth_rows = depth as isize;
         let (low, high) = (self.index(-1, 0), self.index(-1, rows - depth_rows));
-        let received = links.exchange_rows(
-            self.linked[0].then(|| &self.u[low..low + depth * w]),
-            self.linked[1].then(|| &self.u[high..high + depth * w]),
-        );
-        let [from_below, from_above] = received;
-        let (below, above) = (self.index(-1, -depth_rows), self.index(-1, rows));
+        // With `rhs` the messages are built (rows of `u`, then the edge row of `f`); else the
+        // rows of `u` go as they lie.
+        let with_rhs = |start: usize, edge: isize| {
+            let mut values = self.u[start..start + depth * w].to_vec();
+            let edge = self.index(-1, edge);
+            values.extend_from_slice(&self.f[edge..edge + w]);
+            values
+        };
+        let built = [
+            (rhs && self.linked[0]).then(|| with_rhs(low, 0)),
+            (rhs && self.linked[1]).then(|| with_rhs(high, rows - 1)),
+        ];
+        let [to_below, to_above] = [(0, low), (1, high)].map(|(side, start)| {
+            let rows_only = &self.u[start..start + depth * w];
+            self.linked[side].then(|| built[side].as_deref().unwrap_or(rows_only))
+        });
+        let [from_below, from_above] = links.exchange_rows(to_below, to_above);
         let edges = [
-            (from_below, below, self.index(-1, 0), self.boundary.bottom),
+            (
+                from_below,
+                self.index(-1, -depth_rows),
+                self.index(-1, -1),
+                0,
+                self.boundary.bottom,
+            ),
             (
                 from_above,
-                above,
-                self.index(-1, rows - 1),
+                self.index(-1, rows),
+                self.index(-1, rows),
+                rows - 1,
                 self.boundary.top,
             ),
         ];
-        for (received, ghost, inside, condition) in edges {
+        for (received, ghost, f_ghost, edge, condition) in edges {
             match received {
-                Some(values) => self.u[ghost..ghost + depth * w].copy_from_slice(&values),
+                Some(values) => {
+                    let (u, f) = values.split_at(depth * w);
+                    self.u[ghost..ghost + depth * w].copy_from_slice(u);
+                    if rhs {
+                        self.f[f_ghost..f_ghost + w].copy_from_slice(f);
+                    }
+                }
                 None => {
                     let s = if reflect { fold(condition) } else { 0.0 };
+                    let inside = self.index(-1, edge);
                     let near = if ghost < inside {
                         ghost + (depth - 1) * w
                     } else {
@@ -292,47 +323,18 @@ impl StripLevel {
         self.rhs_ghosts_current = false;
     }
 
-    /// Fills the ghost rows of `u` two deep for a sweep, and, when it changed, the ghost rows
-    /// of `f` next to the cells, in the same messages (the `u` rows, then the `f` row).
+    /// Fills the ghost rows of `u` two deep for a sweep, and those of `f` next to the cells
+    /// when `f` changed since the last sweep.
     fn exchange_for_sweep(&mut self, links: &mut dyn RowLinks) {
-        if self.rhs_ghosts_current {
-            return self.exchange_ghost_rows(links, GHOST_ROWS, false);
-        }
-        let (w, rows) = (self.width(), self.rows as isize);
-        let message = |level: &Self, first: isize, edge: isize| {
-            let start = level.index(-1, first);
-            let mut values = level.u[start..start + GHOST_ROWS * w].to_vec();
-            let edge = level.index(-1, edge);
-            values.extend_from_slice(&level.f[edge..edge + w]);
-            values
-        };
-        let to_below = self.linked[0].then(|| message(self, 0, 0));
-        let to_above = self.linked[1].then(|| message(self, rows - GHOST_ROWS as isize, rows - 1));
-        let received = links.exchange_rows(to_below.as_deref(), to_above.as_deref());
-        let ghosts = [
-            (self.index(-1, -(GHOST_ROWS as isize)), self.index(-1, -1)),
-            (self.index(-1, rows), self.index(-1, rows)),
-        ];
-        for (values, (u_ghost, f_ghost)) in received.into_iter().zip(ghosts) {
-            if let Some(values) = values {
-                let (u, f) = values.split_at(GHOST_ROWS * w);
-                self.u[u_ghost..u_ghost + GHOST_ROWS * w].copy_from_slice(u);
-                self.f[f_ghost..f_ghost + w].copy_from_slice(f);
-            }
-        }
-        for (side, first) in [(0, -(GHOST_ROWS as isize)), (1, rows)] {
-            if !self.linked[side] {
-                let start = self.index(-1, first);
-                self.u[start..start + GHOST_ROWS * w].fill(0.0);
-            }
-        }
+        let rhs = !self.rhs_ghosts_current;
+        self.exchange_ghost_rows(links, GHOST_ROWS, false, rhs);
         self.rhs_ghosts_current = true;
     }
 
     /// Fills the ghosts of `u` next to the cells (one row or column deep).
     pub fn fill_ghosts(&mut self, links: &mut dyn RowLinks, reflect: bool) {
         self.fill_ghost_columns(reflect);
-        self.exchange_ghost_rows(links, 1, reflect);
+        self.exchange_ghost_rows(links, 1, reflect, false);
     }
 
     /// Relaxes the cells of `colour` (`i + j` even or odd, global `j`) of local row `j`, then
@@ -439,7 +441,7 @@ impl StripLevel {
             }
         }
         if residual {
-            self.exchange_ghost_rows(links, 1, false);
+            self.exchange_ghost_rows(links, 1, false, false);
             squares += self.residual_row(0);
             if rows > 1 {
                 squares += self.residual_row(rows - 1);
