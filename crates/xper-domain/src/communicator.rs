@@ -68,20 +68,22 @@ pub trait Communicator {
 /// number of neighbours instead of the number of processes.
 pub fn exchange_by_rank<C: Communicator + ?Sized>(
     comm: &C,
-    sends: &[Vec<f64>],
+    mut sends: Vec<Vec<f64>>,
     among: Option<&[usize]>,
 ) -> Vec<Vec<f64>> {
     let Some(among) = among else {
-        return comm.all_to_all(sends);
+        return comm.all_to_all(&sends);
     };
     let me = comm.rank();
     debug_assert!((0..comm.size()).all(|r| r == me || among.contains(&r) || sends[r].is_empty()));
-    let outgoing: Vec<(usize, Vec<f64>)> = among.iter().map(|&r| (r, sends[r].clone())).collect();
+    let outgoing: Vec<(usize, Vec<f64>)> = (among.iter())
+        .map(|&r| (r, std::mem::take(&mut sends[r])))
+        .collect();
     let mut received = vec![Vec::new(); comm.size()];
     for (&r, message) in among.iter().zip(comm.exchange(&outgoing, among)) {
         received[r] = message;
     }
-    received[me] = sends[me].clone();
+    received[me] = std::mem::take(&mut sends[me]);
     received
 }
 

@@ -88,11 +88,10 @@ fn cut_level<C: Communicator + ?Sized>(
     // Counts and boxes: sums of counts, maxima of (x, -x) per axis.
     let mut counts: Vec<f64> = level.iter().map(|n| n.members.len() as f64).collect();
     let mut extremes = vec![Real::NEG_INFINITY; level.len() * 2 * DIM];
-    for (k, node) in level.iter().enumerate() {
+    for (node, e) in level.iter().zip(extremes.chunks_exact_mut(2 * DIM)) {
         for &i in &node.members {
             let x = points[i as usize];
             for a in 0..DIM {
-                let e = &mut extremes[k * 2 * DIM..(k + 1) * 2 * DIM];
                 e[a] = e[a].max(x[a]);
                 e[DIM + a] = e[DIM + a].max(-x[a]);
             }

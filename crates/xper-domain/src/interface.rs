@@ -42,7 +42,7 @@ impl InterfaceMap {
                 asks[owners[b] as usize].push(global_ids[b] as f64);
             }
         }
-        let asked = exchange_by_rank(comm, &asks, among);
+        let asked = exchange_by_rank(comm, asks, among);
         // The owner lists the holders of each of its asked-for bodies: itself and the askers.
         let mut holders: std::collections::BTreeMap<u64, Vec<usize>> = Default::default();
         for (rank, ids) in asked.iter().enumerate() {
@@ -65,7 +65,7 @@ impl InterfaceMap {
                 replies[r].extend(ranks.iter().map(|&x| x as f64));
             }
         }
-        let answers = exchange_by_rank(comm, &replies, among);
+        let answers = exchange_by_rank(comm, replies, among);
         let mut ranks_of: std::collections::HashMap<u64, Vec<usize>> = Default::default();
         for message in &answers {
             let mut k = 0;

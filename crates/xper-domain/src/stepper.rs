@@ -159,7 +159,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
         if step.is_multiple_of(self.params.rebalance_every.max(1)) && step != self.partitioned_at {
             self.partition_space(true);
         } else {
-            self.migrate();
+            self.migrate(!self.far_migration);
         }
         let shadows = self.exchange_shadows();
         self.build_local(&shadows);
@@ -217,9 +217,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
             .map(|q| q as usize)
             .collect();
         if spread {
-            self.far_migration = true;
-            self.migrate();
-            self.far_migration = false;
+            self.migrate(false);
             return;
         }
         let partition = &self.partition;
@@ -233,12 +231,12 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
         }
         self.carried
             .retain(|c| owned[contact_owner_body(bodies, c.bodies[0] as _, c.bodies[1] as _)]);
-        self.far_migration = false;
     }
 
-    /// Stage 1 between re-partitions: bodies whose centre left this region go to its owner,
-    /// with the contacts they own.
-    fn migrate(&mut self) {
+    /// Stage 1: bodies whose centre left this region go to its owner, with the contacts they
+    /// own; to the neighbours only when `near` (no body crossed a whole region), else to every
+    /// process.
+    fn migrate(&mut self, near: bool) {
         let (me, size) = (self.comm.rank() as u32, self.comm.size());
         let mut leaving = vec![Vec::new(); size];
         let partition = &self.partition;
@@ -251,9 +249,8 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
             p == me
         });
         let sends: Vec<Vec<f64>> = leaving.iter().map(|ids| self.states_of(ids)).collect();
-        let near = !self.far_migration;
         let among = near.then_some(self.neighbours.as_slice());
-        for message in exchange_by_rank(self.comm, &sends, among) {
+        for message in exchange_by_rank(self.comm, sends, among) {
             let arrived = self.read_states(&message);
             self.load.migrated_in += arrived.len() as u64;
             self.owned.extend(arrived);
@@ -273,7 +270,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
             write_contact(&mut sends[p as usize], c);
         }
         let among = near.then_some(self.neighbours.as_slice());
-        self.carried = exchange_by_rank(self.comm, &sends, among)
+        self.carried = exchange_by_rank(self.comm, sends, among)
             .iter()
             .flat_map(|m| m.chunks_exact(CONTACT).map(read_contact))
             .collect();
@@ -292,7 +289,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
                 write_state(&mut sends[p as usize], &self.all.bodies, b);
             }
         }
-        let received = exchange_by_rank(self.comm, &sends, Some(&self.neighbours));
+        let received = exchange_by_rank(self.comm, sends, Some(&self.neighbours));
         let mut shadows = Vec::new();
         for (rank, message) in received.iter().enumerate() {
             for b in self.read_states(message) {
