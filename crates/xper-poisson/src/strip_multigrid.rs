@@ -7,8 +7,9 @@
 //! level a red-black SOR sweep exchanges two edge rows with each neighbouring strip once
 //! ([`RowLinks`]) and the residual after the last sweep is computed within it, the residual is
 //! restricted by four-cell averages and the correction prolongated bilinearly, as in the serial
-//! solver. A V-cycle thus exchanges rows four times per level with the default V(2,1) (twice
-//! per sweep before), and the residual that ends a cycle costs one more exchange.
+//! solver. With the default V(2,1) a V-cycle thus exchanges rows five times per level (one per
+//! sweep, one for the edge rows' residual, one for the prolongation; eight with one exchange
+//! per colour), and the residual that ends a cycle costs one more exchange.
 //! The coarsest strip level (at most [`crate::strips::GATHERED_CELLS`] cells in all) is
 //! gathered on every process and solved whole by the serial [`crate::Multigrid`]; every
 //! process gets the same bits, so no broadcast is needed (the agglomeration of Trottenberg et
