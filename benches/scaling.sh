@@ -6,7 +6,10 @@
 # Strong scaling: the same scene on 1 and 2 processes, each with --compare-serial (the serial
 # time of the same steps is measured in the same invocation, right after the distributed run).
 #   - box10k, all 1500 steps (deposit: fall, collapse, settled bed);
-#   - box100k, the first STEPS_100K steps (default 100: free fall and first contacts).
+#   - box100k, the first STEPS_100K steps (default 100: free fall and first contacts), and
+#     its dense phase: a serial run to step 400 writes a checkpoint (the lower rows packed,
+#     16,800 contacts, sweeps at the 1000 cap), then steps 401 to 450 are resumed from it
+#     serially and on 2 processes.
 #   - nooru_mohamed (the paper's mesh, 36,351 elements), the first STEPS_NM steps (default
 #     500: loading, damage at both notches).
 #   - two_grains_sedimentation (64 x 640 cells, the paper's mesh), the first STEPS_FLUID steps
@@ -55,6 +58,8 @@ fluid_head two_grains_sedimentation "$(python3 -c "print($STEPS_FLUID * 1e-4)")"
 fluid_head glowinski_sedimentation "$DURATION_GLOWINSKI" > "$OUT/scenes/glowinski_head.toml"
 strong=()
 [[ " $CASES " == *" rigid "* ]] && strong+=(box10k box100k_head)
+{ sed "s/^steps = .*/steps = 450/" scenes/box100k/scene.toml; printf '\n[output]\nframe_every = 450\ncheckpoint_every = 400\n'; } \
+  > "$OUT/scenes/box100k_dense.toml"
 [[ " $CASES " == *" fracture "* ]] && strong+=(nooru_mohamed_head)
 [[ " $CASES " == *" fluid "* ]] && strong+=(two_grains_head glowinski_head)
 for name in "${strong[@]}"; do
@@ -63,6 +68,22 @@ for name in "${strong[@]}"; do
   "$XPER" run "$scene" --out "$OUT/serial_$name" --quiet
   run 2 "$scene" "$OUT/strong_${name}_np2" --compare-serial
 done
+
+# box100k's dense phase, resumed from the serial run's checkpoint at step 400.
+if [[ " $CASES " == *" rigid "* ]]; then
+  scene="$OUT/scenes/box100k_dense.toml"
+  base="$OUT/box100k_dense_base"
+  rm -rf "$base"
+  "$XPER" run "$scene" --out "$base" --quiet --stop-at-step 400
+  for out in serial_box100k_dense strong_box100k_dense_np2; do
+    rm -rf "${OUT:?}/$out"
+    cp -r "$base" "$OUT/$out"
+  done
+  "$XPER" run "$scene" --out "$OUT/serial_box100k_dense" --quiet --resume
+  timeout 7200 mpirun -np 2 "$XPER" run "$scene" --out "$OUT/strong_box100k_dense_np2" --quiet \
+    --resume --compare-serial
+  rm -rf "$base"
+fi
 
 # Weak scaling.
 [[ " $CASES " == *" weak "* ]] && for np in 1 2 4; do
@@ -164,13 +185,17 @@ print("| run | processes | steps | wall (s) | serial (s) | speed-up | efficiency
 print("|---|---|---|---|---|---|---|---|---|---|---|")
 for d, s in rows.items():
     ranks = s.get("ranks", [])
-    steps = max(s["steps"], 1)
+    steps = max(s["steps"] - s.get("first_step", 0), 1)
     c = s.get("serial_comparison") or {}
+    if s.get("first_step", 0) > 0:  # resumed: the wall time of this invocation's steps
+        import csv
+        series = csv.DictReader(open(os.path.join(out, d, "series.csv")))
+        s["wall_time_s"] = sum(float(r["wall_time"]) for r in series if int(r["step"]) > s["first_step"])
     share = max((r["communication_share"] for r in ranks), default=0)
     bytes_ = sum(r["bytes"] for r in ranks) / steps / max(len(ranks), 1)
     msgs = sum(r["messages"] for r in ranks) / steps / max(len(ranks), 1)
     fmt = lambda x, f: (f % x) if x != "" else "-"
-    print(f"| {d} | {s['processes']} | {s['steps']} | {c.get('distributed_wall_time_s', s['wall_time_s']):.2f} | "
+    print(f"| {d} | {s['processes']} | {steps} | {c.get('distributed_wall_time_s', s['wall_time_s']):.2f} | "
           f"{fmt(c.get('serial_wall_time_s', ''), '%.2f')} | {fmt(c.get('speed_up', ''), '%.2f')} | "
           f"{fmt(c.get('efficiency', ''), '%.2f')} | {fmt(c.get('max_position_difference_m', ''), '%.1e')} | "
           f"{share:.2f} | {bytes_:.0f} | {msgs:.0f} |")

@@ -133,6 +133,9 @@ struct Summary {
     message: String,
     bodies: usize,
     dt: f64,
+    /// The step this invocation started from: 0, or the checkpoint's on `--resume` (the
+    /// series, and so `wall_time_s`, cover every step from 0).
+    first_step: u64,
     steps: u64,
     simulated_time: f64,
     wall_time_s: f64,
@@ -334,6 +337,7 @@ pub fn run_on(
         None => Box::new(SerialRun::new(world, dumps.clone(), opts.out.clone())),
     };
     let started = Instant::now();
+    let first_step = stepper.step_index();
     let mut failure = None;
     let mut stepping = 0.0;
     while stepper.step_index() < last {
@@ -404,6 +408,7 @@ pub fn run_on(
     let status = run_status(failure.is_some(), step == scene.steps);
     let facts = RunFacts {
         bodies: stepper.body_count(),
+        first_step,
         step,
         time,
         ranks,
@@ -437,6 +442,7 @@ pub fn run_on(
 /// What the summary needs of the run's end.
 struct RunFacts {
     bodies: usize,
+    first_step: u64,
     step: u64,
     time: f64,
     ranks: RankLoads,
@@ -537,6 +543,7 @@ fn write_summary(
         message,
         bodies: facts.bodies,
         dt: scene.dt,
+        first_step: facts.first_step,
         steps: facts.step,
         simulated_time: facts.time,
         wall_time_s: col("wall_time").iter().sum(),

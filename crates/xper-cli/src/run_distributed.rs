@@ -6,7 +6,7 @@ use crate::CliError;
 use serde::Serialize;
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};
-use xper_domain::{Communicator, DistributedParams, DistributedStepper, RankLoad};
+use xper_domain::{CommStats, Communicator, DistributedParams, DistributedStepper, RankLoad};
 use xper_nscd::{MoreauJean, StepError, StepReport, World};
 
 /// A rigid run advanced step by step.
@@ -45,11 +45,12 @@ pub struct RankSummary {
     pub migrated_in: u64,
     /// Fluid cells held (runs with a fluid).
     pub cells: usize,
-    /// Messages sent.
+    /// Messages sent from the first step on (the initial distribution is left out; the
+    /// gathers of outputs are in).
     pub messages: u64,
-    /// Bytes sent.
+    /// Bytes sent, counted as `messages`.
     pub bytes: u64,
-    /// Seconds inside communication calls, waiting included.
+    /// Seconds inside communication calls from the first step on, waiting included.
     pub communication_s: f64,
     /// Share of the run's wall time spent communicating.
     pub communication_share: f64,
@@ -134,6 +135,8 @@ impl RigidRun for SerialRun {
 pub struct DistributedRun<'c> {
     stepper: DistributedStepper<'c, dyn Communicator + 'c>,
     comm: &'c dyn Communicator,
+    /// The communication before the first step (distribution), left out of the summary.
+    setup: CommStats,
 }
 
 impl<'c> DistributedRun<'c> {
@@ -144,9 +147,11 @@ impl<'c> DistributedRun<'c> {
         let params = DistributedParams {
             rebalance_every: gcd(checkpoint_every.max(1), 50),
         };
+        let stepper = DistributedStepper::new(comm, world, params);
         DistributedRun {
-            stepper: DistributedStepper::new(comm, world, params),
+            stepper,
             comm,
+            setup: comm.stats(),
         }
     }
 }
@@ -176,13 +181,19 @@ impl RigidRun for DistributedRun<'_> {
         self.stepper.world().bodies.len()
     }
     fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary> {
-        rank_summaries(self.comm, self.stepper.load(), wall)
+        rank_summaries(self.comm, self.stepper.load(), &self.setup, wall)
     }
 }
 
-/// Every process's `load` and communication over a run of `wall` seconds (collective).
-pub fn rank_summaries(comm: &dyn Communicator, load: RankLoad, wall: f64) -> Vec<RankSummary> {
-    let stats = comm.stats();
+/// Every process's `load` and communication since `setup` (the stats when the run was
+/// distributed) over a run of `wall` seconds (collective).
+pub fn rank_summaries(
+    comm: &dyn Communicator,
+    load: RankLoad,
+    setup: &CommStats,
+    wall: f64,
+) -> Vec<RankSummary> {
+    let stats = comm.stats().since(setup);
     let mine = [
         load.bodies as f64,
         load.shadows as f64,

@@ -2,7 +2,7 @@
 //! on the processes of a communicator ([`DistributedFluidRun`], under `mpirun`: the grid cut
 //! into blocks of rows), behind one trait so the run loop and its outputs are the same.
 
-use xper_domain::{Communicator, DistributedFluid};
+use xper_domain::{CommStats, Communicator, DistributedFluid};
 use xper_fluid::{CoupledError, CoupledReport, CoupledState, CoupledStepper, FluidParams};
 
 use crate::run::SerialComparison;
@@ -68,6 +68,8 @@ impl FluidRun for SerialFluid {
 pub struct DistributedFluidRun<'c> {
     run: DistributedFluid<'c, dyn Communicator + 'c>,
     comm: &'c dyn Communicator,
+    /// The communication before the first step (distribution), left out of the summary.
+    setup: CommStats,
 }
 
 impl<'c> DistributedFluidRun<'c> {
@@ -77,9 +79,11 @@ impl<'c> DistributedFluidRun<'c> {
         params: &FluidParams,
         whole: &CoupledState,
     ) -> Result<Self, xper_fluid::FluidError> {
+        let run = DistributedFluid::new(comm, params, whole)?;
         Ok(DistributedFluidRun {
-            run: DistributedFluid::new(comm, params, whole)?,
+            run,
             comm,
+            setup: comm.stats(),
         })
     }
 }
@@ -106,7 +110,7 @@ impl FluidRun for DistributedFluidRun<'_> {
         self.run.immersed()
     }
     fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary> {
-        crate::run_distributed::rank_summaries(self.comm, self.run.load(), wall)
+        crate::run_distributed::rank_summaries(self.comm, self.run.load(), &self.setup, wall)
     }
 }
 

@@ -2,7 +2,7 @@
 //! on the processes of a communicator ([`DistributedFractureRun`], under `mpirun`), behind one
 //! trait so the run loop and its outputs are the same.
 
-use xper_domain::{Communicator, DistributedFracture};
+use xper_domain::{CommStats, Communicator, DistributedFracture};
 use xper_fracture::{FractureModel, FractureStepError, FractureStepReport, FractureStepper};
 
 use crate::run::SerialComparison;
@@ -53,14 +53,18 @@ impl FractureRun for SerialFracture {
 pub struct DistributedFractureRun<'c> {
     run: DistributedFracture<'c, dyn Communicator + 'c>,
     comm: &'c dyn Communicator,
+    /// The communication before the first step (distribution), left out of the summary.
+    setup: CommStats,
 }
 
 impl<'c> DistributedFractureRun<'c> {
     /// Distributes `whole` (the same fresh or restored model on every process).
     pub fn new(comm: &'c dyn Communicator, whole: &FractureModel) -> Self {
+        let run = DistributedFracture::new(comm, whole);
         DistributedFractureRun {
-            run: DistributedFracture::new(comm, whole),
+            run,
             comm,
+            setup: comm.stats(),
         }
     }
 }
@@ -83,7 +87,7 @@ impl FractureRun for DistributedFractureRun<'_> {
         self.comm.size()
     }
     fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary> {
-        crate::run_distributed::rank_summaries(self.comm, self.run.load(), wall)
+        crate::run_distributed::rank_summaries(self.comm, self.run.load(), &self.setup, wall)
     }
 }
 

@@ -13,6 +13,17 @@ pub struct CommStats {
     pub time: Duration,
 }
 
+impl CommStats {
+    /// The traffic and time since `earlier` (the stats of the same process then).
+    pub fn since(&self, earlier: &CommStats) -> CommStats {
+        CommStats {
+            messages: self.messages - earlier.messages,
+            bytes: self.bytes - earlier.bytes,
+            time: self.time.saturating_sub(earlier.time),
+        }
+    }
+}
+
 /// A group of `size` processes, this one being `rank`.
 ///
 /// Every collective call (`all_to_all`, `exchange`, `all_reduce_*`) must be made by all ranks

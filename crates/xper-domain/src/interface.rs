@@ -66,27 +66,28 @@ impl InterfaceMap {
             }
         }
         let answers = exchange_by_rank(comm, replies, among);
-        let mut ranks_of: std::collections::HashMap<u64, Vec<usize>> = Default::default();
+        // The holders of each interface body, by id: few next to the local bodies, so every
+        // local body is looked up in this sorted list rather than hashed.
+        let mut ranks_of: Vec<(u64, &[f64])> = Vec::new();
         for message in &answers {
             let mut k = 0;
             while k < message.len() {
                 let (id, m) = (message[k] as u64, message[k + 1] as usize);
-                ranks_of.insert(
-                    id,
-                    message[k + 2..k + 2 + m]
-                        .iter()
-                        .map(|&x| x as usize)
-                        .collect(),
-                );
+                ranks_of.push((id, &message[k + 2..k + 2 + m]));
                 k += 2 + m;
             }
         }
+        ranks_of.sort_unstable_by_key(|r| r.0);
         let mut multiplicity = vec![1u32; global_ids.len()];
         let mut by_rank: std::collections::BTreeMap<usize, Vec<(u64, u32)>> = Default::default();
-        for (b, id) in global_ids.iter().enumerate() {
-            if let Some(ranks) = ranks_of.get(id).filter(|_| shared[b]) {
+        if !ranks_of.is_empty() {
+            for (b, id) in global_ids.iter().enumerate().filter(|&(b, _)| shared[b]) {
+                let Ok(k) = ranks_of.binary_search_by_key(id, |r| r.0) else {
+                    continue;
+                };
+                let ranks = ranks_of[k].1;
                 multiplicity[b] = ranks.len() as u32;
-                for &r in ranks.iter().filter(|&&r| r != me) {
+                for r in ranks.iter().map(|&x| x as usize).filter(|&r| r != me) {
                     by_rank.entry(r).or_default().push((*id, b as u32));
                 }
             }

@@ -23,6 +23,7 @@ pub mod fixtures;
 pub mod fluid;
 pub mod fracture;
 pub mod interface;
+mod local_bodies;
 #[cfg(feature = "mpi")]
 pub mod mpi_communicator;
 pub mod nscdd;

@@ -73,25 +73,7 @@ impl Bisection {
     /// of those within Euclidean `distance`), in increasing order, `x`'s own part included.
     pub fn parts_near(&self, x: &Vector, distance: Real, parts: &mut Vec<u32>) {
         parts.clear();
-        let mut stack = vec![&self.root];
-        while let Some(node) = stack.pop() {
-            match node {
-                Node::Part(p) => parts.push(*p),
-                Node::Cut {
-                    axis,
-                    cut,
-                    below,
-                    above,
-                } => {
-                    if x[*axis] - distance < *cut {
-                        stack.push(below);
-                    }
-                    if x[*axis] + distance >= *cut {
-                        stack.push(above);
-                    }
-                }
-            }
-        }
+        collect_parts_near(&self.root, x, distance, parts);
         parts.sort_unstable();
     }
 
@@ -189,6 +171,35 @@ fn build(points: &[Vector], ids: &mut [u32], first_part: u32, parts: usize) -> N
     }
 }
 
+/// Whether `x` lies in the box `[lo, hi)` shrunk by `margin` on every side. For a part's
+/// region ([`Bisection::regions`]) this is a shortcut of the tree: then the part is `x`'s
+/// ([`Bisection::part_of`]), and with `margin >= distance` it is the only one near
+/// ([`Bisection::parts_near`]), since the regions tile space.
+pub(crate) fn in_box(x: &Vector, (lo, hi): &(Vector, Vector), margin: Real) -> bool {
+    (0..x.len()).all(|d| x[d] - margin >= lo[d] && x[d] + margin < hi[d])
+}
+
+/// Appends the parts under `node` whose regions come within `distance` of `x` (max norm);
+/// recursive, so that the 50,000 calls of a step allocate nothing.
+fn collect_parts_near(node: &Node, x: &Vector, distance: Real, parts: &mut Vec<u32>) {
+    match node {
+        Node::Part(p) => parts.push(*p),
+        Node::Cut {
+            axis,
+            cut,
+            below,
+            above,
+        } => {
+            if x[*axis] - distance < *cut {
+                collect_parts_near(below, x, distance, parts);
+            }
+            if x[*axis] + distance >= *cut {
+                collect_parts_near(above, x, distance, parts);
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -243,6 +254,43 @@ mod tests {
                 assert!(
                     all.iter().all(|list| list.len() < 15),
                     "every part a neighbour"
+                );
+            }
+        }
+    }
+
+    /// The box shortcut must agree with the tree wherever it answers, cut points included
+    /// (the lattice points with no jitter lie exactly on cuts).
+    #[test]
+    fn a_point_inside_its_shrunk_region_has_only_its_own_part_near() {
+        for jitter in [0.0, 0.3] {
+            let points = lattice(24, jitter);
+            for parts in [2, 5, 9] {
+                let bisection = Bisection::new(&points, parts);
+                let regions = bisection.regions();
+                let mut near = Vec::new();
+                let (mut inside, mut shrunk) = (0, 0);
+                for x in points.iter().chain(&lattice(31, 0.17)) {
+                    for (p, region) in regions.iter().enumerate() {
+                        if in_box(x, region, 0.0) {
+                            assert_eq!(bisection.part_of(x), p as u32, "{x:?}");
+                            inside += 1;
+                        }
+                        if in_box(x, region, 1.2) {
+                            bisection.parts_near(x, 1.2, &mut near);
+                            assert_eq!(near, [p as u32], "{x:?}");
+                            shrunk += 1;
+                        }
+                    }
+                }
+                assert_eq!(
+                    inside,
+                    points.len() + 31 * 31,
+                    "every point is in one region"
+                );
+                assert!(
+                    shrunk > 0 && shrunk < inside,
+                    "{parts} parts: {shrunk} of {inside}"
                 );
             }
         }

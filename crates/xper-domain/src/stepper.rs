@@ -30,7 +30,8 @@
 //! checkpoint written with any number of processes resumes with any other.
 
 use crate::communicator::{exchange_by_rank, Communicator};
-use crate::partition::Bisection;
+use crate::local_bodies;
+use crate::partition::{in_box, Bisection};
 use crate::shared_solve::SharedNlgs;
 use xper_bodies::{BodySet, Ownership};
 use xper_geometry::Contact;
@@ -86,6 +87,8 @@ pub struct DistributedStepper<'c, C: Communicator + ?Sized> {
     owned: Vec<u32>,
     carried: Vec<Contact>,
     partition: Bisection,
+    /// This process's region of the partition, `[lo, hi)`.
+    region: (Vector, Vector),
     partitioned_at: u64,
     halo: Real,
     /// The ranks whose regions lie within the halo of this one (symmetric).
@@ -94,6 +97,8 @@ pub struct DistributedStepper<'c, C: Communicator + ?Sized> {
     /// (found by stage 4): the next migration then goes to every process.
     far_migration: bool,
     local: World,
+    /// The bodies of `local`: `(global id, ownership)` in increasing id.
+    held: Vec<(u32, Ownership)>,
     local_of: Vec<u32>,
     stepper: MoreauJean,
     load: RankLoad,
@@ -127,6 +132,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
             owned: Vec::new(),
             carried: world.contacts.contacts.clone(),
             partition: Bisection::new(&[], 1),
+            region: (Vector::zeros(), Vector::zeros()),
             partitioned_at: world.step,
             halo,
             neighbours: Vec::new(),
@@ -134,6 +140,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
             local_of: vec![u32::MAX; n],
             all: world,
             local,
+            held: Vec::new(),
             stepper: MoreauJean::new(),
             load: RankLoad::default(),
         };
@@ -213,6 +220,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
         };
         self.partition = Bisection::distributed(self.comm, &points, self.comm.size());
         self.partitioned_at = self.all.step;
+        self.region = self.partition.regions()[me as usize];
         self.neighbours = (self.partition.neighbours(me, self.halo).into_iter())
             .map(|q| q as usize)
             .collect();
@@ -241,8 +249,14 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
         let mut leaving = vec![Vec::new(); size];
         let partition = &self.partition;
         let bodies = &self.all.bodies;
+        let region = self.region;
         self.owned.retain(|&b| {
-            let p = partition.part_of(&bodies.position[b as usize]);
+            let x = &bodies.position[b as usize];
+            let p = if in_box(x, &region, 0.0) {
+                me
+            } else {
+                partition.part_of(x)
+            };
             if p != me {
                 leaving[p as usize].push(b);
             }
@@ -282,8 +296,13 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
         let (me, size) = (self.comm.rank(), self.comm.size());
         let mut sends = vec![Vec::new(); size];
         let mut near = Vec::new();
+        // A body farther than the halo from every side of this region has no other process
+        // near (the regions tile space): most bodies, found without walking the tree.
         for &b in &self.owned {
             let x = self.all.bodies.position[b as usize];
+            if in_box(&x, &self.region, self.halo) {
+                continue;
+            }
             self.partition.parts_near(&x, self.halo, &mut near);
             for &p in near.iter().filter(|&&p| p as usize != me) {
                 write_state(&mut sends[p as usize], &self.all.bodies, b);
@@ -296,54 +315,34 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
                 shadows.push((b, rank as u32));
             }
         }
+        shadows.sort_unstable();
         self.load.shadows = shadows.len();
         self.load.bodies = self.owned.len();
         shadows
     }
 
-    /// Stage 3's world: immovable, owned and shadow bodies in increasing global id, and the
-    /// carried contacts in local indices.
+    /// Stage 3's world: immovable, owned and shadow bodies (`shadows` in increasing id) in
+    /// increasing global id, and the carried contacts in local indices.
     fn build_local(&mut self, shadows: &[(u32, u32)]) {
-        let me = self.comm.rank() as u32;
-        let mut held: Vec<(u32, Ownership)> = Vec::new();
-        let wall_owner = if me == 0 {
+        let wall_owner = if self.comm.rank() == 0 {
             Ownership::Owned
         } else {
             Ownership::Shadow { owner: 0 }
         };
-        held.extend(self.immovable.iter().map(|&b| (b, wall_owner)));
-        held.extend(self.owned.iter().map(|&b| (b, Ownership::Owned)));
-        held.extend(
-            shadows
-                .iter()
-                .map(|&(b, owner)| (b, Ownership::Shadow { owner })),
+        local_bodies::merge_held(
+            &self.immovable,
+            wall_owner,
+            &self.owned,
+            shadows,
+            &mut self.held,
         );
-        held.sort_unstable_by_key(|h| h.0);
-        for &g in &self.local.bodies.id {
-            self.local_of[g as usize] = u32::MAX;
-        }
-        let (all, local) = (&self.all.bodies, &mut self.local.bodies);
-        *local = BodySet::new();
-        for (k, &(g, ownership)) in held.iter().enumerate() {
-            let b = g as usize;
-            self.local_of[b] = k as u32;
-            local.position.push(all.position[b]);
-            local.angle.push(all.angle[b]);
-            local.velocity.push(all.velocity[b]);
-            local.angular_velocity.push(all.angular_velocity[b]);
-            local.mass.push(all.mass[b]);
-            local.inertia.push(all.inertia[b]);
-            local.inv_mass.push(all.inv_mass[b]);
-            local.shape.push(all.shape[b].clone());
-            local.group.push(all.group[b]);
-            local.id.push(g as u64);
-            local.ownership.push(ownership);
-            if let Some((_, drives)) = all.driven.get(self.driven_of[b] as usize) {
-                local
-                    .driven
-                    .push((xper_bodies::BodyHandle(k as u32), drives.clone()));
-            }
-        }
+        local_bodies::refresh(
+            &self.all.bodies,
+            &self.held,
+            &self.driven_of,
+            &mut self.local.bodies,
+            &mut self.local_of,
+        );
         let local_of = &self.local_of;
         self.local.contacts.contacts = (self.carried.iter())
             .filter_map(|c| {
@@ -387,9 +386,11 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
     fn totals(&mut self, report: &mut StepReport) -> Result<(), StepError> {
         let me = self.comm.rank() as u32;
         let far = self.owned.iter().any(|&b| {
-            let p = self
-                .partition
-                .part_of(&self.all.bodies.position[b as usize]);
+            let x = &self.all.bodies.position[b as usize];
+            if in_box(x, &self.region, 0.0) {
+                return false;
+            }
+            let p = self.partition.part_of(x);
             p != me && !self.neighbours.contains(&(p as usize))
         });
         let e = self.local.energy;
