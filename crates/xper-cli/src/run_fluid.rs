@@ -377,6 +377,7 @@ pub fn run(
         scene.steps,
         (state.world.time / scene.dt) as u64,
     );
+    runner.begin();
     let started = Instant::now();
     let mut stepping = 0.0;
     let mut failure = None;

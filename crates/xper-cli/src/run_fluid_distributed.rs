@@ -24,6 +24,9 @@ pub trait FluidRun {
     fn processes(&self) -> usize;
     /// Body indices of the immersed disks.
     fn immersed(&self) -> &[usize];
+    /// Marks the start of stepping (collective): the processes wait for each other (for the
+    /// writing process's first frame), and communication is counted from here.
+    fn begin(&mut self) {}
     /// Each process's load and communication over a run of `wall` seconds (collective; empty
     /// on one process).
     fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary>;
@@ -68,7 +71,8 @@ impl FluidRun for SerialFluid {
 pub struct DistributedFluidRun<'c> {
     run: DistributedFluid<'c, dyn Communicator + 'c>,
     comm: &'c dyn Communicator,
-    /// The communication before the first step (distribution), left out of the summary.
+    /// The communication before the first step (distribution, waiting for the first frame),
+    /// left out of the summary.
     setup: CommStats,
 }
 
@@ -108,6 +112,10 @@ impl FluidRun for DistributedFluidRun<'_> {
     }
     fn immersed(&self) -> &[usize] {
         self.run.immersed()
+    }
+    fn begin(&mut self) {
+        self.comm.all_reduce_max(&mut [0.0]);
+        self.setup = self.comm.stats();
     }
     fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary> {
         crate::run_distributed::rank_summaries(self.comm, self.run.load(), &self.setup, wall)
