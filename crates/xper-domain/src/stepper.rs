@@ -19,8 +19,10 @@
 //! process is then bounded by the number of neighbours, not of processes.
 //! 3. local step: the process's bodies (owned, shadow copies, and the immovable ones that every
 //!    process holds) in increasing global id, so that contacts are detected with the same body
-//!    order, normal and feature as in a serial run; `MoreauJean::step_with` keeps the contacts
-//!    this process owns and solves them with the others' ([`SharedNlgs`]);
+//!    order, normal and feature as in a serial run (the set is kept between steps and only its
+//!    states refreshed while it holds the same bodies: `local_bodies`);
+//!    `MoreauJean::step_with` keeps the contacts this process owns and solves them with the
+//!    others' ([`SharedNlgs`]);
 //! 4. totals: contacts, energies and the budget check are summed over processes.
 //! ```
 //!
