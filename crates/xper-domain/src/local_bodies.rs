@@ -170,11 +170,10 @@ mod tests {
             &[0, 4, 5, 11],
         ];
         for (step, ids) in steps.iter().enumerate() {
-            let owned = |g: u32| (g as usize + step / 2) % 2 == 0;
-            for b in 0..12 {
-                if !(local_of[b] != u32::MAX
-                    && local.ownership[local_of[b] as usize] == Ownership::Owned)
-                {
+            let owned = |g: u32| (g as usize + step / 2).is_multiple_of(2);
+            for (b, &k) in local_of.iter().enumerate() {
+                let owned_here = k != u32::MAX && local.ownership[k as usize] == Ownership::Owned;
+                if !owned_here {
                     all.velocity[b] = Vector::new(step as f64, b as f64);
                 }
             }
