@@ -2,7 +2,7 @@
 //!
 //! Elements are bodies and cohesive interfaces are contacts (Perales et al., EJCM 19, 2010), so
 //! the non-smooth contact domain decomposition of rigid bodies applies unchanged
-//! ([`distributed_nlgs`]; Visseq et al., Comput. Mech. 49 (2012) 709):
+//! ([`crate::nscdd::distributed_nlgs`]; Visseq et al., Comput. Mech. 49 (2012) 709):
 //!
 //! 1. **Partition** (once: the mesh topology is fixed). Recursive coordinate bisection of the
 //!    element centroids gives each element an owner; an interface belongs to the owner of its
@@ -20,7 +20,7 @@
 
 use crate::communicator::Communicator;
 use crate::interface::InterfaceMap;
-use crate::nscdd::distributed_nlgs;
+use crate::nscdd::solve_with_split_masses;
 use crate::partition::Bisection;
 use crate::stepper::RankLoad;
 use xper_fracture::{
@@ -217,8 +217,8 @@ fn unpack(message: &[f64], whole: &mut FractureModel) {
     }
 }
 
-/// [`InterfaceSolve`] by NSCDD: the shared elements' masses split, [`distributed_nlgs`], the
-/// masses and Delassus blocks restored bit for bit; sums by all-reduce.
+/// [`InterfaceSolve`] by NSCDD ([`solve_with_split_masses`]: the shared elements' masses split,
+/// then restored bit for bit with their rows' Delassus blocks); sums by all-reduce.
 struct SharedInterfaceNlgs<'c, C: Communicator + ?Sized> {
     comm: &'c C,
     interface: InterfaceMap,
@@ -234,29 +234,7 @@ impl<C: Communicator + ?Sized> InterfaceSolve for SharedInterfaceNlgs<'_, C> {
         impulses: &mut [[f64; 2]],
         params: &NlgsParams,
     ) -> Result<SolveInfo, SolveError> {
-        let multiplicity = &self.interface.multiplicity;
-        let saved: Vec<_> = (op.bodies.iter())
-            .zip(multiplicity)
-            .filter(|(_, &m)| m > 1)
-            .map(|(b, _)| b.inv_mass)
-            .collect();
-        let is_shared = |e: u32| multiplicity[e as usize] > 1;
-        let rows: Vec<usize> = (0..op.rows.len())
-            .filter(|&r| op.rows[r].elements.iter().any(|&e| is_shared(e)))
-            .collect();
-        let blocks: Vec<_> = rows.iter().map(|&r| op.rows[r].block).collect();
-        for (body, &m) in op.bodies.iter_mut().zip(multiplicity) {
-            if m > 1 {
-                for x in body.inv_mass.iter_mut().flatten() {
-                    *x *= f64::from(m);
-                }
-            }
-        }
-        for &r in &rows {
-            let row = op.rows[r];
-            op.rows[r].block = op.row(row.elements, row.nodes, row.normal).block;
-        }
-        let info = distributed_nlgs(
+        solve_with_split_masses(
             self.comm,
             op,
             &self.interface,
@@ -265,17 +243,7 @@ impl<C: Communicator + ?Sized> InterfaceSolve for SharedInterfaceNlgs<'_, C> {
             cohesion,
             impulses,
             params,
-        );
-        let shared = (op.bodies.iter_mut())
-            .zip(multiplicity)
-            .filter(|(_, &m)| m > 1);
-        for ((body, _), m) in shared.zip(saved) {
-            body.inv_mass = m;
-        }
-        for (&r, block) in rows.iter().zip(blocks) {
-            op.rows[r].block = block;
-        }
-        info
+        )
     }
 
     fn sum(&mut self, values: &mut [f64]) {

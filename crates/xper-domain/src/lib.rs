@@ -40,7 +40,7 @@ pub use fracture::DistributedFracture;
 pub use interface::InterfaceMap;
 #[cfg(feature = "mpi")]
 pub use mpi_communicator::MpiCommunicator;
-pub use nscdd::{distributed_nlgs, BodyVelocities};
+pub use nscdd::{distributed_nlgs, solve_with_split_masses, BodyVelocities, SplitMasses};
 pub use partition::Bisection;
 pub use shared_solve::SharedNlgs;
 pub use split::{contact_owner, split_problem, LocalProblem};

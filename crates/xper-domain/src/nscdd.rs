@@ -24,8 +24,8 @@ use crate::communicator::Communicator;
 use crate::interface::InterfaceMap;
 use xper_nscd::RigidContactOperator;
 use xper_solver::{
-    natural_map_error, CohesiveTerm, ContactOperator, NlgsParams, NlgsSweeper, NormAccumulator,
-    SolveError, SolveInfo,
+    natural_map_error, Block2, CohesiveTerm, ContactOperator, NlgsParams, NlgsSweeper,
+    NormAccumulator, SolveError, SolveInfo,
 };
 
 /// A contact operator whose bodies each carry a velocity of `DOFS` components: what the glue
@@ -42,6 +42,26 @@ pub trait BodyVelocities: ContactOperator {
     fn body_velocity_mut(&mut self, b: usize) -> &mut [f64];
 }
 
+/// An operator whose bodies can carry a share of their mass, for the interface bodies of
+/// [`solve_with_split_masses`]: inverse masses multiplied and put back, the Delassus blocks of
+/// the rows they touch recomputed and put back.
+pub trait SplitMasses: BodyVelocities {
+    /// A body's inverse mass.
+    type InverseMass: Copy;
+    /// Inverse mass of body `b`.
+    fn inverse_mass(&self, b: usize) -> Self::InverseMass;
+    /// Sets the inverse mass of body `b`.
+    fn set_inverse_mass(&mut self, b: usize, inverse_mass: Self::InverseMass);
+    /// Multiplies the inverse mass of body `b` by `factor`.
+    fn scale_inverse_mass(&mut self, b: usize, factor: f64);
+    /// The two bodies of row `a`.
+    fn row_bodies(&self, a: usize) -> [u32; 2];
+    /// Sets the Delassus block of row `a`.
+    fn set_block(&mut self, a: usize, block: Block2);
+    /// Recomputes the Delassus block of row `a` from the current inverse masses.
+    fn refresh_block(&mut self, a: usize);
+}
+
 impl BodyVelocities for RigidContactOperator {
     const DOFS: usize = 3;
     fn body_count(&self) -> usize {
@@ -52,6 +72,55 @@ impl BodyVelocities for RigidContactOperator {
     }
     fn body_velocity_mut(&mut self, b: usize) -> &mut [f64] {
         &mut self.bodies[b].velocity
+    }
+}
+
+impl SplitMasses for RigidContactOperator {
+    type InverseMass = [f64; 3];
+    fn inverse_mass(&self, b: usize) -> [f64; 3] {
+        self.bodies[b].inv_mass
+    }
+    fn set_inverse_mass(&mut self, b: usize, inverse_mass: [f64; 3]) {
+        self.bodies[b].inv_mass = inverse_mass;
+    }
+    fn scale_inverse_mass(&mut self, b: usize, factor: f64) {
+        for w in &mut self.bodies[b].inv_mass {
+            *w *= factor;
+        }
+    }
+    fn row_bodies(&self, a: usize) -> [u32; 2] {
+        self.rows[a].bodies
+    }
+    fn set_block(&mut self, a: usize, block: Block2) {
+        self.rows[a].block = block;
+    }
+    fn refresh_block(&mut self, a: usize) {
+        self.rows[a].refresh_block(&self.bodies);
+    }
+}
+
+impl SplitMasses for xper_fracture::ElementContactOperator {
+    type InverseMass = xper_fracture::Mat6;
+    fn inverse_mass(&self, b: usize) -> xper_fracture::Mat6 {
+        self.bodies[b].inv_mass
+    }
+    fn set_inverse_mass(&mut self, b: usize, inverse_mass: xper_fracture::Mat6) {
+        self.bodies[b].inv_mass = inverse_mass;
+    }
+    fn scale_inverse_mass(&mut self, b: usize, factor: f64) {
+        for x in self.bodies[b].inv_mass.iter_mut().flatten() {
+            *x *= factor;
+        }
+    }
+    fn row_bodies(&self, a: usize) -> [u32; 2] {
+        self.rows[a].elements
+    }
+    fn set_block(&mut self, a: usize, block: Block2) {
+        self.rows[a].block = block;
+    }
+    fn refresh_block(&mut self, a: usize) {
+        let row = self.rows[a];
+        self.rows[a].block = self.row(row.elements, row.nodes, row.normal).block;
     }
 }
 
@@ -120,6 +189,54 @@ pub fn distributed_nlgs<C: Communicator + ?Sized, O: BodyVelocities>(
     }
     info.iterations = params.max_iterations;
     Ok(info)
+}
+
+/// [`distributed_nlgs`] on `op` with the masses of its interface bodies split among their
+/// copies ([`InterfaceMap::multiplicity`]): only those bodies' masses change, hence only the
+/// blocks of their rows, which are saved, split, and put back after the solve (copied, not
+/// recomputed, so they keep their bits).
+#[allow(clippy::too_many_arguments)]
+pub fn solve_with_split_masses<C: Communicator + ?Sized, O: SplitMasses>(
+    comm: &C,
+    op: &mut O,
+    interface: &InterfaceMap,
+    mu: &[f64],
+    normal_shift: &[f64],
+    cohesion: &[CohesiveTerm],
+    impulses: &mut [[f64; 2]],
+    params: &NlgsParams,
+) -> Result<SolveInfo, SolveError> {
+    let multiplicity = &interface.multiplicity;
+    let shared = |b: u32| multiplicity.get(b as usize).is_some_and(|&m| m > 1);
+    let bodies: Vec<usize> = (0..op.body_count()).filter(|&b| shared(b as u32)).collect();
+    let rows: Vec<usize> = (0..op.contact_count())
+        .filter(|&a| op.row_bodies(a).into_iter().any(shared))
+        .collect();
+    let masses: Vec<_> = bodies.iter().map(|&b| op.inverse_mass(b)).collect();
+    let blocks: Vec<_> = rows.iter().map(|&a| op.diagonal_block(a)).collect();
+    for &b in &bodies {
+        op.scale_inverse_mass(b, f64::from(multiplicity[b]));
+    }
+    for &a in &rows {
+        op.refresh_block(a);
+    }
+    let info = distributed_nlgs(
+        comm,
+        op,
+        interface,
+        mu,
+        normal_shift,
+        cohesion,
+        impulses,
+        params,
+    );
+    for (&b, m) in bodies.iter().zip(masses) {
+        op.set_inverse_mass(b, m);
+    }
+    for (&a, block) in rows.iter().zip(blocks) {
+        op.set_block(a, block);
+    }
+    info
 }
 
 /// The accumulator of the check sweep over all processes (one gather: sums added and maxima

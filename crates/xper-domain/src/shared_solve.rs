@@ -8,7 +8,7 @@
 
 use crate::communicator::Communicator;
 use crate::interface::InterfaceMap;
-use crate::nscdd::distributed_nlgs;
+use crate::nscdd::solve_with_split_masses;
 use xper_math::Real;
 use xper_nscd::{ContactSolve, RigidContactOperator};
 use xper_solver::{NlgsParams, SolveError, SolveInfo};
@@ -69,34 +69,7 @@ impl<C: Communicator + ?Sized> ContactSolve for SharedNlgs<'_, C> {
         let among = self.neighbours.as_deref();
         let interface = InterfaceMap::build(self.comm, &self.ids, &self.owners, &shared, among);
         self.shared_bodies = interface.shared_count();
-        // Only the shared bodies' masses change, hence only the blocks of their rows: those
-        // are saved, split, and put back after the solve (copied, so they keep their bits).
-        let split_bodies: Vec<usize> = (0..op.bodies.len())
-            .filter(|&b| interface.multiplicity[b] > 1)
-            .collect();
-        let split_rows: Vec<usize> = (0..op.rows.len())
-            .filter(|&a| {
-                let [i, j] = op.rows[a].bodies;
-                interface.multiplicity[i as usize] > 1 || interface.multiplicity[j as usize] > 1
-            })
-            .collect();
-        let masses: Vec<_> = split_bodies
-            .iter()
-            .map(|&b| op.bodies[b].inv_mass)
-            .collect();
-        let blocks: Vec<_> = split_rows.iter().map(|&a| op.rows[a].block).collect();
-        interface.split_masses(&mut op.bodies);
-        for &a in &split_rows {
-            op.rows[a].refresh_block(&op.bodies);
-        }
-        let info = distributed_nlgs(self.comm, op, &interface, mu, shift, &[], impulses, params);
-        for (&b, m) in split_bodies.iter().zip(masses) {
-            op.bodies[b].inv_mass = m;
-        }
-        for (&a, block) in split_rows.iter().zip(blocks) {
-            op.rows[a].block = block;
-        }
-        info
+        solve_with_split_masses(self.comm, op, &interface, mu, shift, &[], impulses, params)
     }
 
     fn agree_max(&mut self, value: Real) -> Real {
