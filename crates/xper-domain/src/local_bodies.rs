@@ -20,40 +20,26 @@ pub(crate) fn merge_held(
     shadows: &[(u32, u32)],
     held: &mut Vec<(u32, Ownership)>,
 ) {
-    let mut movable = Vec::with_capacity(owned.len() + shadows.len());
-    merge_by_id(
+    let movable = by_id(
         owned.iter().map(|&b| (b, Ownership::Owned)),
         (shadows.iter()).map(|&(b, owner)| (b, Ownership::Shadow { owner })),
-        &mut movable,
     );
     held.clear();
-    held.reserve(immovable.len() + movable.len());
-    merge_by_id(
-        immovable.iter().map(|&b| (b, wall_owner)),
-        movable.into_iter(),
-        held,
-    );
+    held.extend(by_id(immovable.iter().map(|&b| (b, wall_owner)), movable));
 }
 
-/// Appends the union of two sequences in increasing id to `out`, in increasing id.
-fn merge_by_id(
+/// The union of two sequences in increasing id, in increasing id.
+fn by_id(
     a: impl Iterator<Item = (u32, Ownership)>,
     b: impl Iterator<Item = (u32, Ownership)>,
-    out: &mut Vec<(u32, Ownership)>,
-) {
+) -> impl Iterator<Item = (u32, Ownership)> {
     let (mut a, mut b) = (a.peekable(), b.peekable());
-    loop {
-        let next = match (a.peek(), b.peek()) {
-            (Some(x), Some(y)) if x.0 <= y.0 => a.next(),
-            (Some(_), Some(_)) => b.next(),
-            (Some(_), None) => a.next(),
-            (None, _) => b.next(),
-        };
-        match next {
-            Some(h) => out.push(h),
-            None => return,
-        }
-    }
+    std::iter::from_fn(move || match (a.peek(), b.peek()) {
+        (Some(x), Some(y)) if x.0 <= y.0 => a.next(),
+        (Some(_), Some(_)) => b.next(),
+        (Some(_), None) => a.next(),
+        (None, _) => b.next(),
+    })
 }
 
 /// Makes `local` hold the bodies `held` of the catalogue `all`, with `local_of[g]` the local
