@@ -144,7 +144,10 @@ fn run_maybe_distributed(
     quiet: bool,
     run_on: RunOn,
 ) -> Result<(), CliError> {
-    match xper_domain::MpiCommunicator::init() {
+    let comm = xper_domain::MpiCommunicator::launched()
+        .then(xper_domain::MpiCommunicator::init)
+        .flatten();
+    match comm {
         Some(comm) => {
             let result = run_on(opts, quiet, Some(&comm));
             // A failure every process met alike (bad input) ends them all normally; anything

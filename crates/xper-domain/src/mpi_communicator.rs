@@ -35,6 +35,16 @@ impl MpiCommunicator {
         })
     }
 
+    /// Whether an MPI launcher (`mpirun`, `mpiexec`, `srun`) started this process: Open MPI,
+    /// PMIx and the PMI of MPICH and Slurm leave their variables in its environment. A plain
+    /// start then runs on one process without initialising MPI, whose singleton start-up is
+    /// slow and, with several such processes starting at once, sometimes fails.
+    pub fn launched() -> bool {
+        ["OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE", "PMI_RANK"]
+            .iter()
+            .any(|name| std::env::var_os(name).is_some())
+    }
+
     fn count(&self, sends: &[(usize, &[f64])], start: Instant) {
         let mut s = self.stats.get();
         s.messages += sends.len() as u64;
