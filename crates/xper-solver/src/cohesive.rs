@@ -14,7 +14,9 @@
 //! when `W` is) and `q' = (I + W K)^-1 (u_free - W o)`, solved exactly by
 //! [`solve_one_contact`](crate::solve_one_contact).
 
+#[cfg(test)]
 use crate::local::solve_one_contact;
+use crate::local::{solve_one_contact_factored, LocalFactors};
 use crate::operator::Block2;
 
 /// The adhesive part `-(offset + stiffness U)` of a contact's impulse.
@@ -44,7 +46,7 @@ pub fn solve_one_cohesive_contact(
     mu: f64,
     term: &CohesiveTerm,
 ) -> [f64; 2] {
-    PreparedCohesiveContact::new(w, term).solve(u_free, mu)
+    PreparedCohesiveContact::new(w, term, mu).solve(u_free, mu)
 }
 
 /// The parts of a cohesive contact's local solve that depend only on `W_aa` and the term,
@@ -56,6 +58,7 @@ pub struct PreparedCohesiveContact {
     w_eff: Block2,
     offset_velocity: [f64; 2],
     term: CohesiveTerm,
+    factors: LocalFactors,
 }
 
 #[inline(always)]
@@ -64,8 +67,9 @@ fn mul(m: &Block2, x: [f64; 2]) -> [f64; 2] {
 }
 
 impl PreparedCohesiveContact {
-    /// Prepares the local solve of a contact with block `w` and adhesive part `term`.
-    pub fn new(w: &Block2, term: &CohesiveTerm) -> Self {
+    /// Prepares the local solve of a contact with block `w`, adhesive part `term` and friction
+    /// coefficient `mu` (the one [`Self::solve`] is then called with).
+    pub fn new(w: &Block2, term: &CohesiveTerm, mu: f64) -> Self {
         let [k0, k1] = term.stiffness;
         let [w0, w1, w2, w3] = *w;
         // A = I + W K and its inverse.
@@ -84,6 +88,7 @@ impl PreparedCohesiveContact {
             w_eff,
             offset_velocity,
             term: *term,
+            factors: LocalFactors::new(&w_eff, mu),
         }
     }
 
@@ -101,7 +106,7 @@ impl PreparedCohesiveContact {
             // Opening: no unilateral impulse, U = q.
             return [-o0 - k0 * q[0], -o1 - k1 * q[1]];
         }
-        let rc = solve_one_contact(&self.w_eff, q, mu);
+        let rc = solve_one_contact_factored(&self.w_eff, &self.factors, q, mu);
         let wr = mul(&self.w_eff, rc);
         let u = [q[0] + wr[0], q[1] + wr[1]];
         [rc[0] - o0 - k0 * u[0], rc[1] - o1 - k1 * u[1]]

@@ -9,8 +9,8 @@
 use crate::cohesive::{CohesiveTerm, PreparedCohesiveContact};
 use crate::error::{natural_map_error, ConvergenceNorms, NormAccumulator};
 
-use crate::local::solve_one_contact;
-use crate::operator::{block_mul, ContactOperator};
+use crate::local::{solve_one_contact_factored, LocalFactors};
+use crate::operator::{block_mul, Block2, ContactOperator};
 
 /// Which measure decides convergence.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -188,9 +188,14 @@ pub struct NlgsSweeper<'a> {
     mu: &'a [f64],
     normal_shift: &'a [f64],
     omega: f64,
+    /// Proximal weight per contact; empty when no block is singular.
     proximal: Vec<f64>,
+    /// Whether each contact is adhesive; empty when none is.
     is_adhesive: Vec<bool>,
+    /// Factorised adhesive contacts; empty when none is adhesive.
     prepared: Vec<PreparedCohesiveContact>,
+    /// Reciprocals of the local solve of each contact (of `W_aa + eps I` where proximal).
+    factors: Vec<LocalFactors>,
     q_norm: f64,
 }
 
@@ -264,27 +269,57 @@ impl<'a> NlgsSweeper<'a> {
             }
             q_norm2 += (u[0] + normal_shift[a]).powi(2) + u[1] * u[1];
         }
-        let is_adhesive: Vec<bool> = (0..n)
-            .map(|a| !cohesion.is_empty() && !cohesion[a].is_zero())
-            .collect();
+        let is_adhesive: Vec<bool> = if cohesion.is_empty() {
+            Vec::new()
+        } else {
+            cohesion.iter().map(|c| !c.is_zero()).collect()
+        };
+        let adhesive = |a: usize| !is_adhesive.is_empty() && is_adhesive[a];
         for (a, r) in impulses.iter_mut().enumerate() {
-            if !is_adhesive[a] {
+            if !adhesive(a) {
                 *r = crate::error::project_on_cone(*r, mu[a]);
             }
             if r[0] != 0.0 || r[1] != 0.0 {
                 op.apply_impulse(a, *r);
             }
         }
-        let proximal: Vec<f64> = (0..n)
+        let mut proximal: Vec<f64> = (0..n)
             .map(|a| proximal_weight(&op.diagonal_block(a)))
             .collect();
-        let prepared: Vec<PreparedCohesiveContact> = (0..n)
+        if proximal.iter().all(|&eps| eps == 0.0) {
+            proximal = Vec::new();
+        }
+        let prepared: Vec<PreparedCohesiveContact> = if is_adhesive.is_empty() {
+            Vec::new()
+        } else {
+            (0..n)
+                .map(|a| {
+                    if !adhesive(a) {
+                        return PreparedCohesiveContact::default();
+                    }
+                    let w = op.diagonal_block(a);
+                    let eps = if proximal.is_empty() {
+                        0.0
+                    } else {
+                        proximal[a]
+                    };
+                    PreparedCohesiveContact::new(
+                        &[w[0] + eps, w[1], w[2], w[3] + eps],
+                        &cohesion[a],
+                        mu[a],
+                    )
+                })
+                .collect()
+        };
+        let factors: Vec<LocalFactors> = (0..n)
             .map(|a| {
-                if !is_adhesive[a] {
-                    return PreparedCohesiveContact::default();
-                }
-                let (w, eps) = (op.diagonal_block(a), proximal[a]);
-                PreparedCohesiveContact::new(&[w[0] + eps, w[1], w[2], w[3] + eps], &cohesion[a])
+                let w = op.diagonal_block(a);
+                let eps = if proximal.is_empty() {
+                    0.0
+                } else {
+                    proximal[a]
+                };
+                LocalFactors::new(&[w[0] + eps, w[1], w[2], w[3] + eps], mu[a])
             })
             .collect();
         Ok(NlgsSweeper {
@@ -294,6 +329,7 @@ impl<'a> NlgsSweeper<'a> {
             proximal,
             is_adhesive,
             prepared,
+            factors,
             q_norm: q_norm2.sqrt(),
         })
     }
@@ -313,51 +349,124 @@ impl<'a> NlgsSweeper<'a> {
         &self,
         op: &mut O,
         impulses: &mut [[f64; 2]],
-        mut acc: Option<&mut NormAccumulator>,
+        acc: Option<&mut NormAccumulator>,
     ) {
-        let (mu, omega) = (self.mu, self.omega);
+        let unrelaxed = self.proximal.is_empty() && self.omega == 1.0;
+        let adhesive = !self.is_adhesive.is_empty();
+        match (unrelaxed, adhesive, acc) {
+            (true, false, None) => self.sweep_unrelaxed::<O, (), false>(op, impulses, &mut ()),
+            (true, false, Some(acc)) => self.sweep_unrelaxed::<O, _, false>(op, impulses, acc),
+            (true, true, None) => self.sweep_unrelaxed::<O, (), true>(op, impulses, &mut ()),
+            (true, true, Some(acc)) => self.sweep_unrelaxed::<O, _, true>(op, impulses, acc),
+            (false, _, mut acc) => {
+                for a in 0..op.contact_count() {
+                    self.update(op, impulses, a, acc.as_deref_mut());
+                }
+            }
+        }
+    }
+
+    /// A sweep without relaxation or proximal terms (the usual case), without their
+    /// per-contact branches; `ADHESIVE` when some contacts have an adhesive term.
+    #[inline(always)]
+    fn sweep_unrelaxed<O: ContactOperator, A: AccumulateUpdate, const ADHESIVE: bool>(
+        &self,
+        op: &mut O,
+        impulses: &mut [[f64; 2]],
+        acc: &mut A,
+    ) {
         for a in 0..op.contact_count() {
             let w = op.diagonal_block(a);
-            let mut u = op.local_velocity(a);
-            u[0] += self.normal_shift[a];
+            let u = op.local_velocity(a);
             let r = impulses[a];
             let wr = block_mul(&w, r);
-            let mut u_free = [u[0] - wr[0], u[1] - wr[1]];
-            let eps = self.proximal[a];
-            let mut w_local = w;
-            if eps > 0.0 {
-                // A singular block: proximal step, exact at convergence (see proximal_weight).
-                w_local[0] += eps;
-                w_local[3] += eps;
-                u_free = [u_free[0] - eps * r[0], u_free[1] - eps * r[1]];
-            }
-            let adhesive = self.is_adhesive[a];
-            let local = if adhesive {
-                self.prepared[a].solve(u_free, mu[a])
+            let u_free = [u[0] + self.normal_shift[a] - wr[0], u[1] - wr[1]];
+            let r_new = if ADHESIVE && self.is_adhesive[a] {
+                self.prepared[a].solve(u_free, self.mu[a])
             } else {
-                solve_one_contact(&w_local, u_free, mu[a])
-            };
-            let r_new = if omega == 1.0 || adhesive {
-                local
-            } else {
-                crate::error::project_on_cone(
-                    [
-                        omega * local[0] + (1.0 - omega) * r[0],
-                        omega * local[1] + (1.0 - omega) * r[1],
-                    ],
-                    mu[a],
-                )
+                solve_one_contact_factored(&w, &self.factors[a], u_free, self.mu[a])
             };
             let delta = [r_new[0] - r[0], r_new[1] - r[1]];
             if delta[0] != 0.0 || delta[1] != 0.0 {
                 op.apply_impulse(a, delta);
                 impulses[a] = r_new;
             }
-            if let Some(acc) = acc.as_deref_mut() {
-                let wd = block_mul(&w, delta);
-                acc.add(&w, r, r_new, [-wd[0], -wd[1]]);
-            }
+            acc.add(&w, r, r_new, delta);
         }
+    }
+
+    /// The Gauss-Seidel update of contact `a`, with any relaxation, proximal or adhesive term.
+    fn update<O: ContactOperator>(
+        &self,
+        op: &mut O,
+        impulses: &mut [[f64; 2]],
+        a: usize,
+        acc: Option<&mut NormAccumulator>,
+    ) {
+        let (mu, omega) = (self.mu, self.omega);
+        let w = op.diagonal_block(a);
+        let mut u = op.local_velocity(a);
+        u[0] += self.normal_shift[a];
+        let r = impulses[a];
+        let wr = block_mul(&w, r);
+        let mut u_free = [u[0] - wr[0], u[1] - wr[1]];
+        let eps = if self.proximal.is_empty() {
+            0.0
+        } else {
+            self.proximal[a]
+        };
+        let mut w_local = w;
+        if eps > 0.0 {
+            // A singular block: proximal step, exact at convergence (see proximal_weight).
+            w_local[0] += eps;
+            w_local[3] += eps;
+            u_free = [u_free[0] - eps * r[0], u_free[1] - eps * r[1]];
+        }
+        let adhesive = !self.is_adhesive.is_empty() && self.is_adhesive[a];
+        let local = if adhesive {
+            self.prepared[a].solve(u_free, mu[a])
+        } else {
+            solve_one_contact_factored(&w_local, &self.factors[a], u_free, mu[a])
+        };
+        let r_new = if omega == 1.0 || adhesive {
+            local
+        } else {
+            crate::error::project_on_cone(
+                [
+                    omega * local[0] + (1.0 - omega) * r[0],
+                    omega * local[1] + (1.0 - omega) * r[1],
+                ],
+                mu[a],
+            )
+        };
+        let delta = [r_new[0] - r[0], r_new[1] - r[1]];
+        if delta[0] != 0.0 || delta[1] != 0.0 {
+            op.apply_impulse(a, delta);
+            impulses[a] = r_new;
+        }
+        if let Some(acc) = acc {
+            AccumulateUpdate::add(acc, &w, r, r_new, delta);
+        }
+    }
+}
+
+/// Where a sweep puts each contact's update: nowhere (`()`), or LMGC90's sums on a check
+/// sweep. A type parameter so that the plain sweep compiles without the accumulation.
+trait AccumulateUpdate {
+    fn add(&mut self, w: &Block2, r: [f64; 2], r_new: [f64; 2], delta: [f64; 2]);
+}
+
+impl AccumulateUpdate for () {
+    #[inline(always)]
+    fn add(&mut self, _: &Block2, _: [f64; 2], _: [f64; 2], _: [f64; 2]) {}
+}
+
+impl AccumulateUpdate for NormAccumulator {
+    /// The velocity change of the contact is `-W delta`.
+    #[inline(always)]
+    fn add(&mut self, w: &Block2, r: [f64; 2], r_new: [f64; 2], delta: [f64; 2]) {
+        let wd = block_mul(w, delta);
+        NormAccumulator::add(self, w, r, r_new, [-wd[0], -wd[1]]);
     }
 }
 
