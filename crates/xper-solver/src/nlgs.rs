@@ -375,10 +375,10 @@ impl<'a> NlgsSweeper<'a> {
         impulses: &mut [[f64; 2]],
         acc: &mut A,
     ) {
-        for a in 0..op.contact_count() {
+        for (a, impulse) in impulses.iter_mut().enumerate() {
             let w = op.diagonal_block(a);
             let u = op.local_velocity(a);
-            let r = impulses[a];
+            let r = *impulse;
             let wr = block_mul(&w, r);
             let u_free = [u[0] + self.normal_shift[a] - wr[0], u[1] - wr[1]];
             let r_new = if ADHESIVE && self.is_adhesive[a] {
@@ -389,7 +389,7 @@ impl<'a> NlgsSweeper<'a> {
             let delta = [r_new[0] - r[0], r_new[1] - r[1]];
             if delta[0] != 0.0 || delta[1] != 0.0 {
                 op.apply_impulse(a, delta);
-                impulses[a] = r_new;
+                *impulse = r_new;
             }
             acc.add(&w, r, r_new, delta);
         }
