@@ -261,6 +261,12 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
     run_on(opts, quiet, None)
 }
 
+/// Frees the scene's list of body descriptions once the world is built from it (nothing after
+/// needs it): for a generated scene of a million disks it is as large as the world.
+pub(crate) fn release_body_descriptions(scene: &mut xper_scene::Scene) {
+    scene.bodies = Vec::new();
+}
+
 /// [`run`] on the processes of `comm` when it has more than one (a distributed run of a rigid
 /// scene, outputs written by rank 0 from the gathered world), on this process otherwise.
 pub fn run_on(
@@ -271,13 +277,13 @@ pub fn run_on(
     let text = std::fs::read(&opts.scene).map_err(|e| {
         CliError::BadInput(format!("{}: cannot read scene: {e}", opts.scene.display()))
     })?;
-    let scene =
+    let mut scene =
         xper_scene::load_scene(&opts.scene).map_err(|e| CliError::BadInput(e.to_string()))?;
     let distributed = comm.filter(|c| c.size() > 1);
     if scene.fluid.is_some() {
         return crate::run_fluid::run(opts, &scene, fnv1a(&text), quiet, distributed);
     }
-    let dumps = &scene.output.dump_problems;
+    let dumps = scene.output.dump_problems.clone();
     if !dumps.is_empty() && !cfg!(feature = "hdf5") {
         return Err(CliError::BadInput(format!(
             "{}: [output] dump_problems: built without HDF5 support: rebuild with --features hdf5",
@@ -317,6 +323,7 @@ pub fn run_on(
         world
     } else {
         let world = world_from_scene(&scene);
+        release_body_descriptions(&mut scene);
         if root {
             out.write_frame(&world)?;
         }

@@ -67,6 +67,7 @@ pub(crate) fn generators(
             ctx.err(t.pos, &t.field("radius"), msg);
             continue;
         }
+        built.reserve(disks.len() + 4);
         for (k, (c, r)) in disks.into_iter().enumerate() {
             let m = common.density * PI * r * r;
             let body = BodyDesc {

@@ -100,6 +100,13 @@ pub(crate) struct Built {
 }
 
 impl Built {
+    /// Room for `n` more bodies, so that a generator of a million disks does not hold two
+    /// copies of the list while it grows.
+    pub fn reserve(&mut self, n: usize) {
+        self.bodies.reserve(n);
+        self.origins.reserve(n);
+    }
+
     pub fn push(&mut self, body: BodyDesc, origin: Origin) {
         self.bodies.push(body);
         self.origins.push(origin);
