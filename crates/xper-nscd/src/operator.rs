@@ -168,4 +168,40 @@ impl ContactOperator for RigidContactOperator {
         bj.velocity[1] += bj.inv_mass[1] * py;
         bj.velocity[2] += bj.inv_mass[2] * (a[2] * d[0] + a[3] * d[1]);
     }
+
+    /// The row and the two bodies are read once for the local velocity and the update.
+    #[inline(always)]
+    fn update_contact(
+        &mut self,
+        a: usize,
+        solve: impl FnOnce(&Block2, [Real; 2]) -> [Real; 2],
+    ) -> (Block2, [Real; 2]) {
+        let row = &self.rows[a];
+        let [i, j] = [row.bodies[0] as usize, row.bodies[1] as usize];
+        let [nx, ny] = row.normal;
+        let arms = row.arms;
+        let (bi, bj) = (self.bodies[i], self.bodies[j]);
+        let (vi, vj) = (bi.velocity, bj.velocity);
+        let (dx, dy) = (vj[0] - vi[0], vj[1] - vi[1]);
+        let u = [
+            nx * dx + ny * dy + vj[2] * arms[2] - vi[2] * arms[0],
+            -ny * dx + nx * dy + vj[2] * arms[3] - vi[2] * arms[1],
+        ];
+        let d = solve(&row.block, u);
+        let block = row.block;
+        if d[0] != 0.0 || d[1] != 0.0 {
+            let (px, py) = (nx * d[0] - ny * d[1], ny * d[0] + nx * d[1]);
+            self.bodies[i].velocity = [
+                vi[0] - bi.inv_mass[0] * px,
+                vi[1] - bi.inv_mass[1] * py,
+                vi[2] - bi.inv_mass[2] * (arms[0] * d[0] + arms[1] * d[1]),
+            ];
+            // Read again: when i == j the first write must be seen.
+            let bj = &mut self.bodies[j];
+            bj.velocity[0] += bj.inv_mass[0] * px;
+            bj.velocity[1] += bj.inv_mass[1] * py;
+            bj.velocity[2] += bj.inv_mass[2] * (arms[2] * d[0] + arms[3] * d[1]);
+        }
+        (block, d)
+    }
 }

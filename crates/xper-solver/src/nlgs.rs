@@ -376,21 +376,19 @@ impl<'a> NlgsSweeper<'a> {
         acc: &mut A,
     ) {
         for (a, impulse) in impulses.iter_mut().enumerate() {
-            let w = op.diagonal_block(a);
-            let u = op.local_velocity(a);
             let r = *impulse;
-            let wr = block_mul(&w, r);
-            let u_free = [u[0] + self.normal_shift[a] - wr[0], u[1] - wr[1]];
-            let r_new = if ADHESIVE && self.is_adhesive[a] {
-                self.prepared[a].solve(u_free, self.mu[a])
-            } else {
-                solve_one_contact_factored(&w, &self.factors[a], u_free, self.mu[a])
-            };
-            let delta = [r_new[0] - r[0], r_new[1] - r[1]];
-            if delta[0] != 0.0 || delta[1] != 0.0 {
-                op.apply_impulse(a, delta);
-                *impulse = r_new;
-            }
+            let mut r_new = r;
+            let (w, delta) = op.update_contact(a, |w, u| {
+                let wr = block_mul(w, r);
+                let u_free = [u[0] + self.normal_shift[a] - wr[0], u[1] - wr[1]];
+                r_new = if ADHESIVE && self.is_adhesive[a] {
+                    self.prepared[a].solve(u_free, self.mu[a])
+                } else {
+                    solve_one_contact_factored(w, &self.factors[a], u_free, self.mu[a])
+                };
+                [r_new[0] - r[0], r_new[1] - r[1]]
+            });
+            *impulse = r_new;
             acc.add(&w, r, r_new, delta);
         }
     }

@@ -21,6 +21,23 @@ pub trait ContactOperator {
     fn local_velocity(&self, a: usize) -> [f64; 2];
     /// Adds `delta` to the impulse of contact `a` and updates the state.
     fn apply_impulse(&mut self, a: usize, delta: [f64; 2]);
+    /// One Gauss-Seidel update of contact `a`: `solve(W_aa, U_a)` gives the impulse increment,
+    /// which is applied (unless zero) and returned with `W_aa`. The same as
+    /// [`Self::diagonal_block`], [`Self::local_velocity`] and [`Self::apply_impulse`] in turn;
+    /// an operator overrides it to read the contact's data once for all three.
+    #[inline(always)]
+    fn update_contact(
+        &mut self,
+        a: usize,
+        solve: impl FnOnce(&Block2, [f64; 2]) -> [f64; 2],
+    ) -> (Block2, [f64; 2]) {
+        let w = self.diagonal_block(a);
+        let delta = solve(&w, self.local_velocity(a));
+        if delta[0] != 0.0 || delta[1] != 0.0 {
+            self.apply_impulse(a, delta);
+        }
+        (w, delta)
+    }
 }
 
 /// A 2D problem with an explicit dense `W` (for tests, small problems and file readers).
