@@ -36,6 +36,9 @@ pub struct BenchArgs {
     /// only these run.
     #[arg(long)]
     fluid: bool,
+    /// Run nothing: regenerate the report from the JSON results in `--out` (and its NOTES.md).
+    #[arg(long)]
+    report_only: bool,
     /// Run exactly one scene in this process (used by the parent process).
     #[arg(long, hide = true)]
     single: bool,
@@ -175,6 +178,9 @@ fn bench_one(path: &Path, steps: Option<u64>, settled: usize) -> Result<BenchRes
 
 /// `xper bench`.
 pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
+    if args.report_only {
+        return write_report(&args.out, &args.report);
+    }
     if let Some(dir) = &args.fclib {
         std::fs::create_dir_all(&args.out)
             .map_err(|e| CliError::BadInput(format!("{}: {e}", args.out.display())))?;
