@@ -112,7 +112,7 @@ fn machine() -> String {
 fn bench_one(path: &Path, steps: Option<u64>, settled: usize) -> Result<BenchResult, CliError> {
     let mut scene = xper_scene::load_scene(path).map_err(|e| CliError::BadInput(e.to_string()))?;
     let mut world = world_from_scene(&scene);
-    crate::run::release_body_descriptions(&mut scene);
+    crate::world_from_scene::release_body_descriptions(&mut scene);
     let steps = steps.map_or(scene.steps, |s| s.min(scene.steps));
     let mut stepper = MoreauJean::new();
     let (mut total, mut sweeps, mut contacts, mut ns_update, mut detect) =

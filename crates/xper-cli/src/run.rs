@@ -261,12 +261,6 @@ pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
     run_on(opts, quiet, None)
 }
 
-/// Frees the scene's list of body descriptions once the world is built from it (nothing after
-/// needs it): for a generated scene of a million disks it is as large as the world.
-pub(crate) fn release_body_descriptions(scene: &mut xper_scene::Scene) {
-    scene.bodies = Vec::new();
-}
-
 /// [`run`] on the processes of `comm` when it has more than one (a distributed run of a rigid
 /// scene, outputs written by rank 0 from the gathered world), on this process otherwise.
 pub fn run_on(
@@ -323,7 +317,7 @@ pub fn run_on(
         world
     } else {
         let world = world_from_scene(&scene);
-        release_body_descriptions(&mut scene);
+        crate::world_from_scene::release_body_descriptions(&mut scene);
         if root {
             out.write_frame(&world)?;
         }

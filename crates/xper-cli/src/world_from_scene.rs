@@ -101,3 +101,9 @@ pub fn world_from_scene(scene: &Scene) -> World {
     };
     World::new(bodies, laws, params)
 }
+
+/// Frees the scene's list of body descriptions once the world is built from it (nothing after
+/// needs it): for a generated scene of a million disks it is as large as the world.
+pub fn release_body_descriptions(scene: &mut Scene) {
+    scene.bodies = Vec::new();
+}
