@@ -7,7 +7,7 @@
 //! bodies in the cells their bounding box covers, and against each other by brute force.
 
 use xper_bodies::{BodySet, Shape};
-use xper_math::{Aabb, Real, Vector, DIM};
+use xper_math::{Aabb, Real, Vector};
 
 /// The broad phase with its reusable buffers.
 #[derive(Clone, Debug, Default)]
@@ -21,15 +21,6 @@ pub struct BroadPhase {
     /// `aabbs[cell_bodies[k]]`: the boxes in cell order, read contiguously by the pair loops.
     cell_boxes: Vec<Aabb>,
     fill: Vec<u32>,
-}
-
-/// [`Aabb::intersects`] without short-circuits: the four comparisons are evaluated together,
-/// one branch instead of up to four poorly predicted ones in the pair loops.
-#[inline(always)]
-fn overlap(a: &Aabb, b: &Aabb) -> bool {
-    (0..DIM).fold(true, |hit, k| {
-        hit & (a.min[k] <= b.max[k]) & (b.min[k] <= a.max[k])
-    })
 }
 
 struct Grid {
@@ -160,7 +151,7 @@ impl BroadPhase {
                 let (here, here_boxes) = self.cell_slices((cy * nx + cx) as usize);
                 for (k, (&a, box_a)) in here.iter().zip(here_boxes).enumerate() {
                     for (&b, box_b) in here[k + 1..].iter().zip(&here_boxes[k + 1..]) {
-                        if overlap(box_a, box_b) {
+                        if box_a.intersects(box_b) {
                             push(a, b);
                         }
                     }
@@ -173,7 +164,7 @@ impl BroadPhase {
                     let (other, other_boxes) = self.cell_slices((oy * nx + ox) as usize);
                     for (&a, box_a) in here.iter().zip(here_boxes) {
                         for (&b, box_b) in other.iter().zip(other_boxes) {
-                            if overlap(box_a, box_b) {
+                            if box_a.intersects(box_b) {
                                 push(a, b);
                             }
                         }
