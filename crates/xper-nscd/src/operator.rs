@@ -143,33 +143,16 @@ impl ContactOperator for RigidContactOperator {
         let row = &self.rows[a];
         let vi = &self.bodies[row.bodies[0] as usize].velocity;
         let vj = &self.bodies[row.bodies[1] as usize].velocity;
-        let [nx, ny] = row.normal;
-        let (dx, dy) = (vj[0] - vi[0], vj[1] - vi[1]);
-        let a = &row.arms;
-        [
-            nx * dx + ny * dy + vj[2] * a[2] - vi[2] * a[0],
-            -ny * dx + nx * dy + vj[2] * a[3] - vi[2] * a[1],
-        ]
+        relative_velocity(row, vi, vj)
     }
 
     #[inline(always)]
     fn apply_impulse(&mut self, a: usize, d: [Real; 2]) {
-        let row = &self.rows[a];
-        let [nx, ny] = row.normal;
-        let (px, py) = (nx * d[0] - ny * d[1], ny * d[0] + nx * d[1]);
-        let a = row.arms;
-        let [i, j] = [row.bodies[0] as usize, row.bodies[1] as usize];
-        let bi = &mut self.bodies[i];
-        bi.velocity[0] -= bi.inv_mass[0] * px;
-        bi.velocity[1] -= bi.inv_mass[1] * py;
-        bi.velocity[2] -= bi.inv_mass[2] * (a[0] * d[0] + a[1] * d[1]);
-        let bj = &mut self.bodies[j];
-        bj.velocity[0] += bj.inv_mass[0] * px;
-        bj.velocity[1] += bj.inv_mass[1] * py;
-        bj.velocity[2] += bj.inv_mass[2] * (a[2] * d[0] + a[3] * d[1]);
+        push_bodies(&mut self.bodies, &self.rows[a], d);
     }
 
-    /// The row and the two bodies are read once for the local velocity and the update.
+    /// The row and the two bodies' velocities are read once for the local velocity and the
+    /// update.
     #[inline(always)]
     fn update_contact(
         &mut self,
@@ -177,31 +160,40 @@ impl ContactOperator for RigidContactOperator {
         solve: impl FnOnce(&Block2, [Real; 2]) -> [Real; 2],
     ) -> (Block2, [Real; 2]) {
         let row = &self.rows[a];
-        let [i, j] = [row.bodies[0] as usize, row.bodies[1] as usize];
-        let [nx, ny] = row.normal;
-        let arms = row.arms;
-        let (bi, bj) = (self.bodies[i], self.bodies[j]);
-        let (vi, vj) = (bi.velocity, bj.velocity);
-        let (dx, dy) = (vj[0] - vi[0], vj[1] - vi[1]);
-        let u = [
-            nx * dx + ny * dy + vj[2] * arms[2] - vi[2] * arms[0],
-            -ny * dx + nx * dy + vj[2] * arms[3] - vi[2] * arms[1],
-        ];
-        let d = solve(&row.block, u);
-        let block = row.block;
+        let vi = self.bodies[row.bodies[0] as usize].velocity;
+        let vj = self.bodies[row.bodies[1] as usize].velocity;
+        let d = solve(&row.block, relative_velocity(row, &vi, &vj));
         if d[0] != 0.0 || d[1] != 0.0 {
-            let (px, py) = (nx * d[0] - ny * d[1], ny * d[0] + nx * d[1]);
-            self.bodies[i].velocity = [
-                vi[0] - bi.inv_mass[0] * px,
-                vi[1] - bi.inv_mass[1] * py,
-                vi[2] - bi.inv_mass[2] * (arms[0] * d[0] + arms[1] * d[1]),
-            ];
-            // Read again: when i == j the first write must be seen.
-            let bj = &mut self.bodies[j];
-            bj.velocity[0] += bj.inv_mass[0] * px;
-            bj.velocity[1] += bj.inv_mass[1] * py;
-            bj.velocity[2] += bj.inv_mass[2] * (arms[2] * d[0] + arms[3] * d[1]);
+            push_bodies(&mut self.bodies, row, d);
         }
-        (block, d)
+        (row.block, d)
     }
+}
+
+/// The local velocity `(U_N, U_T)` of `row` from the generalised velocities of its bodies.
+#[inline(always)]
+fn relative_velocity(row: &ContactRow, vi: &[Real; DOFS], vj: &[Real; DOFS]) -> [Real; 2] {
+    let [nx, ny] = row.normal;
+    let (dx, dy) = (vj[0] - vi[0], vj[1] - vi[1]);
+    let a = &row.arms;
+    [
+        nx * dx + ny * dy + vj[2] * a[2] - vi[2] * a[0],
+        -ny * dx + nx * dy + vj[2] * a[3] - vi[2] * a[1],
+    ]
+}
+
+/// Adds the local impulse `d` of `row` to the velocities of its two bodies (`-d` on the first).
+#[inline(always)]
+fn push_bodies(bodies: &mut [SolverBody], row: &ContactRow, d: [Real; 2]) {
+    let [nx, ny] = row.normal;
+    let (px, py) = (nx * d[0] - ny * d[1], ny * d[0] + nx * d[1]);
+    let a = row.arms;
+    let bi = &mut bodies[row.bodies[0] as usize];
+    bi.velocity[0] -= bi.inv_mass[0] * px;
+    bi.velocity[1] -= bi.inv_mass[1] * py;
+    bi.velocity[2] -= bi.inv_mass[2] * (a[0] * d[0] + a[1] * d[1]);
+    let bj = &mut bodies[row.bodies[1] as usize];
+    bj.velocity[0] += bj.inv_mass[0] * px;
+    bj.velocity[1] += bj.inv_mass[1] * py;
+    bj.velocity[2] += bj.inv_mass[2] * (a[2] * d[0] + a[3] * d[1]);
 }

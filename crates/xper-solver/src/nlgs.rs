@@ -351,99 +351,84 @@ impl<'a> NlgsSweeper<'a> {
         impulses: &mut [[f64; 2]],
         acc: Option<&mut NormAccumulator>,
     ) {
-        let unrelaxed = self.proximal.is_empty() && self.omega == 1.0;
-        let adhesive = !self.is_adhesive.is_empty();
-        match (unrelaxed, adhesive, acc) {
-            (true, false, None) => self.sweep_unrelaxed::<O, (), false>(op, impulses, &mut ()),
-            (true, false, Some(acc)) => self.sweep_unrelaxed::<O, _, false>(op, impulses, acc),
-            (true, true, None) => self.sweep_unrelaxed::<O, (), true>(op, impulses, &mut ()),
-            (true, true, Some(acc)) => self.sweep_unrelaxed::<O, _, true>(op, impulses, acc),
-            (false, _, mut acc) => {
-                for a in 0..op.contact_count() {
-                    self.update(op, impulses, a, acc.as_deref_mut());
-                }
-            }
+        match acc {
+            None => self.sweep_into(op, impulses, &mut ()),
+            Some(acc) => self.sweep_into(op, impulses, acc),
         }
     }
 
-    /// A sweep without relaxation or proximal terms (the usual case), without their
-    /// per-contact branches; `ADHESIVE` when some contacts have an adhesive term.
+    /// [`Self::sweep_with`] compiled for the terms present in this problem, so that the usual
+    /// sweep (no relaxation, no proximal or adhesive term) has no per-contact branch on them.
     #[inline(always)]
-    fn sweep_unrelaxed<O: ContactOperator, A: AccumulateUpdate, const ADHESIVE: bool>(
+    fn sweep_into<O: ContactOperator, A: AccumulateUpdate>(
         &self,
         op: &mut O,
         impulses: &mut [[f64; 2]],
         acc: &mut A,
     ) {
+        let relaxed = !(self.proximal.is_empty() && self.omega == 1.0);
+        match (relaxed, !self.is_adhesive.is_empty()) {
+            (false, false) => self.sweep_with::<O, A, false, false>(op, impulses, acc),
+            (false, true) => self.sweep_with::<O, A, false, true>(op, impulses, acc),
+            (true, false) => self.sweep_with::<O, A, true, false>(op, impulses, acc),
+            (true, true) => self.sweep_with::<O, A, true, true>(op, impulses, acc),
+        }
+    }
+
+    /// One sweep in contact order: `RELAXED` when some contact has a proximal weight or the
+    /// relaxation is not 1, `ADHESIVE` when some contact has an adhesive term.
+    #[inline(always)]
+    fn sweep_with<
+        O: ContactOperator,
+        A: AccumulateUpdate,
+        const RELAXED: bool,
+        const ADHESIVE: bool,
+    >(
+        &self,
+        op: &mut O,
+        impulses: &mut [[f64; 2]],
+        acc: &mut A,
+    ) {
+        let (mu, omega) = (self.mu, self.omega);
         for (a, impulse) in impulses.iter_mut().enumerate() {
             let r = *impulse;
             let mut r_new = r;
             let (w, delta) = op.update_contact(a, |w, u| {
                 let wr = block_mul(w, r);
-                let u_free = [u[0] + self.normal_shift[a] - wr[0], u[1] - wr[1]];
-                r_new = if ADHESIVE && self.is_adhesive[a] {
-                    self.prepared[a].solve(u_free, self.mu[a])
+                let mut u_free = [u[0] + self.normal_shift[a] - wr[0], u[1] - wr[1]];
+                let eps = if RELAXED && !self.proximal.is_empty() {
+                    self.proximal[a]
                 } else {
-                    solve_one_contact_factored(w, &self.factors[a], u_free, self.mu[a])
+                    0.0
+                };
+                let mut w_local = *w;
+                if eps > 0.0 {
+                    // A singular block: proximal step, exact at convergence (see proximal_weight).
+                    w_local[0] += eps;
+                    w_local[3] += eps;
+                    u_free = [u_free[0] - eps * r[0], u_free[1] - eps * r[1]];
+                }
+                let adhesive = ADHESIVE && self.is_adhesive[a];
+                let local = if adhesive {
+                    self.prepared[a].solve(u_free, mu[a])
+                } else {
+                    solve_one_contact_factored(&w_local, &self.factors[a], u_free, mu[a])
+                };
+                r_new = if !RELAXED || omega == 1.0 || adhesive {
+                    local
+                } else {
+                    crate::error::project_on_cone(
+                        [
+                            omega * local[0] + (1.0 - omega) * r[0],
+                            omega * local[1] + (1.0 - omega) * r[1],
+                        ],
+                        mu[a],
+                    )
                 };
                 [r_new[0] - r[0], r_new[1] - r[1]]
             });
             *impulse = r_new;
             acc.add(&w, r, r_new, delta);
-        }
-    }
-
-    /// The Gauss-Seidel update of contact `a`, with any relaxation, proximal or adhesive term.
-    fn update<O: ContactOperator>(
-        &self,
-        op: &mut O,
-        impulses: &mut [[f64; 2]],
-        a: usize,
-        acc: Option<&mut NormAccumulator>,
-    ) {
-        let (mu, omega) = (self.mu, self.omega);
-        let w = op.diagonal_block(a);
-        let mut u = op.local_velocity(a);
-        u[0] += self.normal_shift[a];
-        let r = impulses[a];
-        let wr = block_mul(&w, r);
-        let mut u_free = [u[0] - wr[0], u[1] - wr[1]];
-        let eps = if self.proximal.is_empty() {
-            0.0
-        } else {
-            self.proximal[a]
-        };
-        let mut w_local = w;
-        if eps > 0.0 {
-            // A singular block: proximal step, exact at convergence (see proximal_weight).
-            w_local[0] += eps;
-            w_local[3] += eps;
-            u_free = [u_free[0] - eps * r[0], u_free[1] - eps * r[1]];
-        }
-        let adhesive = !self.is_adhesive.is_empty() && self.is_adhesive[a];
-        let local = if adhesive {
-            self.prepared[a].solve(u_free, mu[a])
-        } else {
-            solve_one_contact_factored(&w_local, &self.factors[a], u_free, mu[a])
-        };
-        let r_new = if omega == 1.0 || adhesive {
-            local
-        } else {
-            crate::error::project_on_cone(
-                [
-                    omega * local[0] + (1.0 - omega) * r[0],
-                    omega * local[1] + (1.0 - omega) * r[1],
-                ],
-                mu[a],
-            )
-        };
-        let delta = [r_new[0] - r[0], r_new[1] - r[1]];
-        if delta[0] != 0.0 || delta[1] != 0.0 {
-            op.apply_impulse(a, delta);
-            impulses[a] = r_new;
-        }
-        if let Some(acc) = acc {
-            AccumulateUpdate::add(acc, &w, r, r_new, delta);
         }
     }
 }
