@@ -108,9 +108,13 @@ fn machine() -> String {
     format!("{cpu}, {cores} cores, one thread used")
 }
 
-/// Runs one scene in this process.
-fn bench_one(path: &Path, steps: Option<u64>, settled: usize) -> Result<BenchResult, CliError> {
-    let mut scene = xper_scene::load_scene(path).map_err(|e| CliError::BadInput(e.to_string()))?;
+/// Runs one scene, loaded from `path`, in this process.
+fn bench_one(
+    mut scene: xper_scene::Scene,
+    path: &Path,
+    steps: Option<u64>,
+    settled: usize,
+) -> Result<BenchResult, CliError> {
     let mut world = world_from_scene(&scene);
     crate::world_from_scene::release_body_descriptions(&mut scene);
     let steps = steps.map_or(scene.steps, |s| s.min(scene.steps));
@@ -210,27 +214,29 @@ pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
     std::fs::create_dir_all(&args.out)
         .map_err(|e| CliError::BadInput(format!("{}: {e}", args.out.display())))?;
     if args.single {
-        let is_fracture = matches!(
-            xper_scene::load_any_scene(&scenes[0])
-                .map_err(|e| CliError::BadInput(e.to_string()))?,
-            xper_scene::AnyScene::Fracture(_)
-        );
-        if is_fracture {
-            let result = crate::bench_fracture::bench_one(&scenes[0], args.steps, machine())?;
-            let file = args.out.join(format!(
-                "{}{}.json",
-                crate::bench_fracture::FILE_PREFIX,
-                result.scene
-            ));
-            xper_io::write_json_atomic(&file, &result)
-                .map_err(|e| CliError::Runtime(e.to_string()))?;
-            println!(
-                "{}",
-                serde_json::to_string_pretty(&result).unwrap_or_default()
-            );
-            return Ok(());
-        }
-        let result = bench_one(&scenes[0], args.steps, args.settled)?;
+        let any = xper_scene::load_any_scene(&scenes[0])
+            .map_err(|e| CliError::BadInput(e.to_string()))?;
+        let scene = match any {
+            xper_scene::AnyScene::Rigid(scene) => scene,
+            xper_scene::AnyScene::Fracture(fracture) => {
+                // `bench_fracture::bench_one` builds its model from the file itself.
+                drop(fracture);
+                let result = crate::bench_fracture::bench_one(&scenes[0], args.steps, machine())?;
+                let file = args.out.join(format!(
+                    "{}{}.json",
+                    crate::bench_fracture::FILE_PREFIX,
+                    result.scene
+                ));
+                xper_io::write_json_atomic(&file, &result)
+                    .map_err(|e| CliError::Runtime(e.to_string()))?;
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&result).unwrap_or_default()
+                );
+                return Ok(());
+            }
+        };
+        let result = bench_one(scene, &scenes[0], args.steps, args.settled)?;
         let file = args.out.join(format!("{}.json", result.scene));
         xper_io::write_json_atomic(&file, &result).map_err(|e| CliError::Runtime(e.to_string()))?;
         println!(
