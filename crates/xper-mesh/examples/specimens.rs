@@ -53,6 +53,7 @@ fn main() {
             notch_depth: 0.025,
             notch_width: 0.005,
             element_size: h,
+            point_symmetric: false,
         })
     });
     let h = 5e-7 / scale;

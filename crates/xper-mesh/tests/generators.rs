@@ -9,6 +9,8 @@ use xper_mesh::{
 
 const ANGLE_MARGIN: f64 = 0.5;
 const MAX_EDGE_OVER_H: f64 = 1.5;
+/// Smallest angle of a point-symmetric mesh (degrees): the seam's triangles are not refined.
+const SYMMETRIC_MIN_ANGLE: f64 = 15.0;
 
 fn length(mesh: &Mesh, e: [u32; 2]) -> f64 {
     let (a, b) = (mesh.nodes[e[0] as usize], mesh.nodes[e[1] as usize]);
@@ -29,12 +31,14 @@ fn close(a: f64, b: f64, rel: f64) -> bool {
 
 /// Quality, Euler's formula (no hole) and manifoldness; returns the topology.
 fn check_common(mesh: &Mesh, h: f64) -> xper_mesh::Topology {
+    check_common_with(mesh, h, MIN_ANGLE_DEGREES - ANGLE_MARGIN)
+}
+
+/// [`check_common`] with another smallest angle (degrees).
+fn check_common_with(mesh: &Mesh, h: f64, min_angle: f64) -> xper_mesh::Topology {
     mesh.validate().unwrap();
     let angle = mesh.min_angle_degrees();
-    assert!(
-        angle >= MIN_ANGLE_DEGREES - ANGLE_MARGIN,
-        "min angle {angle}"
-    );
+    assert!(angle >= min_angle, "min angle {angle}");
     let stats = mesh.edge_length_stats();
     assert!(
         stats.max <= MAX_EDGE_OVER_H * h,
@@ -84,6 +88,7 @@ fn notched(h: f64) -> NotchedSpec {
         notch_depth: 0.025,
         notch_width: 0.005,
         element_size: h,
+        point_symmetric: false,
     }
 }
 
@@ -95,7 +100,12 @@ fn check_notched(spec: &NotchedSpec) -> Mesh {
         spec.notch_width,
         spec.element_size,
     );
-    let topo = check_common(&mesh, h);
+    let min_angle = if spec.point_symmetric {
+        SYMMETRIC_MIN_ANGLE
+    } else {
+        MIN_ANGLE_DEGREES - ANGLE_MARGIN
+    };
+    let topo = check_common_with(&mesh, h, min_angle);
     assert!(
         close(mesh.area(), s * s - 2.0 * d * w, 1e-12),
         "area {}",
@@ -396,4 +406,42 @@ fn bad_notched_specs_are_refused() {
         origin,
         "element_size",
     );
+}
+
+/// Regression (Nooru-Mohamed's anti-symmetric cracks came out lopsided on a mesh without
+/// symmetry): the point-symmetric mesh of the notched square maps onto itself under the
+/// half-turn about the centre, node for node and triangle for triangle, and keeps the exact
+/// geometry of the plain mesh.
+#[test]
+fn point_symmetric_notched_square_is_its_own_half_turn() {
+    for h in [8e-3, 4e-3] {
+        let spec = NotchedSpec {
+            point_symmetric: true,
+            ..notched(h)
+        };
+        let mesh = check_notched(&spec);
+        let s = spec.side;
+        let image_of = |p: [f64; 2]| {
+            let q = [s - p[0], s - p[1]];
+            (mesh.nodes.iter())
+                .position(|n| (n[0] - q[0]).abs() <= 1e-12 && (n[1] - q[1]).abs() <= 1e-12)
+                .unwrap_or_else(|| panic!("h = {h}: node {p:?} has no image"))
+        };
+        let image: Vec<usize> = mesh.nodes.iter().map(|&p| image_of(p)).collect();
+        let sorted = |t: [u32; 3]| {
+            let mut k = t.map(|i| i as usize);
+            k.sort_unstable();
+            k
+        };
+        let triangles: std::collections::HashSet<[usize; 3]> =
+            mesh.triangles.iter().map(|&t| sorted(t)).collect();
+        for t in &mesh.triangles {
+            let mut k = sorted(*t).map(|i| image[i]);
+            k.sort_unstable();
+            assert!(
+                triangles.contains(&k),
+                "h = {h}: triangle {t:?} has no image"
+            );
+        }
+    }
 }

@@ -493,7 +493,7 @@ fn shipped_fracture_scenes_parse_and_the_small_ones_build() {
         ("nooru_mohamed", None),
         ("bimaterial_tension", None),
         ("bimaterial_compression", None),
-        ("nooru_mohamed_small", Some(1491)),
+        ("nooru_mohamed_small", Some(1462)),
         ("bimaterial_small", Some(1570)),
     ] {
         let s = match load_any_scene(&scenes.join(name).join("scene.toml")) {

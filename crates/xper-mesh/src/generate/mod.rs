@@ -14,6 +14,7 @@
 
 mod notched;
 mod rectangle;
+pub mod symmetric;
 
 pub use notched::{double_edge_notched, NotchedSpec};
 pub use rectangle::{rectangle_with_inclusions, RectangleSpec};

@@ -4,6 +4,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::symmetric::point_symmetric;
 use super::{check_count, finish_mesh, positive, triangulate, Line, Pslg};
 use crate::error::{ErrorKind, MeshError};
 use crate::mesh::{Mesh, Region};
@@ -22,6 +23,11 @@ pub struct NotchedSpec {
     pub notch_width: f64,
     /// Target element size `h` (m): no boundary piece is longer than `h`.
     pub element_size: f64,
+    /// Make the mesh invariant under the half-turn about the square's centre (see
+    /// [`super::symmetric`]), as the specimen and a point-symmetric loading are; off by
+    /// default.
+    #[serde(default)]
+    pub point_symmetric: bool,
 }
 
 /// Meshes the notched square of `spec`; no triangle lies in a notch.
@@ -130,7 +136,11 @@ pub fn double_edge_notched(spec: &NotchedSpec) -> Result<Mesh, MeshError> {
         pslg.add_line(line.a, line.b, &[], h);
     }
     let in_notch = |p: [f64; 2]| p[1] > lo && p[1] < hi && (p[0] < xl || p[0] > xr);
-    let raw = triangulate(ORIGIN, pslg, h, true, |p| !in_notch(p), &lines)?;
+    let mut raw = triangulate(ORIGIN, pslg, h, true, |p| !in_notch(p), &lines)?;
+    if spec.point_symmetric {
+        let centre = [0.5 * s, 0.5 * s];
+        raw = point_symmetric(ORIGIN, &raw, centre, 0.0, h, &lines, |p| !in_notch(p))?;
+    }
     let n = raw.triangles.len();
     let regions = vec![Region {
         name: "concrete".into(),

@@ -73,15 +73,18 @@ fn notched(ctx: &mut Ctx, t: &Tbl) -> Option<MeshSource> {
         "notch_depth",
         "notch_width",
         "element_size",
+        "point_symmetric",
     ];
     t.check_keys(ctx, KEYS);
     let [side, notch_depth, notch_width, element_size] =
         [KEYS[1], KEYS[2], KEYS[3], KEYS[4]].map(|k| length(ctx, t, k));
+    let point_symmetric = t.boolean(ctx, KEYS[5]).or(false);
     Some(MeshSource::DoubleEdgeNotched(NotchedSpec {
         side: side?,
         notch_depth: notch_depth?,
         notch_width: notch_width?,
         element_size: element_size?,
+        point_symmetric: point_symmetric?,
     }))
 }
 
