@@ -2,7 +2,9 @@
 //! velocities within the solver tolerance on 1 to 4 ranks (threads), the interface built
 //! collectively against a direct count, copies glued bit-identically, runs reproducible.
 
-use xper_domain::fixtures::{deposit, serial_spread, serial_velocities, solver_params};
+use xper_domain::fixtures::{
+    deposit, serial_spread, serial_velocities, solver_params, SPREAD_MARGIN,
+};
 use xper_domain::{
     distributed_nlgs, run_on_threads, split_problem, Bisection, Communicator, InterfaceMap,
 };
@@ -83,10 +85,10 @@ fn distributed_solve_matches_the_undivided_one_on_1_to_4_ranks() {
                 "body {b}: copies differ {c:?}"
             );
         }
-        // Any two solutions within the tolerance differ: the measure is the spread between two
+        // Any two solutions within the tolerance differ: the measure is the spread between
         // serial solves that only differ in the sweep order.
         assert!(
-            worst <= spread,
+            worst <= SPREAD_MARGIN * spread,
             "{ranks} ranks: velocity difference {worst:e}, serial spread {spread:e}"
         );
         println!(

@@ -7,8 +7,10 @@
 
 mod broad;
 mod contacts;
+mod detector;
 pub mod narrow;
 
 pub use broad::BroadPhase;
-pub use contacts::{Contact, ContactSet, Detector};
+pub use contacts::{Contact, ContactSet};
+pub use detector::{Detector, DetectorStats, SKIN_CAP_OVER_SIZE, TARGET_STEPS_PER_BUILD};
 pub use narrow::{collide, ContactPoint, Manifold};

@@ -250,6 +250,11 @@ impl MoreauJean {
         Ok(report)
     }
 
+    /// What the contact detector has done so far (calls, candidate-list builds, skin).
+    pub fn detector_stats(&self) -> xper_geometry::DetectorStats {
+        self.detector.stats()
+    }
+
     /// Asks the next [`MoreauJean::step`] to keep a copy of its velocity problem, assembled
     /// before solving, for [`MoreauJean::take_problem`] (e.g. to write it to a file).
     pub fn capture_next_problem(&mut self) {

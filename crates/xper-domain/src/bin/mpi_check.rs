@@ -1,10 +1,13 @@
 //! `mpirun -np N xper-domain-mpi-check [--tolerance T] [--fail-on-rank R]`: the distributed contact solve of
 //! the deposit fixture over MPI, compared on every rank with the undivided solve. Prints one
-//! line per rank and exits 0 when every body's velocity is within the spread of the solver
-//! (two undivided solves with opposite sweep orders); 1 otherwise. With `--fail-on-rank R`,
+//! line per rank and exits 0 when every body's velocity is within `SPREAD_MARGIN` times the
+//! spread of the solver (undivided solves with other sweep orders, see `serial_spread`); 1
+//! otherwise. With `--fail-on-rank R`,
 //! rank R panics before the solve, which must end the whole job (the panic hook's MPI_Abort).
 
-use xper_domain::fixtures::{deposit, serial_spread, serial_velocities, solver_params};
+use xper_domain::fixtures::{
+    deposit, serial_spread, serial_velocities, solver_params, SPREAD_MARGIN,
+};
 use xper_domain::MpiCommunicator;
 use xper_domain::{distributed_nlgs, split_problem, Bisection, Communicator, InterfaceMap};
 
@@ -82,7 +85,7 @@ fn main() {
         })
         .fold(0.0, f64::max);
     let stats = comm.stats();
-    let ok = info.converged && worst <= spread;
+    let ok = info.converged && worst <= SPREAD_MARGIN * spread;
     println!(
         "rank {rank} of {size}: {} contacts, {} shared bodies, {} sweeps, converged {}, \
          largest velocity difference {worst:.2e} (serial spread {spread:.2e}), \

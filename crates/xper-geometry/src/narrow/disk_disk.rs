@@ -5,11 +5,23 @@ use xper_math::{Real, Vector};
 
 /// Contact between disk `a` (centre `ca`, radius `ra`) and disk `b`; normal from `a` to `b`.
 pub fn collide_disk_disk(ca: &Vector, ra: Real, cb: &Vector, rb: Real, alert: Real) -> Manifold {
+    disk_disk_point(ca, ra, cb, rb, alert).map_or(Manifold::EMPTY, Manifold::one)
+}
+
+/// The contact point of [`collide_disk_disk`], `None` beyond the alert distance.
+#[inline(always)]
+pub fn disk_disk_point(
+    ca: &Vector,
+    ra: Real,
+    cb: &Vector,
+    rb: Real,
+    alert: Real,
+) -> Option<ContactPoint> {
     let d = cb - ca;
     let dist2 = d.norm_squared();
     let reach = ra + rb + alert;
     if dist2 > reach * reach {
-        return Manifold::EMPTY;
+        return None;
     }
     let dist = dist2.sqrt();
     let normal = if dist > 0.0 {
@@ -18,7 +30,7 @@ pub fn collide_disk_disk(ca: &Vector, ra: Real, cb: &Vector, rb: Real, alert: Re
         Vector::new(1.0, 0.0)
     };
     let gap = dist - ra - rb;
-    Manifold::one(ContactPoint {
+    Some(ContactPoint {
         point: ca + normal * (ra + gap / 2.0),
         normal,
         gap,

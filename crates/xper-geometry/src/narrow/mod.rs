@@ -9,7 +9,7 @@ mod polygon_segment;
 use xper_bodies::Shape;
 use xper_math::{Real, Vector};
 
-pub use disk_disk::collide_disk_disk;
+pub use disk_disk::{collide_disk_disk, disk_disk_point};
 pub use disk_polygon::collide_disk_polygon;
 pub use disk_segment::collide_disk_segment;
 pub use polygon_polygon::{collide_polygons, WorldPolygon};

@@ -1,0 +1,312 @@
+//! The detector: candidate pairs kept across steps (a Verlet list), narrow phase, carry-over
+//! of impulses.
+//!
+//! The broad phase runs with the alert distance grown by a skin `s`, and its pairs are kept as
+//! candidates until the bodies have moved enough to invalidate them (L. Verlet, "Computer
+//! 'experiments' on classical fluids", Phys. Rev. 159:98, 1967, for molecular dynamics): a
+//! point of body `b` has moved by at most `d_b = |x_b - x_b0| + reach_b |theta_b - theta_b0|`
+//! since the build (`reach_b` the largest distance from the body's position to its shape, 0
+//! for a disk), so its box lies in its box at the build grown by `d_b`, and every pair within
+//! the alert distance is still a candidate while the two largest `d_b` sum to at most `s`.
+//!
+//! The candidates are kept in ascending `(first body, second body)` order, and the narrow
+//! phase finds exactly the contacts within the alert distance, so the contacts, their order
+//! and hence the whole run do not depend on the skin or on when the list was built: a run
+//! resumed from a checkpoint (which starts a new list) matches an uninterrupted one.
+//!
+//! The skin adapts to the motion: at each build it is set so that, at the rate the bodies
+//! moved since the previous build, the list lasts [`TARGET_STEPS_PER_BUILD`] calls, within
+//! `[alert, SKIN_CAP_OVER_SIZE * largest box extent]`.
+
+use crate::broad::BroadPhase;
+use crate::contacts::{Contact, ContactSet};
+use crate::narrow::{collide, disk_disk_point, Manifold};
+use xper_bodies::{BodySet, Shape};
+use xper_math::Real;
+
+/// Calls a candidate list should last, at the rate the bodies moved during the previous one.
+pub const TARGET_STEPS_PER_BUILD: Real = 4.0;
+
+/// Largest skin, as a fraction of the largest bounding-box extent of a body that is not a
+/// wall: beyond it, the candidates would reach past the nearest neighbours.
+pub const SKIN_CAP_OVER_SIZE: Real = 0.25;
+
+/// The impulse of a contact of the previous step, kept for the warm start.
+#[derive(Clone, Copy, Debug, Default)]
+struct CarriedImpulse {
+    bodies: [u32; 2],
+    feature: u32,
+    impulse: [Real; 2],
+}
+
+/// A body's pose and identity when the candidate list was built.
+#[derive(Clone, Copy, Debug)]
+struct BuildPose {
+    id: u64,
+    x: Real,
+    y: Real,
+    angle: Real,
+    reach: Real,
+}
+
+/// Counters of a detector's work, for benchmarks.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DetectorStats {
+    /// Calls of [`Detector::detect`].
+    pub calls: u64,
+    /// Candidate lists built (broad phase runs).
+    pub builds: u64,
+    /// Candidate pairs of the current list.
+    pub candidates: usize,
+    /// Current skin (m).
+    pub skin: Real,
+}
+
+/// Detection with its reusable buffers: candidate pairs, narrow phase, carry-over of impulses.
+///
+/// Only the non-zero impulses of the previous step are kept between calls (32 bytes each),
+/// not the previous contacts themselves.
+#[derive(Clone, Debug, Default)]
+pub struct Detector {
+    broad: BroadPhase,
+    candidates: Vec<(u32, u32)>,
+    unsorted: Vec<(u32, u32)>,
+    group_start: Vec<u32>,
+    built: Vec<BuildPose>,
+    built_alert: Real,
+    skin: Real,
+    calls_since_build: u64,
+    carried: Vec<CarriedImpulse>,
+    stats: DetectorStats,
+}
+
+impl Detector {
+    /// A detector with empty buffers.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// What the detector has done so far.
+    pub fn stats(&self) -> DetectorStats {
+        DetectorStats {
+            candidates: self.candidates.len(),
+            skin: self.skin,
+            ..self.stats
+        }
+    }
+
+    /// Replaces `contacts` by the contacts of the current configuration within `alert`, in
+    /// ascending `(first body, second body)` order.
+    ///
+    /// `law_of(group_a, group_b)` gives the law between two groups, or `None` when they do not
+    /// interact. Pairs of bodies that contacts cannot move (all inverse masses zero) are
+    /// skipped. Impulses of contacts present before (same bodies and features) are kept.
+    pub fn detect(
+        &mut self,
+        bodies: &BodySet,
+        alert: Real,
+        law_of: impl Fn(u16, u16) -> Option<u16>,
+        contacts: &mut ContactSet,
+    ) {
+        self.stats.calls += 1;
+        self.carry_impulses(&contacts.contacts);
+        contacts.contacts.clear();
+        if self.list_is_stale(bodies, alert) {
+            self.build(bodies, alert);
+        }
+        self.calls_since_build += 1;
+        let immobile = |b: usize| bodies.inv_mass[b].iter().all(|&m| m == 0.0);
+        let mut next_carried = 0;
+        for &(i, j) in &self.candidates {
+            let (a, b) = (i as usize, j as usize);
+            let (shape_a, shape_b) = (&bodies.shape[a], &bodies.shape[b]);
+            let (pa, pb) = (&bodies.position[a], &bodies.position[b]);
+            // Disk pairs, the common case, without the general dispatch.
+            let disks = match (shape_a, shape_b) {
+                (Shape::Disk { radius: ra }, Shape::Disk { radius: rb }) => {
+                    match disk_disk_point(pa, *ra, pb, *rb, alert) {
+                        Some(p) => Manifold::one(p),
+                        None => continue,
+                    }
+                }
+                _ => Manifold::EMPTY,
+            };
+            let Some(law) = law_of(bodies.group[a], bodies.group[b]) else {
+                continue;
+            };
+            if immobile(a) && immobile(b) {
+                continue;
+            }
+            let m = if disks.len > 0 {
+                disks
+            } else {
+                let (angle_a, angle_b) = (bodies.angle[a], bodies.angle[b]);
+                collide(shape_a, pa, angle_a, shape_b, pb, angle_b, alert)
+            };
+            if m.as_slice().is_empty() {
+                continue;
+            }
+            let previous = self.carried_of_pair(&mut next_carried, [i, j]);
+            for p in m.as_slice() {
+                let impulse = (previous.iter())
+                    .find(|c| c.feature == p.feature)
+                    .map_or([0.0, 0.0], |c| c.impulse);
+                contacts.contacts.push(Contact {
+                    bodies: [i, j],
+                    feature: p.feature,
+                    law,
+                    point: p.point,
+                    normal: p.normal,
+                    gap: p.gap,
+                    impulse,
+                });
+            }
+        }
+    }
+
+    /// Whether the candidates may miss a pair within `alert`: no list yet, another alert
+    /// distance, bodies added, removed or renumbered, or moved beyond the skin.
+    fn list_is_stale(&self, bodies: &BodySet, alert: Real) -> bool {
+        if self.built.len() != bodies.len() || self.built_alert != alert {
+            return true;
+        }
+        let (mut first, mut second) = (0.0, 0.0);
+        for (b, pose) in self.built.iter().enumerate() {
+            if bodies.id[b] != pose.id {
+                return true;
+            }
+            let p = bodies.position[b];
+            let (dx, dy) = (p.x - pose.x, p.y - pose.y);
+            let mut d = (dx * dx + dy * dy).sqrt();
+            if pose.reach > 0.0 {
+                d += pose.reach * (bodies.angle[b] - pose.angle).abs();
+            }
+            if d > second {
+                if d > first {
+                    second = first;
+                    first = d;
+                } else {
+                    second = d;
+                }
+            }
+        }
+        first + second > self.skin
+    }
+
+    /// Runs the broad phase with the alert distance grown by a new skin, and records the
+    /// poses it was built at.
+    fn build(&mut self, bodies: &BodySet, alert: Real) {
+        self.skin = self.next_skin(bodies, alert);
+        self.built_alert = alert;
+        self.calls_since_build = 0;
+        self.stats.builds += 1;
+        self.built.clear();
+        self.built.extend((0..bodies.len()).map(|b| BuildPose {
+            id: bodies.id[b],
+            x: bodies.position[b].x,
+            y: bodies.position[b].y,
+            angle: bodies.angle[b],
+            reach: match &bodies.shape[b] {
+                Shape::Disk { .. } => 0.0,
+                Shape::Polygon(p) => p.bounding_radius,
+                Shape::Segment { half_length } => *half_length,
+            },
+        }));
+        self.unsorted.clear();
+        (self.broad).find_pairs(bodies, alert + self.skin, &mut self.unsorted);
+        sort_pairs(
+            &self.unsorted,
+            bodies.len(),
+            &mut self.group_start,
+            &mut self.candidates,
+        );
+    }
+
+    /// The skin of a new list: what lasts [`TARGET_STEPS_PER_BUILD`] calls at the rate the
+    /// bodies moved during the list that ends (measured on the current poses), clamped.
+    fn next_skin(&self, bodies: &BodySet, alert: Real) -> Real {
+        let size = (bodies.shape.iter())
+            .filter(|s| !matches!(s, Shape::Segment { .. }))
+            .map(|s| 2.0 * s.size())
+            .fold(0.0, Real::max);
+        let cap = (SKIN_CAP_OVER_SIZE * size).max(alert);
+        if self.calls_since_build == 0 || self.built.len() != bodies.len() {
+            return alert;
+        }
+        let (mut first, mut second): (Real, Real) = (0.0, 0.0);
+        for (pose, p) in self.built.iter().zip(&bodies.position) {
+            let d = ((p.x - pose.x).powi(2) + (p.y - pose.y).powi(2)).sqrt();
+            second = second.max(d.min(first));
+            first = first.max(d);
+        }
+        let rate = (first + second) / self.calls_since_build as Real;
+        (TARGET_STEPS_PER_BUILD * rate).clamp(alert, cap)
+    }
+
+    /// Keeps the non-zero impulses of `previous` (ascending by bodies), for the merge with the
+    /// new contacts.
+    fn carry_impulses(&mut self, previous: &[Contact]) {
+        self.carried.clear();
+        self.carried.extend(
+            (previous.iter())
+                .filter(|c| c.impulse != [0.0, 0.0])
+                .map(|c| CarriedImpulse {
+                    bodies: c.bodies,
+                    feature: c.feature,
+                    impulse: c.impulse,
+                }),
+        );
+        // Contacts from elsewhere (a checkpoint of an older version) may be in another order.
+        if !self.carried.is_sorted_by_key(|c| c.bodies) {
+            self.carried.sort_by_key(|c| (c.bodies, c.feature));
+        }
+    }
+
+    /// The carried impulses of pair `bodies`, advancing the merge cursor `next`; the pairs
+    /// are met in ascending order.
+    fn carried_of_pair(&self, next: &mut usize, bodies: [u32; 2]) -> &[CarriedImpulse] {
+        let carried = &self.carried;
+        let mut start = *next;
+        while start < carried.len() && carried[start].bodies < bodies {
+            start += 1;
+        }
+        let mut end = start;
+        while end < carried.len() && carried[end].bodies == bodies {
+            end += 1;
+        }
+        *next = end;
+        &carried[start..end]
+    }
+}
+
+/// `pairs` (each `(i, j)` with `i < j`) into `sorted` in ascending order: a counting sort by
+/// first body (`start` its buffer), then the few second bodies of each first body sorted in
+/// place.
+fn sort_pairs(
+    pairs: &[(u32, u32)],
+    n_bodies: usize,
+    start: &mut Vec<u32>,
+    sorted: &mut Vec<(u32, u32)>,
+) {
+    start.clear();
+    start.resize(n_bodies + 1, 0);
+    for &(i, _) in pairs {
+        start[i as usize + 1] += 1;
+    }
+    for b in 0..n_bodies {
+        start[b + 1] += start[b];
+    }
+    sorted.clear();
+    sorted.resize(pairs.len(), (0, 0));
+    for &(i, j) in pairs {
+        let slot = &mut start[i as usize];
+        sorted[*slot as usize] = (i, j);
+        *slot += 1;
+    }
+    // Each start has moved to the end of its group.
+    let mut begin = 0;
+    for &end in &start[..n_bodies] {
+        sorted[begin..end as usize].sort_unstable();
+        begin = end as usize;
+    }
+}

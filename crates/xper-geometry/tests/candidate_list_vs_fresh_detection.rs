@@ -1,0 +1,101 @@
+//! The detector's candidate list (kept across calls while bodies move less than its skin)
+//! gives exactly the contacts of a detection from scratch, in the same order, at every call
+//! of a sequence of random moves and rotations, including moves larger than the skin.
+
+use proptest::prelude::*;
+use xper_bodies::{Body, BodySet, ConvexPolygon, Drive, Shape};
+use xper_geometry::{ContactSet, Detector};
+use xper_math::{Real, Vector};
+
+fn body(kind: u8, x: Real, y: Real, size: Real, angle: Real) -> Body {
+    let shape = match kind % 3 {
+        0 => Shape::Disk { radius: size },
+        1 => Shape::Polygon(ConvexPolygon::new(vec![
+            Vector::new(-size, -size / 2.0),
+            Vector::new(size, -size / 2.0),
+            Vector::new(0.0, size),
+        ])),
+        _ => Shape::Segment {
+            half_length: size * 8.0,
+        },
+    };
+    let fixed = matches!(shape, Shape::Segment { .. });
+    Body {
+        shape,
+        position: Vector::new(x, y),
+        angle,
+        velocity: Vector::zeros(),
+        angular_velocity: 0.0,
+        mass: if fixed { Real::INFINITY } else { 1.0 },
+        inertia: if fixed { Real::INFINITY } else { 1.0 },
+        group: 0,
+        drives: [Drive::Free, Drive::Free, Drive::Free],
+    }
+}
+
+/// A pseudo-random number in [-1, 1) from a counter (splitmix64).
+fn noise(k: u64) -> Real {
+    let mut z = k.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^= z >> 31;
+    (z >> 11) as Real * (2.0 / (1u64 << 53) as Real) - 1.0
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+    #[test]
+    fn kept_candidates_give_the_contacts_of_a_fresh_detection(
+        specs in prop::collection::vec((0u8..3, 0.0..6.0f64, 0.0..6.0f64, 0.1..0.5f64, 0.0..6.3f64), 2..120),
+        alert in 0.005..0.1f64,
+        step in prop_oneof![Just(0.0), 0.0..0.08f64],
+        spin in prop_oneof![Just(0.0), 0.0..0.1f64],
+        seed in 0u64..1000,
+    ) {
+        let mut set = BodySet::new();
+        for &(kind, x, y, size, angle) in &specs {
+            set.insert(body(kind, x, y, size, angle));
+        }
+        let law = |_: u16, _: u16| Some(0u16);
+        let mut kept = Detector::new();
+        let mut kept_contacts = ContactSet::default();
+        let mut set_impulses: Vec<([u32; 2], u32, [Real; 2])> = Vec::new();
+        for call in 0..25u64 {
+            kept.detect(&set, alert, law, &mut kept_contacts);
+            for c in &kept_contacts.contacts {
+                let before = (set_impulses.iter())
+                    .find(|(b, f, _)| *b == c.bodies && *f == c.feature)
+                    .map_or([0.0, 0.0], |e| e.2);
+                prop_assert_eq!(c.impulse, before, "call {}: impulse of {:?}", call, c.bodies);
+            }
+            let mut fresh_contacts = ContactSet::default();
+            Detector::new().detect(&set, alert, law, &mut fresh_contacts);
+            let strip = |c: &ContactSet| -> Vec<_> {
+                c.contacts.iter().map(|c| (c.bodies, c.feature, c.gap.to_bits())).collect()
+            };
+            prop_assert_eq!(strip(&kept_contacts), strip(&fresh_contacts), "call {}", call);
+            // Every contact carries a non-zero impulse into the next call.
+            for (k, c) in kept_contacts.contacts.iter_mut().enumerate() {
+                c.impulse = [1.0 + k as Real, 0.0];
+            }
+            set_impulses = (kept_contacts.contacts.iter())
+                .map(|c| (c.bodies, c.feature, c.impulse))
+                .collect();
+            // Move and turn every movable body; now and then one jumps far.
+            for b in 0..set.len() {
+                if matches!(set.shape[b], Shape::Segment { .. }) {
+                    continue;
+                }
+                let k = seed * 1_000_003 + call * 1009 + b as u64;
+                let jump = if noise(3 * k + 2) > 0.97 { 10.0 } else { 1.0 };
+                set.position[b].x += jump * step * noise(3 * k);
+                set.position[b].y += jump * step * noise(3 * k + 1);
+                set.angle[b] += spin * noise(3 * k + 2);
+            }
+        }
+        // Bodies at rest never invalidate the first list.
+        if step == 0.0 && spin == 0.0 {
+            prop_assert_eq!(kept.stats().builds, 1);
+        }
+    }
+}
