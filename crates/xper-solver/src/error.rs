@@ -6,7 +6,8 @@
 //!   `../shared/BRIEF.md`, section 2): for contact a with reactions `r` and `r'` before and
 //!   after its local solve and velocities `u`, `u'`, `du = u - u'`, `rm = (r + r')/2`,
 //!   `WRR = (r.W r + r'.W r')/2`, `WRWR = (|W r|^2 + |W r'|^2)/2`, summed over the `N`
-//!   contacts with a non-zero reaction.
+//!   contacts with a non-zero mean reaction `rm` (as LMGC90's `nlgs` counts them: a contact
+//!   whose reaction drops to zero in the check sweep still counts).
 
 use crate::operator::{block_mul, Block2};
 
@@ -50,7 +51,7 @@ pub struct ConvergenceNorms {
     pub maxm_dv: f64,
     /// `sqrt(max |du|^2 |rm|^2) / (MeanWRR tol)`.
     pub maxm_dvr: f64,
-    /// Contacts with a non-zero reaction.
+    /// Contacts with a non-zero mean reaction `(r + r')/2`.
     pub active: usize,
 }
 
@@ -87,12 +88,12 @@ impl NormAccumulator {
     /// Adds one contact's local update.
     #[inline(always)]
     pub fn add(&mut self, w: &Block2, r: [f64; 2], r_new: [f64; 2], du: [f64; 2]) {
-        if r_new[0] == 0.0 && r_new[1] == 0.0 {
+        let rm = [(r[0] + r_new[0]) / 2.0, (r[1] + r_new[1]) / 2.0];
+        if rm[0] == 0.0 && rm[1] == 0.0 {
             return;
         }
         let (wr, wr2) = (block_mul(w, r), block_mul(w, r_new));
         let du2 = du[0] * du[0] + du[1] * du[1];
-        let rm = [(r[0] + r_new[0]) / 2.0, (r[1] + r_new[1]) / 2.0];
         let rm2 = rm[0] * rm[0] + rm[1] * rm[1];
         self.sum_du2 += du2;
         self.max_du2 = self.max_du2.max(du2);
@@ -159,6 +160,21 @@ impl NormAccumulator {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Regression: a contact whose reaction dropped to zero during the check sweep was left
+    /// out of the norms; LMGC90 counts every contact with a non-zero mean reaction.
+    #[test]
+    fn a_contact_that_opens_in_the_check_sweep_counts_in_the_norms() {
+        let w = [2.0, 0.0, 0.0, 3.0];
+        let mut acc = NormAccumulator::default();
+        acc.add(&w, [1.0, 0.2], [0.0, 0.0], [-2.0, -0.6]);
+        let sums = acc.to_sums().0;
+        assert_eq!(sums[5], 1.0, "one contact counted");
+        assert!((sums[0] - 4.36).abs() < 1e-12, "sum |du|^2 = {}", sums[0]);
+        // A contact without reaction before and after adds nothing.
+        acc.add(&w, [0.0, 0.0], [0.0, 0.0], [0.0, 0.0]);
+        assert_eq!(acc.to_sums().0[5], 1.0);
+    }
 
     #[test]
     fn cone_projection_cases() {
