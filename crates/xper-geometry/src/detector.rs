@@ -111,8 +111,9 @@ impl Detector {
         self.stats.calls += 1;
         self.carry_impulses(&contacts.contacts);
         contacts.contacts.clear();
-        if self.list_is_stale(bodies, alert) {
-            self.build(bodies, alert);
+        let moved = self.moved_since_build(bodies, alert);
+        if moved.is_none_or(|m| m > self.skin) {
+            self.build(bodies, alert, moved);
         }
         self.calls_since_build += 1;
         let immobile = |b: usize| bodies.inv_mass[b].iter().all(|&m| m == 0.0);
@@ -164,16 +165,17 @@ impl Detector {
         }
     }
 
-    /// Whether the candidates may miss a pair within `alert`: no list yet, another alert
-    /// distance, bodies added, removed or renumbered, or moved beyond the skin.
-    fn list_is_stale(&self, bodies: &BodySet, alert: Real) -> bool {
+    /// How far two bodies may have moved towards each other since the list was built: the
+    /// sum of the two largest displacement bounds `d_b`; `None` when the list is no use (none
+    /// yet, another alert distance, bodies added, removed or renumbered).
+    fn moved_since_build(&self, bodies: &BodySet, alert: Real) -> Option<Real> {
         if self.built.len() != bodies.len() || self.built_alert != alert {
-            return true;
+            return None;
         }
-        let (mut first, mut second) = (0.0, 0.0);
+        let (mut first, mut second): (Real, Real) = (0.0, 0.0);
         for (b, pose) in self.built.iter().enumerate() {
             if bodies.id[b] != pose.id {
-                return true;
+                return None;
             }
             let p = bodies.position[b];
             let (dx, dy) = (p.x - pose.x, p.y - pose.y);
@@ -181,22 +183,16 @@ impl Detector {
             if pose.reach > 0.0 {
                 d += pose.reach * (bodies.angle[b] - pose.angle).abs();
             }
-            if d > second {
-                if d > first {
-                    second = first;
-                    first = d;
-                } else {
-                    second = d;
-                }
-            }
+            second = second.max(d.min(first));
+            first = first.max(d);
         }
-        first + second > self.skin
+        Some(first + second)
     }
 
     /// Runs the broad phase with the alert distance grown by a new skin, and records the
-    /// poses it was built at.
-    fn build(&mut self, bodies: &BodySet, alert: Real) {
-        self.skin = self.next_skin(bodies, alert);
+    /// poses it was built at; `moved` is [`Self::moved_since_build`] for the list that ends.
+    fn build(&mut self, bodies: &BodySet, alert: Real, moved: Option<Real>) {
+        self.skin = self.next_skin(bodies, alert, moved);
         self.built_alert = alert;
         self.calls_since_build = 0;
         self.stats.builds += 1;
@@ -223,23 +219,18 @@ impl Detector {
     }
 
     /// The skin of a new list: what lasts [`TARGET_STEPS_PER_BUILD`] calls at the rate the
-    /// bodies moved during the list that ends (measured on the current poses), clamped.
-    fn next_skin(&self, bodies: &BodySet, alert: Real) -> Real {
+    /// bodies moved during the list that ends (`moved` over its calls), clamped; the alert
+    /// distance when there is no such list.
+    fn next_skin(&self, bodies: &BodySet, alert: Real, moved: Option<Real>) -> Real {
+        let Some(moved) = moved.filter(|_| self.calls_since_build > 0) else {
+            return alert;
+        };
         let size = (bodies.shape.iter())
             .filter(|s| !matches!(s, Shape::Segment { .. }))
             .map(|s| 2.0 * s.size())
             .fold(0.0, Real::max);
         let cap = (SKIN_CAP_OVER_SIZE * size).max(alert);
-        if self.calls_since_build == 0 || self.built.len() != bodies.len() {
-            return alert;
-        }
-        let (mut first, mut second): (Real, Real) = (0.0, 0.0);
-        for (pose, p) in self.built.iter().zip(&bodies.position) {
-            let d = ((p.x - pose.x).powi(2) + (p.y - pose.y).powi(2)).sqrt();
-            second = second.max(d.min(first));
-            first = first.max(d);
-        }
-        let rate = (first + second) / self.calls_since_build as Real;
+        let rate = moved / self.calls_since_build as Real;
         (TARGET_STEPS_PER_BUILD * rate).clamp(alert, cap)
     }
 
