@@ -289,6 +289,12 @@ impl<'a> NlgsSweeper<'a> {
         if proximal.iter().all(|&eps| eps == 0.0) {
             proximal = Vec::new();
         }
+        // The block each local solve uses: W_aa, plus eps I where proximal.
+        let local_block = |a: usize| {
+            let w = op.diagonal_block(a);
+            let eps = proximal.get(a).copied().unwrap_or(0.0);
+            [w[0] + eps, w[1], w[2], w[3] + eps]
+        };
         let prepared: Vec<PreparedCohesiveContact> = if is_adhesive.is_empty() {
             Vec::new()
         } else {
@@ -297,30 +303,12 @@ impl<'a> NlgsSweeper<'a> {
                     if !adhesive(a) {
                         return PreparedCohesiveContact::default();
                     }
-                    let w = op.diagonal_block(a);
-                    let eps = if proximal.is_empty() {
-                        0.0
-                    } else {
-                        proximal[a]
-                    };
-                    PreparedCohesiveContact::new(
-                        &[w[0] + eps, w[1], w[2], w[3] + eps],
-                        &cohesion[a],
-                        mu[a],
-                    )
+                    PreparedCohesiveContact::new(&local_block(a), &cohesion[a], mu[a])
                 })
                 .collect()
         };
         let factors: Vec<LocalFactors> = (0..n)
-            .map(|a| {
-                let w = op.diagonal_block(a);
-                let eps = if proximal.is_empty() {
-                    0.0
-                } else {
-                    proximal[a]
-                };
-                LocalFactors::new(&[w[0] + eps, w[1], w[2], w[3] + eps], mu[a])
-            })
+            .map(|a| LocalFactors::new(&local_block(a), mu[a]))
             .collect();
         Ok(NlgsSweeper {
             mu,
