@@ -60,12 +60,13 @@ pub struct BenchResult {
     median_ns_per_contact_update: f64,
     median_detect_ms: f64,
     median_detect_ns_per_body: f64,
-    /// Mean detection time per step and body (ns), builds of the candidate list included.
+    /// Mean detection time per step and body (ns), builds of the candidate list included
+    /// (absent from results of versions before the candidate list).
     #[serde(default)]
-    mean_detect_ns_per_body: f64,
+    mean_detect_ns_per_body: Option<f64>,
     /// Steps whose detection rebuilt the candidate list (ran the broad phase).
     #[serde(default)]
-    candidate_list_builds: u64,
+    candidate_list_builds: Option<u64>,
     non_converged_steps: usize,
     peak_memory_bytes: u64,
     peak_memory_bytes_per_body: f64,
@@ -174,10 +175,11 @@ fn bench_one(
         median_settled_contacts: median(tail(&contacts)),
         median_ns_per_contact_update: median(ns_update),
         median_detect_ms: median(detect.clone()),
-        mean_detect_ns_per_body: detect.iter().sum::<f64>() / detect.len().max(1) as f64 * 1e6
-            / bodies as f64,
+        mean_detect_ns_per_body: Some(
+            detect.iter().sum::<f64>() / detect.len().max(1) as f64 * 1e6 / bodies as f64,
+        ),
         median_detect_ns_per_body: median(detect) * 1e6 / bodies as f64,
-        candidate_list_builds: stepper.detector_stats().builds,
+        candidate_list_builds: Some(stepper.detector_stats().builds),
         non_converged_steps: non_converged,
         peak_memory_bytes: peak,
         peak_memory_bytes_per_body: peak as f64 / bodies as f64,
@@ -337,8 +339,8 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
             r.scene, r.bodies, r.steps, r.median_step_ms, r.median_settled_step_ms, r.median_sweeps, r.median_settled_sweeps,
             r.median_contacts, r.median_settled_contacts, r.median_ns_per_contact_update, r.median_detect_ms,
             r.median_detect_ns_per_body,
-            if r.mean_detect_ns_per_body > 0.0 { format!("{:.0}", r.mean_detect_ns_per_body) } else { "-".into() },
-            if r.mean_detect_ns_per_body > 0.0 { r.candidate_list_builds.to_string() } else { "-".into() },
+            r.mean_detect_ns_per_body.map_or("-".into(), |m| format!("{m:.0}")),
+            r.candidate_list_builds.map_or("-".into(), |b| b.to_string()),
             r.peak_memory_bytes as f64 / 1e6, r.peak_memory_bytes_per_body,
             r.overlap_median_m * 1e6, r.overlap_p99_m * 1e6, r.overlap_max_m * 1e6, r.non_converged_steps
         ));
