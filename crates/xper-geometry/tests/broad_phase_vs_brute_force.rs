@@ -1,43 +1,10 @@
 //! The grid broad phase finds exactly the pairs that an all-pairs search finds.
 
+mod common;
+
+use common::scene;
 use proptest::prelude::*;
-use xper_bodies::{Body, BodySet, ConvexPolygon, Drive, Shape};
 use xper_geometry::{collide, BroadPhase};
-use xper_math::{Real, Vector};
-
-fn body(shape: Shape, x: Real, y: Real, angle: Real) -> Body {
-    let fixed = matches!(shape, Shape::Segment { .. });
-    Body {
-        shape,
-        position: Vector::new(x, y),
-        angle,
-        velocity: Vector::zeros(),
-        angular_velocity: 0.0,
-        mass: if fixed { Real::INFINITY } else { 1.0 },
-        inertia: if fixed { Real::INFINITY } else { 1.0 },
-        group: 0,
-        drives: [Drive::Free, Drive::Free, Drive::Free],
-    }
-}
-
-fn scene(specs: &[(u8, Real, Real, Real, Real)]) -> BodySet {
-    let mut set = BodySet::new();
-    for &(kind, x, y, size, angle) in specs {
-        let shape = match kind % 3 {
-            0 => Shape::Disk { radius: size },
-            1 => Shape::Polygon(ConvexPolygon::new(vec![
-                Vector::new(-size, -size / 2.0),
-                Vector::new(size, -size / 2.0),
-                Vector::new(0.0, size),
-            ])),
-            _ => Shape::Segment {
-                half_length: size * 8.0,
-            },
-        };
-        set.insert(body(shape, x, y, angle));
-    }
-    set
-}
 
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]

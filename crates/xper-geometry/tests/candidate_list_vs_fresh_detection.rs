@@ -2,36 +2,13 @@
 //! gives exactly the contacts of a detection from scratch, in the same order, at every call
 //! of a sequence of random moves and rotations, including moves larger than the skin.
 
-use proptest::prelude::*;
-use xper_bodies::{Body, BodySet, ConvexPolygon, Drive, Shape};
-use xper_geometry::{ContactSet, Detector};
-use xper_math::{Real, Vector};
+mod common;
 
-fn body(kind: u8, x: Real, y: Real, size: Real, angle: Real) -> Body {
-    let shape = match kind % 3 {
-        0 => Shape::Disk { radius: size },
-        1 => Shape::Polygon(ConvexPolygon::new(vec![
-            Vector::new(-size, -size / 2.0),
-            Vector::new(size, -size / 2.0),
-            Vector::new(0.0, size),
-        ])),
-        _ => Shape::Segment {
-            half_length: size * 8.0,
-        },
-    };
-    let fixed = matches!(shape, Shape::Segment { .. });
-    Body {
-        shape,
-        position: Vector::new(x, y),
-        angle,
-        velocity: Vector::zeros(),
-        angular_velocity: 0.0,
-        mass: if fixed { Real::INFINITY } else { 1.0 },
-        inertia: if fixed { Real::INFINITY } else { 1.0 },
-        group: 0,
-        drives: [Drive::Free, Drive::Free, Drive::Free],
-    }
-}
+use common::scene;
+use proptest::prelude::*;
+use xper_bodies::Shape;
+use xper_geometry::{ContactSet, Detector};
+use xper_math::Real;
 
 /// A pseudo-random number in [-1, 1) from a counter (splitmix64).
 fn noise(k: u64) -> Real {
@@ -52,10 +29,7 @@ proptest! {
         spin in prop_oneof![Just(0.0), 0.0..0.1f64],
         seed in 0u64..1000,
     ) {
-        let mut set = BodySet::new();
-        for &(kind, x, y, size, angle) in &specs {
-            set.insert(body(kind, x, y, size, angle));
-        }
+        let mut set = scene(&specs);
         let law = |_: u16, _: u16| Some(0u16);
         let mut kept = Detector::new();
         let mut kept_contacts = ContactSet::default();
