@@ -13,7 +13,7 @@ use xper_nscd::MoreauJean;
 /// Arguments of `xper bench`.
 #[derive(clap::Args)]
 pub struct BenchArgs {
-    /// Scene files (default: scenes/box10k/scene.toml and scenes/box100k/scene.toml).
+    /// Scene files (default: scenes/box10k, scenes/box10k_anderson and scenes/box100k).
     #[arg(long = "scene")]
     scenes: Vec<PathBuf>,
     /// Run at most this many steps of each scene (default: the scene's own count).
@@ -217,6 +217,7 @@ pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
     let scenes = if args.scenes.is_empty() {
         vec![
             PathBuf::from("scenes/box10k/scene.toml"),
+            PathBuf::from("scenes/box10k_anderson/scene.toml"),
             PathBuf::from("scenes/box100k/scene.toml"),
         ]
     } else {

@@ -47,6 +47,7 @@ fn params(dt: Real, gravity: Vector) -> StepParams {
             check_every: 1,
             relaxation: 1.0,
             norm: ConvergenceNorm::NaturalMap,
+            ..Default::default()
         },
         solver: VelocitySolver::Nlgs,
         projection_tolerance: Some(1e-9),

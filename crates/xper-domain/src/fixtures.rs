@@ -30,6 +30,7 @@ pub fn solver_params(tolerance: Real) -> NlgsParams {
         check_every: 5,
         relaxation: 1.0,
         norm: ConvergenceNorm::NaturalMap,
+        ..Default::default()
     }
 }
 

@@ -59,6 +59,7 @@ fn grain_in_box(
             check_every: 1,
             relaxation: 1.0,
             norm: ConvergenceNorm::NaturalMap,
+            ..Default::default()
         },
         solver: VelocitySolver::Nlgs,
         projection_tolerance: Some(1e-4 * d),

@@ -143,6 +143,7 @@ pub(super) fn spec(
             check_every: 10,
             relaxation: 1.0,
             norm: ConvergenceNorm::Quad,
+            ..Default::default()
         },
     }
 }

@@ -577,6 +577,7 @@ impl MoreauJean {
         self.impulses.clear();
         self.impulses.resize(n, [0.0, 0.0]);
         let params = NlgsParams {
+            acceleration: xper_solver::Acceleration::None,
             ..world.params.nlgs
         };
         let (op, mu, shift) = (&mut self.op, &self.mu, &self.shift);

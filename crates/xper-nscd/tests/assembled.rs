@@ -51,6 +51,7 @@ fn params(tolerance: Real) -> StepParams {
             check_every: 1,
             relaxation: 1.0,
             norm: ConvergenceNorm::NaturalMap,
+            ..Default::default()
         },
         solver: VelocitySolver::Nlgs,
         projection_tolerance: Some(1e-6),

@@ -41,8 +41,8 @@ pub use generators::MAX_GENERATED;
 pub use overlap::MAX_OVERLAP_REPORTS;
 pub use rng::SplitMix64;
 pub use types::{
-    BodyDesc, ConvergenceNorm, Drive, FluidDesc, FluidSideDesc, LawDesc, OutputSettings, Scene,
-    ShapeDesc, SolverKind, SolverSettings, TimeFunction,
+    Acceleration, BodyDesc, ConvergenceNorm, Drive, FluidDesc, FluidSideDesc, LawDesc,
+    OutputSettings, Scene, ShapeDesc, SolverKind, SolverSettings, TimeFunction,
 };
 
 use read::{Ctx, Tbl};

@@ -3,7 +3,7 @@
 use crate::read::{choose, ensure, int_in, Ctx, Got, Tbl};
 use crate::shared::{Groups, Materials};
 use crate::tree::Kind;
-use crate::types::{ConvergenceNorm, LawDesc, SolverKind, SolverSettings};
+use crate::types::{Acceleration, ConvergenceNorm, LawDesc, SolverKind, SolverSettings};
 
 /// The `[scene]` table; `None` fields were invalid (errors reported).
 pub(crate) struct Header {
@@ -140,6 +140,9 @@ const SOLVER_KEYS: &[&str] = &[
     "check_every",
     "relaxation",
     "norm",
+    "acceleration",
+    "anderson_depth",
+    "anderson_period",
     "position_projection",
 ];
 
@@ -204,10 +207,44 @@ pub(crate) fn solver(ctx: &mut Ctx, root: &Tbl) -> SolverSettings {
         );
         s.norm = ConvergenceNorm::NaturalMap;
     }
+    s.acceleration = acceleration(ctx, &t, s.kind);
     if let Some(b) = t.boolean(ctx, "position_projection").val() {
         s.position_projection = b;
     }
     s
+}
+
+/// `acceleration` with its `anderson_*` parameters (NLGS only).
+fn acceleration(ctx: &mut Ctx, t: &Tbl, kind: SolverKind) -> Acceleration {
+    let kinds = [("none", false), ("anderson", true)];
+    let chosen = t.string(ctx, "acceleration").ok();
+    let on = choose(
+        ctx,
+        chosen,
+        &t.field("acceleration"),
+        "acceleration",
+        &kinds,
+    )
+    .unwrap_or(false);
+    if kind != SolverKind::Nlgs {
+        t.forbid(ctx, "acceleration", "applies to kind = \"nlgs\" only");
+    }
+    if !on {
+        for key in ["anderson_depth", "anderson_period"] {
+            t.forbid(ctx, key, "needs acceleration = \"anderson\"");
+        }
+        return Acceleration::None;
+    }
+    let (mut depth, mut period) = (3, 3);
+    let d = t.int(ctx, "anderson_depth").ok();
+    if let Some(v) = int_in(ctx, d, &t.field("anderson_depth"), 1, 8) {
+        depth = v as u32;
+    }
+    let p = t.int(ctx, "anderson_period").ok();
+    if let Some(v) = int_in(ctx, p, &t.field("anderson_period"), 1, i64::from(u32::MAX)) {
+        period = v as u32;
+    }
+    Acceleration::Anderson { depth, period }
 }
 
 /// What `[output]` gives: each cadence `Some(None)` when not given, `None` when invalid.

@@ -53,6 +53,21 @@ pub enum ConvergenceNorm {
     NaturalMap,
 }
 
+/// Acceleration of the NLGS sweeps (`acceleration`, `anderson_depth`, `anderson_period`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum Acceleration {
+    /// Plain NLGS, `none` (the default).
+    None,
+    /// Anderson mixing of the impulses every `period` sweeps over the last `depth`
+    /// differences, `anderson` (defaults 3 and 3).
+    Anderson {
+        /// History depth, 1 to 8.
+        depth: u32,
+        /// Sweeps between mixings, >= 1.
+        period: u32,
+    },
+}
+
 /// Contact solver settings (`[solver]`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SolverSettings {
@@ -71,6 +86,8 @@ pub struct SolverSettings {
     pub relaxation: f64,
     /// NLGS convergence norm (as `check_every`).
     pub norm: ConvergenceNorm,
+    /// NLGS acceleration (the velocity problem; the position projection stays plain).
+    pub acceleration: Acceleration,
     /// Whether interpenetrations are corrected by a position projection after each step.
     pub position_projection: bool,
 }
@@ -98,6 +115,7 @@ impl Default for SolverSettings {
             check_every: 10,
             relaxation: 1.0,
             norm: ConvergenceNorm::Quad,
+            acceleration: Acceleration::None,
             position_projection: true,
         }
     }

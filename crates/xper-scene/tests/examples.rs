@@ -4,7 +4,7 @@ use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
 use xper_scene::{
-    load_scene, ConvergenceNorm, Drive, ShapeDesc, SolverKind, SplitMix64, TimeFunction,
+    load_scene, Acceleration, ConvergenceNorm, Drive, ShapeDesc, SolverKind, SplitMix64, TimeFunction,
 };
 
 fn scene_path(name: &str) -> PathBuf {
@@ -32,6 +32,26 @@ fn splitmix_reference_values() {
         let u = g.next_f64();
         assert!((0.0..1.0).contains(&u));
     }
+}
+
+/// box10k_anderson is box10k (bodies, laws, step, tolerance and convergence test) with the
+/// sweeps accelerated, and nothing else.
+#[test]
+fn box10k_anderson_is_box10k_with_acceleration() {
+    let plain = load_scene(&scene_path("box10k")).unwrap_or_else(|e| panic!("{e}"));
+    let fast = load_scene(&scene_path("box10k_anderson")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(plain.solver.acceleration, Acceleration::None);
+    assert_eq!(
+        fast.solver.acceleration,
+        Acceleration::Anderson {
+            depth: 3,
+            period: 3
+        }
+    );
+    let mut same = fast.clone();
+    same.name = plain.name.clone();
+    same.solver.acceleration = Acceleration::None;
+    assert_eq!(same, plain);
 }
 
 #[test]

@@ -2,7 +2,7 @@
 
 mod common;
 use common::*;
-use xper_scene::{ConvergenceNorm, SolverKind, SolverSettings};
+use xper_scene::{Acceleration, ConvergenceNorm, SolverKind, SolverSettings};
 
 const DISK: &str = r#"[[bodies]]
 shape = "disk"
@@ -62,6 +62,67 @@ fn solver_kind_errors() {
         &t,
         "solver.norm",
         "norm =",
+        "applies to kind = \"nlgs\" only",
+    );
+}
+
+#[test]
+fn anderson_acceleration_and_its_parameters() {
+    assert_eq!(ok(&scene("")).solver.acceleration, Acceleration::None);
+    let s = ok(&scene("[solver]\nacceleration = \"anderson\"\n")).solver;
+    assert_eq!(
+        s.acceleration,
+        Acceleration::Anderson {
+            depth: 3,
+            period: 3
+        }
+    );
+    let s = ok(&scene(
+        "[solver]\nacceleration = \"anderson\"\nanderson_depth = 5\nanderson_period = 1\n",
+    ))
+    .solver;
+    assert_eq!(
+        s.acceleration,
+        Acceleration::Anderson {
+            depth: 5,
+            period: 1
+        }
+    );
+    let s = ok(&scene("[solver]\nacceleration = \"none\"\n")).solver;
+    assert_eq!(s.acceleration, Acceleration::None);
+    let t = scene("[solver]\nacceleration = \"andersen\"\n");
+    expect_error(
+        &t,
+        "solver.acceleration",
+        "acceleration =",
+        "unknown acceleration `andersen` (known: none, anderson)",
+    );
+    let t = scene("[solver]\nacceleration = \"anderson\"\nanderson_depth = 9\n");
+    expect_error(
+        &t,
+        "solver.anderson_depth",
+        "anderson_depth",
+        "must be in [1, 8], got 9",
+    );
+    let t = scene("[solver]\nacceleration = \"anderson\"\nanderson_period = 0\n");
+    expect_error(
+        &t,
+        "solver.anderson_period",
+        "anderson_period",
+        "must be in [1, 4294967295], got 0",
+    );
+    let t = scene("[solver]\nanderson_depth = 2\n");
+    expect_error(
+        &t,
+        "solver.anderson_depth",
+        "anderson_depth",
+        "needs acceleration = \"anderson\"",
+    );
+    let t = scene("[solver]\nkind = \"newton\"\nacceleration = \"anderson\"\n");
+    expect_error(
+        &t,
+        "solver.acceleration",
+        "acceleration =",
         "applies to kind = \"nlgs\" only",
     );
 }

@@ -6,6 +6,7 @@
 //! the sweep see it (M. Jean, CMAME 177, 1999; LMGC90's `nlgs`). Convergence is checked
 //! every `check_every` sweeps by LMGC90's norms or by the natural-map error.
 
+use crate::anderson::{Acceleration, AndersonMixer};
 use crate::cohesive::{CohesiveTerm, PreparedCohesiveContact};
 use crate::error::{natural_map_error, ConvergenceNorms, NormAccumulator};
 
@@ -38,6 +39,10 @@ pub struct NlgsParams {
     pub relaxation: f64,
     /// Convergence measure.
     pub norm: ConvergenceNorm,
+    /// Acceleration of the sweeps (Anderson mixing, see [`crate::anderson`]); the convergence
+    /// check stays on plain sweeps.
+    #[serde(default)]
+    pub acceleration: Acceleration,
 }
 
 impl Default for NlgsParams {
@@ -48,6 +53,7 @@ impl Default for NlgsParams {
             check_every: 10,
             relaxation: 1.0,
             norm: ConvergenceNorm::Quad,
+            acceleration: Acceleration::None,
         }
     }
 }
@@ -164,6 +170,12 @@ pub fn nlgs_with_cohesion<O: ContactOperator>(
         info.converged = true;
         return Ok(info);
     }
+    let mut anderson = match params.acceleration {
+        Acceleration::None => None,
+        Acceleration::Anderson { depth, period } => {
+            Some((AndersonMixer::new(depth, impulses), period))
+        }
+    };
     for sweep in 1..=params.max_iterations {
         let check = sweep % params.check_every == 0 || sweep == params.max_iterations;
         let mut acc = NormAccumulator::default();
@@ -174,6 +186,11 @@ pub fn nlgs_with_cohesion<O: ContactOperator>(
             })
         {
             return Ok(info);
+        }
+        if let Some((mixer, period)) = anderson.as_mut() {
+            if sweep % *period == 0 {
+                sweeper.accelerate(op, impulses, mixer);
+            }
         }
     }
     info.iterations = params.max_iterations;
@@ -232,6 +249,13 @@ impl<'a> NlgsSweeper<'a> {
             || params.check_every == 0
         {
             return Err(SolveError::InvalidParams(format!("{params:?}")));
+        }
+        if !params.acceleration.is_valid() {
+            return Err(SolveError::InvalidParams(format!(
+                "acceleration {:?}: depth in 1..={} and period >= 1",
+                params.acceleration,
+                crate::anderson::MAX_ANDERSON_DEPTH
+            )));
         }
         if params.relaxation.is_nan() || params.relaxation <= 0.0 || params.relaxation >= 2.0 {
             return Err(SolveError::InvalidParams(format!(
@@ -325,6 +349,29 @@ impl<'a> NlgsSweeper<'a> {
     /// `|q + shift|` at zero impulses, the scale of the natural-map error.
     pub fn q_norm(&self) -> f64 {
         self.q_norm
+    }
+
+    /// Anderson mixing of the impulses after a sweep: each mixed impulse is projected on its
+    /// cone (adhesive contacts excepted, as in the sweep) and its change applied to `op`.
+    fn accelerate<O: ContactOperator>(
+        &self,
+        op: &mut O,
+        impulses: &mut [[f64; 2]],
+        mixer: &mut AndersonMixer,
+    ) {
+        mixer.mix(impulses, |a, old, mixed| {
+            let adhesive = !self.is_adhesive.is_empty() && self.is_adhesive[a];
+            let r = if adhesive {
+                mixed
+            } else {
+                crate::error::project_on_cone(mixed, self.mu[a])
+            };
+            let d = [r[0] - old[0], r[1] - old[1]];
+            if d[0] != 0.0 || d[1] != 0.0 {
+                op.apply_impulse(a, d);
+            }
+            r
+        });
     }
 
     /// One sweep over the contacts in order.

@@ -218,6 +218,7 @@ fn nlgs_on_dense_problem_agrees_with_nsgs() {
             check_every: 1,
             relaxation: 1.0,
             norm: ConvergenceNorm::NaturalMap,
+            ..Default::default()
         };
         let info = nlgs(
             &mut op,
