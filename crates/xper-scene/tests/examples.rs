@@ -4,7 +4,8 @@ use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
 use xper_scene::{
-    load_scene, Acceleration, ConvergenceNorm, Drive, ShapeDesc, SolverKind, SplitMix64, TimeFunction,
+    load_scene, Acceleration, ConvergenceNorm, Drive, ShapeDesc, SolverKind, SplitMix64,
+    TimeFunction,
 };
 
 fn scene_path(name: &str) -> PathBuf {
