@@ -299,7 +299,7 @@ pub fn run_on(
         pvd: PvdCollection::default(),
         scene_hash: fnv1a(&text),
     };
-    let world = if opts.resume {
+    let mut world = if opts.resume {
         let bytes: Vec<u8> = read_checkpoint(&opts.out, out.scene_hash, "an xper checkpoint")?;
         let world = World::from_bytes(&bytes).map_err(|e| {
             CliError::BadInput(format!(
@@ -323,6 +323,12 @@ pub fn run_on(
         }
         world
     };
+    crate::run_distributed::plain_sweeps_when_distributed(
+        &mut world.params.nlgs,
+        distributed.is_some(),
+        root,
+        &opts.scene,
+    );
     let last = opts
         .stop_at_step
         .map_or(scene.steps, |s| s.min(scene.steps));
