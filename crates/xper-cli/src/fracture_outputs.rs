@@ -128,7 +128,7 @@ pub struct FractureSummary {
     /// Each process's load and communication (empty on one process).
     pub ranks: crate::run::RankLoads,
     /// The same steps on one process (`--compare-serial` under mpirun).
-    pub serial_comparison: Option<crate::run::SerialComparison>,
+    pub serial_comparison: Option<crate::serial_comparison::SerialComparison>,
 }
 
 /// The summary of a run from its series and final model.

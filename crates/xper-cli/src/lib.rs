@@ -15,6 +15,7 @@ pub mod run_fluid;
 pub mod run_fluid_distributed;
 pub mod run_fracture;
 pub mod run_fracture_distributed;
+pub mod serial_comparison;
 pub mod solve;
 pub mod validation;
 pub mod validation_fluid;

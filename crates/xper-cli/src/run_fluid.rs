@@ -6,11 +6,10 @@
 //! into blocks of rows, one per process ([`crate::run_fluid_distributed`]); rank 0 writes.
 
 use crate::frames::{bodies_grid, contacts_grid};
-use crate::run::{
-    create_output_dir, progress_bar, read_checkpoint, run_status, RunOptions, SerialComparison,
-};
+use crate::run::{create_output_dir, progress_bar, read_checkpoint, run_status, RunOptions};
 use crate::run_distributed::RankSummary;
 use crate::run_fluid_distributed::{compare_serial, DistributedFluidRun, FluidRun, SerialFluid};
+use crate::serial_comparison::SerialComparison;
 use crate::world_from_scene::world_from_scene;
 use crate::CliError;
 use serde::Serialize;

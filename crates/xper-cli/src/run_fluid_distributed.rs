@@ -5,8 +5,8 @@
 use xper_domain::{CommStats, Communicator, DistributedFluid};
 use xper_fluid::{CoupledError, CoupledReport, CoupledState, CoupledStepper, FluidParams};
 
-use crate::run::SerialComparison;
 use crate::run_distributed::RankSummary;
+use crate::serial_comparison::SerialComparison;
 use crate::CliError;
 
 /// A run with a fluid advanced step by step. `whole` is the state the outputs are written

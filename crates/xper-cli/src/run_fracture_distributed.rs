@@ -5,8 +5,8 @@
 use xper_domain::{CommStats, Communicator, DistributedFracture};
 use xper_fracture::{FractureModel, FractureStepError, FractureStepReport, FractureStepper};
 
-use crate::run::SerialComparison;
 use crate::run_distributed::RankSummary;
+use crate::serial_comparison::SerialComparison;
 use crate::CliError;
 
 /// A fracture run advanced step by step. `whole` is the model the outputs are written from:
