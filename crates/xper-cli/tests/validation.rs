@@ -13,5 +13,5 @@ fn every_validation_case_passes() {
             c.measured
         );
     }
-    assert_eq!(cases.len(), 9);
+    assert_eq!(cases.len(), 11);
 }
