@@ -43,11 +43,8 @@ run() { # processes scene out [extra...]
 # Strong scaling: outputs only at the end (frames and checkpoints are not the measure); the
 # serial reference is also run alone (no other process on the machine) with the plain binary.
 no_outputs() { printf '\n[output]\nframe_every = %s\ncheckpoint_every = %s\n' "$1" "$1"; }
-# Distributed solves sweep without acceleration, so the serial references do too (the same
-# algorithm on 1 and 2 processes).
-plain() { sed '/^acceleration = /d' "$1"; }
 { cat scenes/box10k/scene.toml; no_outputs 1500; } > "$OUT/scenes/box10k.toml"
-{ plain scenes/box100k/scene.toml | sed "s/^steps = .*/steps = $STEPS_100K/"; no_outputs "$STEPS_100K"; } \
+{ sed "s/^steps = .*/steps = $STEPS_100K/" scenes/box100k/scene.toml; no_outputs "$STEPS_100K"; } \
   > "$OUT/scenes/box100k_head.toml"
 sed -e "s/^steps = .*/steps = $STEPS_NM/" -e "s/^frame_every = .*/frame_every = $STEPS_NM/" \
   -e "s/^checkpoint_every = .*/checkpoint_every = $STEPS_NM/" scenes/nooru_mohamed/scene.toml \
@@ -61,7 +58,7 @@ fluid_head two_grains_sedimentation "$(python3 -c "print($STEPS_FLUID * 1e-4)")"
 fluid_head glowinski_sedimentation "$DURATION_GLOWINSKI" > "$OUT/scenes/glowinski_head.toml"
 strong=()
 [[ " $CASES " == *" rigid "* ]] && strong+=(box10k box100k_head)
-{ plain scenes/box100k/scene.toml | sed "s/^steps = .*/steps = 450/"; printf '\n[output]\nframe_every = 450\ncheckpoint_every = 400\n'; } \
+{ sed "s/^steps = .*/steps = 450/" scenes/box100k/scene.toml; printf '\n[output]\nframe_every = 450\ncheckpoint_every = 400\n'; } \
   > "$OUT/scenes/box100k_dense.toml"
 [[ " $CASES " == *" fracture "* ]] && strong+=(nooru_mohamed_head)
 [[ " $CASES " == *" fluid "* ]] && strong+=(two_grains_head glowinski_head)

@@ -232,7 +232,7 @@ pub fn run_on(
         pvd: PvdCollection::default(),
         scene_hash: fnv1a(&text),
     };
-    let mut world = if opts.resume {
+    let world = if opts.resume {
         let bytes: Vec<u8> = read_checkpoint(&opts.out, out.scene_hash, "an xper checkpoint")?;
         let world = World::from_bytes(&bytes).map_err(|e| {
             CliError::BadInput(format!(
@@ -256,12 +256,6 @@ pub fn run_on(
         }
         world
     };
-    crate::run_distributed::plain_sweeps_when_distributed(
-        &mut world.params.nlgs,
-        distributed.is_some(),
-        root,
-        &opts.scene,
-    );
     let last = opts
         .stop_at_step
         .map_or(scene.steps, |s| s.min(scene.steps));

@@ -81,29 +81,6 @@ pub fn check_distributable(
     Ok(())
 }
 
-/// A distributed solve sweeps without acceleration (NSCDD exchanges the interface velocities
-/// after every sweep, and Anderson mixing is not distributed): a scene asking for it runs plain
-/// sweeps on several processes, to the same convergence test, and says so on rank 0. The
-/// `--compare-serial` rerun then uses the same plain sweeps.
-pub fn plain_sweeps_when_distributed(
-    nlgs: &mut xper_solver::NlgsParams,
-    distributed: bool,
-    root: bool,
-    file: &Path,
-) {
-    if !distributed || nlgs.acceleration == xper_solver::Acceleration::None {
-        return;
-    }
-    nlgs.acceleration = xper_solver::Acceleration::None;
-    if root {
-        eprintln!(
-            "note: {}: [solver] acceleration applies to runs on one process; the distributed \
-             solve sweeps without it (same tolerance and convergence test)",
-            file.display()
-        );
-    }
-}
-
 /// A run on this process, writing the problems of the steps listed in `dumps`.
 pub struct SerialRun {
     world: World,
@@ -243,31 +220,4 @@ pub fn rank_summaries(
             communication_share: if wall > 0.0 { v[7] / wall } else { 0.0 },
         })
         .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::plain_sweeps_when_distributed;
-    use std::path::Path;
-    use xper_solver::{Acceleration, NlgsParams};
-
-    #[test]
-    fn a_distributed_run_drops_the_acceleration_and_a_serial_run_keeps_it() {
-        let accelerated = NlgsParams {
-            acceleration: Acceleration::ANDERSON,
-            ..Default::default()
-        };
-        let mut serial = accelerated;
-        plain_sweeps_when_distributed(&mut serial, false, true, Path::new("s.toml"));
-        assert_eq!(serial, accelerated);
-        let mut distributed = accelerated;
-        plain_sweeps_when_distributed(&mut distributed, true, false, Path::new("s.toml"));
-        assert_eq!(
-            distributed,
-            NlgsParams {
-                acceleration: Acceleration::None,
-                ..accelerated
-            }
-        );
-    }
 }

@@ -290,12 +290,6 @@ pub fn run_on(
     let last = opts
         .stop_at_step
         .map_or(scene.steps, |s| s.min(scene.steps));
-    crate::run_distributed::plain_sweeps_when_distributed(
-        &mut model.spec.nlgs,
-        distributed.is_some(),
-        root,
-        &opts.scene,
-    );
     let bar = crate::run::progress_bar(quiet || !root, scene.steps, model.step);
     let compare_from =
         (opts.compare_serial && root && distributed.is_some()).then(|| model.clone());

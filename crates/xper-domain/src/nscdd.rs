@@ -15,8 +15,11 @@
 //! processes: the fixed point is the solution of the undivided problem. Every `check_every`
 //! sweeps convergence is judged on all contacts, as the serial solver judges it: LMGC90's
 //! norms from the sums of the check sweep's updates (added over processes, maxima taken as
-//! maxima), or the natural-map error scaled by `max(|q|, |U|, |R|)` (all-reduce). On one
-//! process the iterates and the decision are those of [`xper_solver::nlgs`], bit for bit.
+//! maxima), or the natural-map error scaled by `max(|q|, |U|, |R|)` (all-reduce). With Anderson
+//! acceleration, every `period` sweeps each process mixes its own contacts' impulses with the
+//! coefficients of the sums over all processes (one all-reduce of `2 depth + 1` numbers), then
+//! the copies are glued again. On one process the iterates and the decision are those of
+//! [`xper_solver::nlgs`], bit for bit.
 //! Visseq et al., Comput. Mech. 49 (2012) 709; Renouf, Dubois and Alart, J. Comput. Appl.
 //! Math. 168 (2004) 375.
 
@@ -24,8 +27,8 @@ use crate::communicator::Communicator;
 use crate::interface::InterfaceMap;
 use xper_nscd::RigidContactOperator;
 use xper_solver::{
-    natural_map_error, Block2, CohesiveTerm, ContactOperator, NlgsParams, NlgsSweeper,
-    NormAccumulator, SolveError, SolveInfo,
+    natural_map_error, AndersonMixer, Block2, CohesiveTerm, ContactOperator, NlgsParams,
+    NlgsSweeper, NormAccumulator, SolveError, SolveInfo,
 };
 
 /// A contact operator whose bodies each carry a velocity of `DOFS` components: what the glue
@@ -174,6 +177,7 @@ pub fn distributed_nlgs<C: Communicator + ?Sized, O: BodyVelocities>(
         info.converged = true;
         return Ok(info);
     }
+    let mut anderson = AndersonMixer::for_params(params, impulses);
     for sweep in 1..=params.max_iterations {
         let check = sweep % params.check_every == 0 || sweep == params.max_iterations;
         let mut acc = NormAccumulator::default();
@@ -184,6 +188,14 @@ pub fn distributed_nlgs<C: Communicator + ?Sized, O: BodyVelocities>(
             let error = || global_error(comm, op, mu, normal_shift, impulses, q_norm);
             if info.record_check(sweep, &global, params, error) {
                 return Ok(info);
+            }
+        }
+        if let Some((mixer, period)) = anderson.as_mut() {
+            if sweep % *period == 0 {
+                // Coefficients from the sums over all contacts; the mixed impulses change the
+                // copies of shared bodies, glued again as after a sweep.
+                sweeper.accelerate(op, impulses, mixer, |sums| comm.all_reduce_sum(sums));
+                glue.apply(comm, op, interface);
             }
         }
     }

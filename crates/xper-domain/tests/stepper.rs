@@ -98,13 +98,17 @@ const STEPS: u64 = 120;
 
 #[test]
 fn one_process_is_the_serial_run_bit_for_bit() {
-    let world = start();
-    let reference = serial(world.clone(), STEPS);
-    let (one, loads) = distributed(&world, 1, STEPS, 50);
-    assert_eq!(one.bodies.position, reference.bodies.position);
-    assert_eq!(one.bodies.velocity, reference.bodies.velocity);
-    assert_eq!(loads[0].shadows, 0);
-    assert!((one.energy.dissipated - reference.energy.dissipated).abs() <= 1e-12);
+    let plain = start();
+    let mut accelerated = plain.clone();
+    accelerated.params.nlgs.acceleration = xper_solver::Acceleration::ANDERSON;
+    for world in [plain, accelerated] {
+        let reference = serial(world.clone(), STEPS);
+        let (one, loads) = distributed(&world, 1, STEPS, 50);
+        assert_eq!(one.bodies.position, reference.bodies.position);
+        assert_eq!(one.bodies.velocity, reference.bodies.velocity);
+        assert_eq!(loads[0].shadows, 0);
+        assert!((one.energy.dissipated - reference.energy.dissipated).abs() <= 1e-12);
+    }
 }
 
 /// The serial run of `world` and the distance between it and the serial run with the disks

@@ -60,8 +60,10 @@ impl Acceleration {
 const MAX_DEPTH: usize = MAX_ANDERSON_DEPTH as usize;
 
 /// The history of one solve: impulses after the last mixing, the last residual and image, and
-/// the ring of the last `depth` differences with their Gram matrix.
-pub(crate) struct AndersonMixer {
+/// the ring of the last `depth` differences with their Gram matrix. In a distributed solve each
+/// process mixes its own contacts with coefficients found from sums over all processes
+/// ([`AndersonMixer::mix_reduced`]), so every process keeps the same history of the Gram matrix.
+pub struct AndersonMixer {
     depth: usize,
     /// Impulses right after the last mixing (or the start): `R_k`.
     x: Vec<[f64; 2]>,
@@ -77,10 +79,10 @@ pub(crate) struct AndersonMixer {
     len: usize,
     head: usize,
     have_prev: bool,
-    /// `|f|^2` of the last mixing (a restart test).
+    /// `|f|^2` of the last mixing (the restart test).
     last_residual: f64,
     /// Mixings done.
-    pub mixings: u32,
+    mixings: u32,
 }
 
 impl AndersonMixer {
@@ -103,6 +105,22 @@ impl AndersonMixer {
         }
     }
 
+    /// The mixer of a solve with `params` starting from `impulses`, with its period in
+    /// sweeps; `None` for plain sweeps.
+    pub fn for_params(params: &crate::NlgsParams, impulses: &[[f64; 2]]) -> Option<(Self, u32)> {
+        match params.acceleration {
+            Acceleration::None => None,
+            Acceleration::Anderson { depth, period } => {
+                Some((AndersonMixer::new(depth, impulses), period))
+            }
+        }
+    }
+
+    /// Mixings done so far.
+    pub fn mixings(&self) -> u32 {
+        self.mixings
+    }
+
     /// Mixes the impulses `g = G(R_k)` in place: `constrain_apply(a, old, mixed)` receives
     /// each contact's impulse before and after mixing, must return the admissible impulse (on
     /// its cone) and apply the change to the operator. Does nothing but record the history
@@ -110,6 +128,19 @@ impl AndersonMixer {
     pub fn mix(
         &mut self,
         impulses: &mut [[f64; 2]],
+        constrain_apply: impl FnMut(usize, [f64; 2], [f64; 2]) -> [f64; 2],
+    ) {
+        self.mix_reduced(impulses, |_| {}, constrain_apply);
+    }
+
+    /// [`Self::mix`] where `impulses` are one process's share of the contacts: `reduce`
+    /// replaces its argument (the new Gram row, the right-hand side and the squared residual
+    /// of this share, `2 k + 1` values with `k` the same on every process) by its sum over the
+    /// processes, in the same order everywhere.
+    pub fn mix_reduced(
+        &mut self,
+        impulses: &mut [[f64; 2]],
+        reduce: impl FnOnce(&mut [f64]),
         mut constrain_apply: impl FnMut(usize, [f64; 2], [f64; 2]) -> [f64; 2],
     ) {
         let n = impulses.len();
@@ -139,6 +170,14 @@ impl AndersonMixer {
             self.g_prev[a] = g;
         }
         self.have_prev = true;
+        let mut sums = [0.0; 2 * MAX_DEPTH + 1];
+        sums[..filled].copy_from_slice(&row[..filled]);
+        sums[filled..2 * filled].copy_from_slice(&rhs[..filled]);
+        sums[2 * filled] = residual;
+        reduce(&mut sums[..2 * filled + 1]);
+        row[..filled].copy_from_slice(&sums[..filled]);
+        rhs[..filled].copy_from_slice(&sums[filled..2 * filled]);
+        let residual = sums[2 * filled];
         if record {
             for (j, &v) in row.iter().enumerate().take(filled) {
                 self.gram[s][j] = v;
@@ -147,9 +186,10 @@ impl AndersonMixer {
             self.len = filled;
             self.head = (s + 1) % depth;
         }
-        // A residual ten times larger than at the last mixing: the history describes another
-        // active set; start it again from here.
-        let restart = residual > 100.0 * self.last_residual;
+        // A residual larger than at the last mixing: the history no longer describes the
+        // iteration (another active set, or a cycle between two); start it again from here.
+        // A looser test (growth by 2 in norm) let a 4-process solve cycle without converging.
+        let restart = residual > self.last_residual;
         self.last_residual = residual;
         let gamma = if restart {
             None

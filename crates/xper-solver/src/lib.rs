@@ -35,7 +35,7 @@ pub mod proximal;
 mod solve;
 
 pub use alart_curnier::LocalParams;
-pub use anderson::Acceleration;
+pub use anderson::{Acceleration, AndersonMixer};
 pub use cohesive::{solve_one_cohesive_contact, CohesiveTerm, PreparedCohesiveContact};
 pub use error::{natural_map_error, project_on_cone, ConvergenceNorms, NormAccumulator};
 pub use lemke::{lemke, LemkeParams};

@@ -170,12 +170,7 @@ pub fn nlgs_with_cohesion<O: ContactOperator>(
         info.converged = true;
         return Ok(info);
     }
-    let mut anderson = match params.acceleration {
-        Acceleration::None => None,
-        Acceleration::Anderson { depth, period } => {
-            Some((AndersonMixer::new(depth, impulses), period))
-        }
-    };
+    let mut anderson = AndersonMixer::for_params(params, impulses);
     for sweep in 1..=params.max_iterations {
         let check = sweep % params.check_every == 0 || sweep == params.max_iterations;
         let mut acc = NormAccumulator::default();
@@ -189,7 +184,7 @@ pub fn nlgs_with_cohesion<O: ContactOperator>(
         }
         if let Some((mixer, period)) = anderson.as_mut() {
             if sweep % *period == 0 {
-                sweeper.accelerate(op, impulses, mixer);
+                sweeper.accelerate(op, impulses, mixer, |_| {});
             }
         }
     }
@@ -353,13 +348,16 @@ impl<'a> NlgsSweeper<'a> {
 
     /// Anderson mixing of the impulses after a sweep: each mixed impulse is projected on its
     /// cone (adhesive contacts excepted, as in the sweep) and its change applied to `op`.
-    fn accelerate<O: ContactOperator>(
+    /// `reduce` sums the mixer's partial sums over the processes of a distributed solve (see
+    /// [`AndersonMixer::mix_reduced`]); a solve on one process passes a no-op.
+    pub fn accelerate<O: ContactOperator>(
         &self,
         op: &mut O,
         impulses: &mut [[f64; 2]],
         mixer: &mut AndersonMixer,
+        reduce: impl FnOnce(&mut [f64]),
     ) {
-        mixer.mix(impulses, |a, old, mixed| {
+        mixer.mix_reduced(impulses, reduce, |a, old, mixed| {
             let adhesive = !self.is_adhesive.is_empty() && self.is_adhesive[a];
             let r = if adhesive {
                 mixed
