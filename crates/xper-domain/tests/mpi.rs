@@ -38,6 +38,19 @@ fn one_two_and_four_processes_agree_with_the_undivided_solve() {
 }
 
 #[test]
+fn anderson_accelerated_solves_on_two_and_four_processes_agree_with_the_undivided_one() {
+    for ranks in [2, 4] {
+        let (code, text, _) = mpirun(ranks, &["--tolerance", "1e-5", "--anderson"]);
+        assert_eq!(code, Some(0), "{ranks} processes:\n{text}");
+        assert_eq!(
+            text.matches(": ok").count(),
+            ranks,
+            "{ranks} processes:\n{text}"
+        );
+    }
+}
+
+#[test]
 fn a_failure_on_one_rank_ends_the_job_promptly() {
     let (code, text, elapsed) = mpirun(2, &["--tolerance", "1e-5", "--fail-on-rank", "1"]);
     assert!(

@@ -1,5 +1,6 @@
-//! `mpirun -np N xper-domain-mpi-check [--tolerance T] [--fail-on-rank R]`: the distributed contact solve of
-//! the deposit fixture over MPI, compared on every rank with the undivided solve. Prints one
+//! `mpirun -np N xper-domain-mpi-check [--tolerance T] [--anderson] [--fail-on-rank R]`: the
+//! distributed contact solve of the deposit fixture over MPI (with `--anderson`, its sweeps
+//! Anderson-accelerated), compared on every rank with the undivided plain solve. Prints one
 //! line per rank and exits 0 when every body's velocity is within `SPREAD_MARGIN` times the
 //! spread of the solver (undivided solves with other sweep orders, see `serial_spread`); 1
 //! otherwise. With `--fail-on-rank R`,
@@ -16,9 +17,13 @@ fn main() {
         eprintln!("xper-domain-mpi-check: MPI was already initialised");
         std::process::exit(2);
     };
-    let (mut tolerance, mut fail_on) = (1e-7, None);
+    let (mut tolerance, mut fail_on, mut anderson) = (1e-7, None, false);
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
+        if arg == "--anderson" {
+            anderson = true;
+            continue;
+        }
         let value = args.next();
         let bad =
             |what: &str| -> ! { comm.abort(&format!("{arg} needs {what}, got {value:?}"), 2) };
@@ -39,7 +44,9 @@ fn main() {
                 )
             }
             _ => comm.abort(
-                &format!("unknown argument {arg:?} (known: --tolerance T, --fail-on-rank R)"),
+                &format!(
+                    "unknown argument {arg:?} (known: --tolerance T, --anderson, --fail-on-rank R)"
+                ),
                 2,
             ),
         }
@@ -71,7 +78,14 @@ fn main() {
         &local.problem.shift,
         &[],
         &mut impulses,
-        &solver_params(tolerance),
+        &xper_solver::NlgsParams {
+            acceleration: if anderson {
+                xper_solver::Acceleration::ANDERSON
+            } else {
+                xper_solver::Acceleration::None
+            },
+            ..solver_params(tolerance)
+        },
     )
     .unwrap_or_else(|e| comm.abort(&format!("distributed solve: {e}"), 1));
     let solve_seconds = start.elapsed().as_secs_f64();
