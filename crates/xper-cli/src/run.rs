@@ -126,8 +126,7 @@ impl Outputs {
     }
 
     pub(crate) fn write_checkpoint(&self, world: &World) -> Result<(), CliError> {
-        let bytes = bincode::serialize(&(self.scene_hash, world.to_bytes()))
-            .map_err(|e| CliError::Runtime(e.to_string()))?;
+        let bytes = checkpoint_bytes(self.scene_hash, &world.to_bytes())?;
         write_atomic(&self.dir.join("checkpoint.bin"), &bytes).map_err(io_err)?;
         self.series
             .write_csv(&self.dir.join("series.csv"))
@@ -158,7 +157,22 @@ impl Outputs {
     }
 }
 
-/// Reads `dir/checkpoint.bin`, written as `(scene hash, state)` by bincode, for the scene whose
+/// First field of `checkpoint.bin` of rigid and fluid runs: "XP" and the version of the
+/// layout, raised whenever a type the checkpoint holds changes (version 2: `NlgsParams` gained
+/// `acceleration`). bincode is not self-describing, so without it a checkpoint of another build
+/// could be misread instead of refused.
+pub(crate) const CHECKPOINT_TAG: u32 = 0x5850_0002;
+
+/// The bytes of `checkpoint.bin`: the tag, the scene hash and the state, by bincode.
+pub(crate) fn checkpoint_bytes<T: Serialize>(
+    scene_hash: u64,
+    state: &T,
+) -> Result<Vec<u8>, CliError> {
+    bincode::serialize(&(CHECKPOINT_TAG, scene_hash, state))
+        .map_err(|e| CliError::Runtime(e.to_string()))
+}
+
+/// Reads `dir/checkpoint.bin`, written by [`checkpoint_bytes`], for the scene whose
 /// text hashes to `scene_hash`; `what` names the kind of state in the error message.
 pub(crate) fn read_checkpoint<T: serde::de::DeserializeOwned>(
     dir: &Path,
@@ -168,7 +182,15 @@ pub(crate) fn read_checkpoint<T: serde::de::DeserializeOwned>(
     let path = dir.join("checkpoint.bin");
     let bytes = std::fs::read(&path)
         .map_err(|e| CliError::BadInput(format!("{}: cannot resume: {e}", path.display())))?;
-    let (hash, state): (u64, T) = bincode::deserialize(&bytes)
+    let tag: Option<u32> = bytes.get(..4).and_then(|b| bincode::deserialize(b).ok());
+    if tag != Some(CHECKPOINT_TAG) {
+        return Err(CliError::BadInput(format!(
+            "{}: not {what} of this version of xper (its layout differs); run the scene again \
+             without --resume",
+            path.display()
+        )));
+    }
+    let (_, hash, state): (u32, u64, T) = bincode::deserialize(&bytes)
         .map_err(|e| CliError::BadInput(format!("{}: not {what}: {e}", path.display())))?;
     if hash != scene_hash {
         return Err(CliError::BadInput(format!(

@@ -192,8 +192,7 @@ impl Outputs<'_> {
     }
 
     fn write_checkpoint(&self, state: &CoupledState) -> Result<(), CliError> {
-        let bytes = bincode::serialize(&(self.scene_hash, state))
-            .map_err(|e| CliError::Runtime(e.to_string()))?;
+        let bytes = crate::run::checkpoint_bytes(self.scene_hash, state)?;
         write_atomic(&self.dir.join("checkpoint.bin"), &bytes).map_err(io_err)?;
         self.write_tables()
     }

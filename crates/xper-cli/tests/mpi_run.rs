@@ -29,7 +29,7 @@ fn mpirun(ranks: usize, args: &[&str]) -> Output {
 
 fn checkpoint(dir: &Path) -> World {
     let bytes = std::fs::read(dir.join("checkpoint.bin")).unwrap();
-    let (_, world): (u64, Vec<u8>) = bincode::deserialize(&bytes).unwrap();
+    let (_, _, world): (u32, u64, Vec<u8>) = bincode::deserialize(&bytes).unwrap();
     World::from_bytes(&world).unwrap()
 }
 
@@ -265,7 +265,7 @@ fn two_grains_scene(dir: &Path, name: &str, tolerance: &str) -> std::path::PathB
 /// The grains' positions in the checkpoint of a fluid run.
 fn grains(dir: &Path) -> Vec<f64> {
     let bytes = std::fs::read(dir.join("checkpoint.bin")).unwrap();
-    let (_, state): (u64, xper_fluid::CoupledState) = bincode::deserialize(&bytes).unwrap();
+    let (_, _, state): (u32, u64, xper_fluid::CoupledState) = bincode::deserialize(&bytes).unwrap();
     (state.world.bodies.position.iter())
         .flat_map(|p| [p.x, p.y])
         .collect()

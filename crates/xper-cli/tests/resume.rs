@@ -103,3 +103,35 @@ fn resume_refuses_a_changed_scene_and_a_missing_checkpoint() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("different scene"));
 }
+
+/// Regression: a checkpoint written by an earlier build (layout without the tag, here the
+/// scene hash first as before version 2) was deserialised with the new types; it is now refused
+/// by name, with exit code 2.
+#[test]
+fn resume_refuses_a_checkpoint_of_another_layout() {
+    let dir = temp_dir("resume-layout");
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, deposit_scene(20, 10)).unwrap();
+    let run = dir.join("run");
+    let s = scene.to_str().unwrap();
+    let args = [
+        "run",
+        s,
+        "--out",
+        run.to_str().unwrap(),
+        "--stop-at-step",
+        "5",
+    ];
+    assert!(xper(&args).status.success());
+    let bytes = std::fs::read(run.join("checkpoint.bin")).unwrap();
+    let (_, hash, world): (u32, u64, Vec<u8>) = bincode::deserialize(&bytes).unwrap();
+    let old_layout = bincode::serialize(&(hash, world)).unwrap();
+    std::fs::write(run.join("checkpoint.bin"), old_layout).unwrap();
+    let out = xper(&["run", s, "--out", run.to_str().unwrap(), "--resume"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("checkpoint.bin") && err.contains("this version of xper"),
+        "{err}"
+    );
+}

@@ -191,7 +191,7 @@ pub fn distributed_nlgs<C: Communicator + ?Sized, O: BodyVelocities>(
             }
         }
         if let Some((mixer, period)) = anderson.as_mut() {
-            if sweep % *period == 0 {
+            if sweep % *period == 0 && sweep < params.max_iterations {
                 // Coefficients from the sums over all contacts; the mixed impulses change the
                 // copies of shared bodies, glued again as after a sweep.
                 sweeper.accelerate(op, impulses, mixer, |sums| comm.all_reduce_sum(sums));

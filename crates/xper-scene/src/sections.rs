@@ -216,28 +216,42 @@ pub(crate) fn solver(ctx: &mut Ctx, root: &Tbl) -> SolverSettings {
 
 /// `acceleration` with its `anderson_*` parameters (NLGS only).
 fn acceleration(ctx: &mut Ctx, t: &Tbl, kind: SolverKind) -> Acceleration {
-    let kinds = [("none", false), ("anderson", true)];
-    let chosen = t.string(ctx, "acceleration").ok();
-    let on = choose(
-        ctx,
-        chosen,
-        &t.field("acceleration"),
-        "acceleration",
-        &kinds,
-    )
-    .unwrap_or(false);
+    const KEYS: [&str; 3] = ["acceleration", "anderson_depth", "anderson_period"];
     if kind != SolverKind::Nlgs {
-        t.forbid(ctx, "acceleration", "applies to kind = \"nlgs\" only");
-    }
-    if !on {
-        for key in ["anderson_depth", "anderson_period"] {
-            t.forbid(ctx, key, "needs acceleration = \"anderson\"");
+        for key in KEYS {
+            t.forbid(ctx, key, "applies to kind = \"nlgs\" only");
         }
         return Acceleration::None;
     }
+    let kinds = [("none", Some(false)), ("anderson", Some(true))];
+    let given = t.string(ctx, "acceleration");
+    let on = if given.is_absent() {
+        Some(false)
+    } else {
+        choose(
+            ctx,
+            given.ok(),
+            &t.field("acceleration"),
+            "acceleration",
+            &kinds,
+        )
+        .flatten()
+    };
+    match on {
+        // An invalid `acceleration` is reported once; its parameters are not judged.
+        None => return Acceleration::None,
+        Some(false) => {
+            for key in &KEYS[1..] {
+                t.forbid(ctx, key, "needs acceleration = \"anderson\"");
+            }
+            return Acceleration::None;
+        }
+        Some(true) => {}
+    }
     let (mut depth, mut period) = (3, 3);
+    let max_depth = i64::from(xper_solver::anderson::MAX_ANDERSON_DEPTH);
     let d = t.int(ctx, "anderson_depth").ok();
-    if let Some(v) = int_in(ctx, d, &t.field("anderson_depth"), 1, 8) {
+    if let Some(v) = int_in(ctx, d, &t.field("anderson_depth"), 1, max_depth) {
         depth = v as u32;
     }
     let p = t.int(ctx, "anderson_period").ok();

@@ -125,6 +125,17 @@ fn anderson_acceleration_and_its_parameters() {
         "acceleration =",
         "applies to kind = \"nlgs\" only",
     );
+    let t = scene("[solver]\nkind = \"newton\"\nanderson_depth = 2\n");
+    expect_error(
+        &t,
+        "solver.anderson_depth",
+        "anderson_depth",
+        "applies to kind = \"nlgs\" only",
+    );
+    // A misspelt acceleration is one error, not also one per parameter.
+    let t = scene("[solver]\nacceleration = \"andersen\"\nanderson_depth = 2\n");
+    let e = errs(&t);
+    assert_eq!(e.0.len(), 1, "{e}");
 }
 
 #[test]

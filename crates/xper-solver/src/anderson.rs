@@ -124,7 +124,8 @@ impl AndersonMixer {
     /// Mixes the impulses `g = G(R_k)` in place: `constrain_apply(a, old, mixed)` receives
     /// each contact's impulse before and after mixing, must return the admissible impulse (on
     /// its cone) and apply the change to the operator. Does nothing but record the history
-    /// when there is none yet or the least-squares problem is degenerate.
+    /// when there is none yet, when the residual grew since the last mixing (the history then
+    /// restarts from here) or when the least-squares problem is degenerate.
     pub fn mix(
         &mut self,
         impulses: &mut [[f64; 2]],

@@ -41,7 +41,6 @@ pub struct NlgsParams {
     pub norm: ConvergenceNorm,
     /// Acceleration of the sweeps (Anderson mixing, see [`crate::anderson`]); the convergence
     /// check stays on plain sweeps.
-    #[serde(default)]
     pub acceleration: Acceleration,
 }
 
@@ -183,7 +182,8 @@ pub fn nlgs_with_cohesion<O: ContactOperator>(
             return Ok(info);
         }
         if let Some((mixer, period)) = anderson.as_mut() {
-            if sweep % *period == 0 {
+            // Never after the last sweep: the answer returned is always a checked sweep's.
+            if sweep % *period == 0 && sweep < params.max_iterations {
                 sweeper.accelerate(op, impulses, mixer, |_| {});
             }
         }
@@ -347,7 +347,9 @@ impl<'a> NlgsSweeper<'a> {
     }
 
     /// Anderson mixing of the impulses after a sweep: each mixed impulse is projected on its
-    /// cone (adhesive contacts excepted, as in the sweep) and its change applied to `op`.
+    /// cone and its change applied to `op`. An adhesive contact's mixed impulse is kept as
+    /// mixed (its admissible set is not a cone); the next sweep's cohesive local solve
+    /// constrains it.
     /// `reduce` sums the mixer's partial sums over the processes of a distributed solve (see
     /// [`AndersonMixer::mix_reduced`]); a solve on one process passes a no-op.
     pub fn accelerate<O: ContactOperator>(
