@@ -94,12 +94,7 @@ pub fn world_from_scene(scene: &Scene) -> World {
                 xper_scene::ConvergenceNorm::Maxm => ConvergenceNorm::Maxm,
                 xper_scene::ConvergenceNorm::NaturalMap => ConvergenceNorm::NaturalMap,
             },
-            acceleration: match s.acceleration {
-                xper_scene::Acceleration::None => xper_solver::Acceleration::None,
-                xper_scene::Acceleration::Anderson { depth, period } => {
-                    xper_solver::Acceleration::Anderson { depth, period }
-                }
-            },
+            acceleration: s.acceleration,
         },
         solver: velocity_solver(s),
         projection_tolerance: (s.position_projection && smallest.is_finite())

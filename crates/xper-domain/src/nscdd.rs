@@ -190,8 +190,8 @@ pub fn distributed_nlgs<C: Communicator + ?Sized, O: BodyVelocities>(
                 return Ok(info);
             }
         }
-        if let Some((mixer, period)) = anderson.as_mut() {
-            if sweep % *period == 0 && sweep < params.max_iterations {
+        if let Some(mixer) = anderson.as_mut() {
+            if mixer.mixes_after(sweep, params.max_iterations) {
                 // Coefficients from the sums over all contacts; the mixed impulses change the
                 // copies of shared bodies, glued again as after a sweep.
                 sweeper.accelerate(op, impulses, mixer, |sums| comm.all_reduce_sum(sums));

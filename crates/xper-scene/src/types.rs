@@ -53,20 +53,9 @@ pub enum ConvergenceNorm {
     NaturalMap,
 }
 
-/// Acceleration of the NLGS sweeps (`acceleration`, `anderson_depth`, `anderson_period`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub enum Acceleration {
-    /// Plain NLGS, `none` (the default).
-    None,
-    /// Anderson mixing of the impulses every `period` sweeps over the last `depth`
-    /// differences, `anderson` (defaults 3 and 3).
-    Anderson {
-        /// History depth, 1 to 8.
-        depth: u32,
-        /// Sweeps between mixings, >= 1.
-        period: u32,
-    },
-}
+/// Acceleration of the NLGS sweeps (`acceleration`, `anderson_depth`, `anderson_period`): the
+/// solver's own type, `none` or `anderson` (depth and period 3 unless given).
+pub use xper_solver::Acceleration;
 
 /// Contact solver settings (`[solver]`).
 #[derive(Debug, Clone, PartialEq, Serialize)]

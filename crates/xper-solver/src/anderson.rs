@@ -65,6 +65,8 @@ const MAX_DEPTH: usize = MAX_ANDERSON_DEPTH as usize;
 /// ([`AndersonMixer::mix_reduced`]), so every process keeps the same history of the Gram matrix.
 pub struct AndersonMixer {
     depth: usize,
+    /// Sweeps between two mixings.
+    period: u32,
     /// Impulses right after the last mixing (or the start): `R_k`.
     x: Vec<[f64; 2]>,
     /// Residual and image of the last mixing.
@@ -86,11 +88,12 @@ pub struct AndersonMixer {
 }
 
 impl AndersonMixer {
-    /// A mixer of depth `depth` starting from `impulses`.
-    pub fn new(depth: u32, impulses: &[[f64; 2]]) -> Self {
+    /// A mixer of depth `depth`, mixing every `period` sweeps, starting from `impulses`.
+    pub fn new(depth: u32, period: u32, impulses: &[[f64; 2]]) -> Self {
         let (depth, n) = (depth.clamp(1, MAX_ANDERSON_DEPTH) as usize, impulses.len());
         AndersonMixer {
             depth,
+            period: period.max(1),
             x: impulses.to_vec(),
             f_prev: vec![[0.0; 2]; n],
             g_prev: vec![[0.0; 2]; n],
@@ -105,15 +108,20 @@ impl AndersonMixer {
         }
     }
 
-    /// The mixer of a solve with `params` starting from `impulses`, with its period in
-    /// sweeps; `None` for plain sweeps.
-    pub fn for_params(params: &crate::NlgsParams, impulses: &[[f64; 2]]) -> Option<(Self, u32)> {
+    /// The mixer of a solve with `params` starting from `impulses`; `None` for plain sweeps.
+    pub fn for_params(params: &crate::NlgsParams, impulses: &[[f64; 2]]) -> Option<Self> {
         match params.acceleration {
             Acceleration::None => None,
             Acceleration::Anderson { depth, period } => {
-                Some((AndersonMixer::new(depth, impulses), period))
+                Some(AndersonMixer::new(depth, period, impulses))
             }
         }
+    }
+
+    /// Whether the solve mixes after sweep `sweep` of at most `max_sweeps`: every `period`
+    /// sweeps, never after the last, so that the answer returned is always a checked sweep's.
+    pub fn mixes_after(&self, sweep: u32, max_sweeps: u32) -> bool {
+        sweep.is_multiple_of(self.period) && sweep < max_sweeps
     }
 
     /// Mixings done so far.
@@ -294,7 +302,7 @@ mod tests {
             exact = map(&exact);
         }
         let mut x = vec![[0.0; 2]; 2];
-        let mut mixer = AndersonMixer::new(4, &x);
+        let mut mixer = AndersonMixer::new(4, 1, &x);
         for _ in 0..6 {
             x = map(&x);
             mixer.mix(&mut x, |_, _, m| m);

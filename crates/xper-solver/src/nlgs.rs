@@ -181,9 +181,8 @@ pub fn nlgs_with_cohesion<O: ContactOperator>(
         {
             return Ok(info);
         }
-        if let Some((mixer, period)) = anderson.as_mut() {
-            // Never after the last sweep: the answer returned is always a checked sweep's.
-            if sweep % *period == 0 && sweep < params.max_iterations {
+        if let Some(mixer) = anderson.as_mut() {
+            if mixer.mixes_after(sweep, params.max_iterations) {
                 sweeper.accelerate(op, impulses, mixer, |_| {});
             }
         }

@@ -167,12 +167,7 @@ fn nlgs(ctx: &mut Ctx, root: &Tbl) -> NlgsParams {
             ConvergenceNorm::Maxm => xper_solver::ConvergenceNorm::Maxm,
             ConvergenceNorm::NaturalMap => xper_solver::ConvergenceNorm::NaturalMap,
         },
-        acceleration: match s.acceleration {
-            crate::types::Acceleration::None => xper_solver::Acceleration::None,
-            crate::types::Acceleration::Anderson { depth, period } => {
-                xper_solver::Acceleration::Anderson { depth, period }
-            }
-        },
+        acceleration: s.acceleration,
     }
 }
 
