@@ -185,7 +185,7 @@ impl Body {
     /// A free convex polygon with body-frame `vertices` (counter-clockwise, centred on their
     /// centroid) of `density` (kg/m^3), centroid at `position`.
     pub fn polygon(vertices: Vec<Vector>, density: Real, position: Vector) -> Self {
-        let shape = Shape::Polygon(crate::ConvexPolygon::new(vertices));
+        let shape = Shape::Polygon(Box::new(crate::ConvexPolygon::new(vertices)));
         let (mass, inertia) = shape.mass_properties(density);
         Self::free(shape, mass, inertia, position)
     }

@@ -11,6 +11,10 @@ use std::process::ExitCode;
 
 use xper_cli::{bench, run, run_fracture, solve, validation, CliError};
 
+/// Counts heap bytes, so that benchmarks report the memory a run's data needs exactly.
+#[global_allocator]
+static ALLOCATOR: xper_io::CountingAllocator = xper_io::CountingAllocator;
+
 #[derive(Parser)]
 #[command(
     name = "xper",

@@ -41,9 +41,9 @@ pub fn world_from_scene(scene: &Scene) -> World {
     for b in &scene.bodies {
         let shape = match &b.shape {
             ShapeDesc::Disk { radius } => Shape::Disk { radius: *radius },
-            ShapeDesc::Polygon { vertices } => Shape::Polygon(ConvexPolygon::new(
+            ShapeDesc::Polygon { vertices } => Shape::Polygon(Box::new(ConvexPolygon::new(
                 vertices.iter().map(|v| Vector::new(v[0], v[1])).collect(),
-            )),
+            ))),
             ShapeDesc::Segment { half_length } => Shape::Segment {
                 half_length: *half_length,
             },

@@ -7,6 +7,7 @@
 //! bodies in the cells their bounding box covers, and against each other by brute force.
 
 use xper_bodies::{BodySet, Shape};
+use xper_math::buffer::{clear_for, refill};
 use xper_math::{Aabb, Real, Vector};
 
 /// The broad phase with its reusable buffers.
@@ -53,8 +54,8 @@ impl BroadPhase {
     /// overlap. The order is deterministic.
     pub fn find_pairs(&mut self, bodies: &BodySet, alert: Real, pairs: &mut Vec<(u32, u32)>) {
         let n = bodies.len();
-        self.aabbs.clear();
-        self.small.clear();
+        clear_for(&mut self.aabbs, n);
+        clear_for(&mut self.small, n);
         self.large.clear();
         for b in 0..n {
             let aabb = bodies.shape[b]
@@ -103,9 +104,9 @@ impl BroadPhase {
             nx,
             ny,
         };
-        self.cell_start.clear();
+        clear_for(&mut self.cell_start, nx * ny + 1);
         self.cell_start.resize(nx * ny + 1, 0);
-        self.cell_of.clear();
+        clear_for(&mut self.cell_of, self.small.len());
         for &b in &self.small {
             let bb = &self.aabbs[b as usize];
             let (cx, cy) = grid.coords(&((bb.min + bb.max) / 2.0));
@@ -116,19 +117,19 @@ impl BroadPhase {
         for c in 0..nx * ny {
             self.cell_start[c + 1] += self.cell_start[c];
         }
-        self.cell_bodies.clear();
+        clear_for(&mut self.cell_bodies, self.small.len());
         self.cell_bodies.resize(self.small.len(), 0);
-        self.fill.clear();
-        self.fill.extend_from_slice(&self.cell_start);
+        refill(&mut self.fill, self.cell_start.iter().copied());
         for (k, &b) in self.small.iter().enumerate() {
             let c = self.cell_of[k] as usize;
             self.cell_bodies[self.fill[c] as usize] = b;
             self.fill[c] += 1;
         }
-        self.cell_boxes.clear();
         let aabbs = &self.aabbs;
-        self.cell_boxes
-            .extend(self.cell_bodies.iter().map(|&b| aabbs[b as usize]));
+        refill(
+            &mut self.cell_boxes,
+            self.cell_bodies.iter().map(|&b| aabbs[b as usize]),
+        );
         Some(grid)
     }
 

@@ -22,6 +22,7 @@ use crate::broad::BroadPhase;
 use crate::contacts::{Contact, ContactSet};
 use crate::narrow::{collide, disk_disk_point, Manifold};
 use xper_bodies::{BodySet, Shape};
+use xper_math::buffer::{clear_for, refill};
 use xper_math::Real;
 
 /// Calls a candidate list should last, at the rate the bodies moved during the previous one.
@@ -110,7 +111,10 @@ impl Detector {
     ) {
         self.stats.calls += 1;
         self.carry_impulses(&contacts.contacts);
-        contacts.contacts.clear();
+        // Room for as many contacts as before and an eighth more, so the buffer tracks the
+        // count instead of doubling (see `xper_math::buffer`).
+        let previous = contacts.contacts.len();
+        clear_for(&mut contacts.contacts, previous + previous / 8 + 16);
         let moved = self.moved_since_build(bodies, alert);
         if moved.is_none_or(|m| m > self.skin) {
             self.build(bodies, alert, moved);
@@ -196,19 +200,22 @@ impl Detector {
         self.built_alert = alert;
         self.calls_since_build = 0;
         self.stats.builds += 1;
-        self.built.clear();
-        self.built.extend((0..bodies.len()).map(|b| BuildPose {
-            id: bodies.id[b],
-            x: bodies.position[b].x,
-            y: bodies.position[b].y,
-            angle: bodies.angle[b],
-            reach: match &bodies.shape[b] {
-                Shape::Disk { .. } => 0.0,
-                Shape::Polygon(p) => p.bounding_radius,
-                Shape::Segment { half_length } => *half_length,
-            },
-        }));
-        self.unsorted.clear();
+        refill(
+            &mut self.built,
+            (0..bodies.len()).map(|b| BuildPose {
+                id: bodies.id[b],
+                x: bodies.position[b].x,
+                y: bodies.position[b].y,
+                angle: bodies.angle[b],
+                reach: match &bodies.shape[b] {
+                    Shape::Disk { .. } => 0.0,
+                    Shape::Polygon(p) => p.bounding_radius,
+                    Shape::Segment { half_length } => *half_length,
+                },
+            }),
+        );
+        let previous = self.candidates.len();
+        clear_for(&mut self.unsorted, previous + previous / 8 + 16);
         (self.broad).find_pairs(bodies, alert + self.skin, &mut self.unsorted);
         sort_pairs(
             &self.unsorted,
@@ -237,16 +244,14 @@ impl Detector {
     /// Keeps the non-zero impulses of `previous` (ascending by bodies), for the merge with the
     /// new contacts.
     fn carry_impulses(&mut self, previous: &[Contact]) {
-        self.carried.clear();
-        self.carried.extend(
-            (previous.iter())
-                .filter(|c| c.impulse != [0.0, 0.0])
-                .map(|c| CarriedImpulse {
-                    bodies: c.bodies,
-                    feature: c.feature,
-                    impulse: c.impulse,
-                }),
-        );
+        let loaded = |c: &&Contact| c.impulse != [0.0, 0.0];
+        clear_for(&mut self.carried, previous.iter().filter(loaded).count());
+        self.carried
+            .extend(previous.iter().filter(loaded).map(|c| CarriedImpulse {
+                bodies: c.bodies,
+                feature: c.feature,
+                impulse: c.impulse,
+            }));
         // Contacts from elsewhere (a checkpoint of an older version) may be in another order.
         if !self.carried.is_sorted_by_key(|c| c.bodies) {
             self.carried.sort_by_key(|c| (c.bodies, c.feature));
@@ -279,7 +284,7 @@ fn sort_pairs(
     start: &mut Vec<u32>,
     sorted: &mut Vec<(u32, u32)>,
 ) {
-    start.clear();
+    clear_for(start, n_bodies + 1);
     start.resize(n_bodies + 1, 0);
     for &(i, _) in pairs {
         start[i as usize + 1] += 1;
@@ -287,7 +292,7 @@ fn sort_pairs(
     for b in 0..n_bodies {
         start[b + 1] += start[b];
     }
-    sorted.clear();
+    clear_for(sorted, pairs.len());
     sorted.resize(pairs.len(), (0, 0));
     for &(i, j) in pairs {
         let slot = &mut start[i as usize];

@@ -18,7 +18,7 @@ pub mod vtu;
 mod xml;
 
 pub use atomic::{write_atomic, write_json_atomic};
-pub use memory::peak_memory_bytes;
+pub use memory::{current_heap_bytes, peak_heap_bytes, peak_memory_bytes, CountingAllocator};
 pub use plot::{plot_panels, Curve, Panel};
 pub use pvd::{PvdCollection, PvdEntry};
 pub use segments::{plot_segments, SegmentLayer};

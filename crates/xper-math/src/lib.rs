@@ -14,6 +14,7 @@
 
 use serde::{Deserialize, Serialize};
 
+pub mod buffer;
 pub mod validation;
 
 /// Floating-point type of every physical quantity.

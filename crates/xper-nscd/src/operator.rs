@@ -7,6 +7,7 @@
 
 use xper_bodies::BodySet;
 use xper_geometry::Contact;
+use xper_math::buffer::refill;
 use xper_math::{cross, tangent, Real, Vector, DOFS};
 use xper_solver::{Block2, ContactOperator};
 
@@ -85,11 +86,13 @@ pub struct RigidContactOperator {
 impl RigidContactOperator {
     /// Loads the inverse masses of `set` and the given velocities.
     pub fn load_bodies(&mut self, set: &BodySet, velocity: impl Fn(usize) -> [Real; DOFS]) {
-        self.bodies.clear();
-        self.bodies.extend((0..set.len()).map(|b| SolverBody {
-            velocity: velocity(b),
-            inv_mass: set.inv_mass[b],
-        }));
+        refill(
+            &mut self.bodies,
+            (0..set.len()).map(|b| SolverBody {
+                velocity: velocity(b),
+                inv_mass: set.inv_mass[b],
+            }),
+        );
     }
 
     /// Builds the row of a contact from its geometry and the body positions.
@@ -112,6 +115,16 @@ impl RigidContactOperator {
         };
         row.refresh_block(inv_mass);
         row
+    }
+
+    /// The local velocity `(U_N, U_T)` of row `a` for the generalised body velocities
+    /// `velocities` instead of the working ones (e.g. those at the beginning of the step).
+    #[inline(always)]
+    pub fn local_velocity_for(&self, a: usize, velocities: &[[Real; DOFS]]) -> [Real; 2] {
+        let row = &self.rows[a];
+        let vi = &velocities[row.bodies[0] as usize];
+        let vj = &velocities[row.bodies[1] as usize];
+        relative_velocity(row, vi, vj)
     }
 
     /// Generalised impulses `(on body i, on body j)` of a local impulse `r` at a row.

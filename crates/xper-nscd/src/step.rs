@@ -10,6 +10,7 @@ use std::time::Instant;
 use xper_bodies::{BodySet, Ownership};
 use xper_geometry::Detector;
 use xper_laws::InteractionLaw;
+use xper_math::buffer::{clear_for, refill};
 use xper_math::{Real, DOFS};
 use xper_solver::{
     nlgs, solve, ContactOperator, FrictionProblem, NlgsParams, ProblemError, SolveError, SolveInfo,
@@ -111,7 +112,8 @@ pub struct MoreauJean {
     mu: Vec<Real>,
     shift: Vec<Real>,
     impulses: Vec<[Real; 2]>,
-    u_begin: Vec<[Real; 2]>,
+    /// Generalised velocities at the beginning of the step; the local ones `U_i = H^T v_i`
+    /// are computed from them where needed (not stored per contact).
     v_begin: Vec<[Real; DOFS]>,
     /// Forces applied to the bodies during each step besides gravity and drives (e.g. the
     /// fluid's), one generalised force per body; empty when there are none.
@@ -193,9 +195,10 @@ impl MoreauJean {
         // Stage: energy exchanged at contacts, with the same H at both ends of the step.
         let mut dissipated = 0.0;
         let mut imposed_work = 0.0;
-        for (k, &a) in self.active.iter().enumerate() {
+        for k in 0..self.active.len() {
             let (r, row) = (self.impulses[k], &self.op.rows[k]);
-            let (u0, u1) = (self.u_begin[a as usize], self.op.local_velocity(k));
+            let u0 = self.op.local_velocity_for(k, &self.v_begin);
+            let u1 = self.op.local_velocity(k);
             dissipated -= r[0] * (u0[0] + u1[0]) / 2.0 + r[1] * (u0[1] + u1[1]) / 2.0;
             let (gi, gj) = RigidContactOperator::generalized_impulses(row, r);
             for (b, g) in [(row.bodies[0] as usize, gi), (row.bodies[1] as usize, gj)] {
@@ -331,34 +334,30 @@ impl MoreauJean {
 
         // Stage: assemble rows and local velocities at the beginning of the step.
         let bodies = &world.bodies;
-        self.v_begin.clear();
-        self.v_begin
-            .extend((0..bodies.len()).map(|b| bodies.generalized_velocity(b)));
+        refill(
+            &mut self.v_begin,
+            (0..bodies.len()).map(|b| bodies.generalized_velocity(b)),
+        );
         let v_begin = &self.v_begin;
         self.op.load_bodies(bodies, |b| v_begin[b]);
-        self.op.rows.clear();
-        self.op.rows.extend(
-            world
-                .contacts
-                .contacts
-                .iter()
-                .map(|c| RigidContactOperator::row(bodies, &self.op.bodies, c)),
+        let contacts = &world.contacts.contacts;
+        refill(
+            &mut self.op.rows,
+            (contacts.iter()).map(|c| RigidContactOperator::row(bodies, &self.op.bodies, c)),
         );
-        self.u_begin.clear();
-        self.u_begin
-            .extend((0..self.op.rows.len()).map(|a| self.op.local_velocity(a)));
 
         // Stage: free velocity.
         self.free_velocity(world, t_begin, t_end);
 
         // Stage: select the active contacts (predicted gap closed) and their law data.
-        self.active.clear();
-        self.mu.clear();
-        self.shift.clear();
-        self.impulses.clear();
+        let n = world.contacts.len();
+        clear_for(&mut self.active, n);
+        clear_for(&mut self.mu, n);
+        clear_for(&mut self.shift, n);
+        clear_for(&mut self.impulses, n);
         let closed = world.params.projection_tolerance.unwrap_or(0.0);
         for (a, c) in world.contacts.contacts.iter().enumerate() {
-            let un = self.u_begin[a][0];
+            let un = self.op.local_velocity_for(a, &self.v_begin)[0];
             let InteractionLaw::SignoriniCoulomb(law) = *world.laws.law(c.law);
             let Some(shift) = normal_shift(c.gap, un, h, theta, law.restitution, closed) else {
                 continue;
@@ -374,9 +373,10 @@ impl MoreauJean {
         if self.active_is_subset {
             std::mem::swap(&mut self.op.rows, &mut self.all_rows);
             let all = &self.all_rows;
-            self.op
-                .rows
-                .extend(self.active.iter().map(|&a| all[a as usize]));
+            refill(
+                &mut self.op.rows,
+                self.active.iter().map(|&a| all[a as usize]),
+            );
         }
         report.active = self.active.len();
     }
@@ -544,11 +544,12 @@ impl MoreauJean {
         if subset {
             std::mem::swap(&mut self.op.rows, &mut self.all_rows);
         }
-        self.shift.clear();
+        clear_for(&mut self.shift, world.contacts.len());
         let mut deepest: Real = 0.0;
         for (a, c) in world.contacts.contacts.iter().enumerate() {
             let u_end = self.op.local_velocity(a)[0];
-            let gap = c.gap + h * ((1.0 - theta) * self.u_begin[a][0] + theta * u_end);
+            let u_begin = self.op.local_velocity_for(a, &self.v_begin)[0];
+            let gap = c.gap + h * ((1.0 - theta) * u_begin + theta * u_end);
             deepest = deepest.max(-gap);
             self.shift.push(gap);
         }
@@ -572,9 +573,9 @@ impl MoreauJean {
         for body in &mut self.op.bodies {
             body.velocity = [0.0; DOFS];
         }
-        self.mu.clear();
+        clear_for(&mut self.mu, n);
         self.mu.resize(n, 0.0);
-        self.impulses.clear();
+        clear_for(&mut self.impulses, n);
         self.impulses.resize(n, [0.0, 0.0]);
         let params = NlgsParams {
             acceleration: xper_solver::Acceleration::None,

@@ -423,13 +423,22 @@ impl<'a> NlgsSweeper<'a> {
         impulses: &mut [[f64; 2]],
         acc: &mut A,
     ) {
-        let (mu, omega) = (self.mu, self.omega);
+        // Slices of the sweep's length, and the operator's count checked once, so that the
+        // loop indexes them without a bounds check per contact.
+        let n = impulses.len();
+        assert_eq!(
+            op.contact_count(),
+            n,
+            "a sweeper is used with its own operator"
+        );
+        let (mu, shift, factors) = (&self.mu[..n], &self.normal_shift[..n], &self.factors[..n]);
+        let omega = self.omega;
         for (a, impulse) in impulses.iter_mut().enumerate() {
             let r = *impulse;
             let mut r_new = r;
             let (w, delta) = op.update_contact(a, |w, u| {
                 let wr = block_mul(w, r);
-                let mut u_free = [u[0] + self.normal_shift[a] - wr[0], u[1] - wr[1]];
+                let mut u_free = [u[0] + shift[a] - wr[0], u[1] - wr[1]];
                 let eps = if RELAXED && !self.proximal.is_empty() {
                     self.proximal[a]
                 } else {
@@ -446,7 +455,7 @@ impl<'a> NlgsSweeper<'a> {
                 let local = if adhesive {
                     self.prepared[a].solve(u_free, mu[a])
                 } else {
-                    solve_one_contact_factored(&w_local, &self.factors[a], u_free, mu[a])
+                    solve_one_contact_factored(&w_local, &factors[a], u_free, mu[a])
                 };
                 r_new = if !RELAXED || omega == 1.0 || adhesive {
                     local

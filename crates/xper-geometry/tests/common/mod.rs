@@ -26,11 +26,11 @@ pub fn scene(specs: &[(u8, Real, Real, Real, Real)]) -> BodySet {
     for &(kind, x, y, size, angle) in specs {
         let shape = match kind % 3 {
             0 => Shape::Disk { radius: size },
-            1 => Shape::Polygon(ConvexPolygon::new(vec![
+            1 => Shape::Polygon(Box::new(ConvexPolygon::new(vec![
                 Vector::new(-size, -size / 2.0),
                 Vector::new(size, -size / 2.0),
                 Vector::new(0.0, size),
-            ])),
+            ]))),
             _ => Shape::Segment {
                 half_length: size * 8.0,
             },
