@@ -14,7 +14,9 @@
 #     500: loading, damage at both notches).
 #   - two_grains_sedimentation (64 x 640 cells, the paper's mesh), the first STEPS_FLUID steps
 #     (default 2000: 0.2 s of fall), and glowinski_sedimentation (160 x 640 cells), the first
-#     DURATION_GLOWINSKI seconds (default 0.5); both pairs run REPEAT_FLUID times (default 4).
+#     DURATION_GLOWINSKI seconds (default 0.5), and suspension_settling (300 grains,
+#     512 x 1024 cells), the first DURATION_SUSPENSION seconds (default 0.1); each pair runs
+#     REPEAT_FLUID times (default 4).
 # Weak scaling: a deposit of 2500 disks per process on 1, 2 and 4 processes (oversubscribed on
 # a 2-core machine), 300 steps; and a fluid column of 64 x 320 cells per process with one
 # grain per block, 300 steps; reported as communication volume per step per process.
@@ -28,6 +30,7 @@ STEPS_100K=${STEPS_100K:-100}
 STEPS_NM=${STEPS_NM:-500}
 STEPS_FLUID=${STEPS_FLUID:-2000}
 DURATION_GLOWINSKI=${DURATION_GLOWINSKI:-0.5}
+DURATION_SUSPENSION=${DURATION_SUSPENSION:-0.1}
 CASES=${CASES:-rigid fracture fluid weak weakfluid}
 cargo build --release -p xper-cli --features mpi
 XPER=target/release/xper
@@ -56,12 +59,13 @@ fluid_head() { # scene duration
 fluid_head two_grains_sedimentation "$(python3 -c "print($STEPS_FLUID * 1e-4)")" \
   > "$OUT/scenes/two_grains_head.toml"
 fluid_head glowinski_sedimentation "$DURATION_GLOWINSKI" > "$OUT/scenes/glowinski_head.toml"
+fluid_head suspension_settling "$DURATION_SUSPENSION" > "$OUT/scenes/suspension_head.toml"
 strong=()
 [[ " $CASES " == *" rigid "* ]] && strong+=(box10k box100k_head)
 { sed "s/^steps = .*/steps = 450/" scenes/box100k/scene.toml; printf '\n[output]\nframe_every = 450\ncheckpoint_every = 400\n'; } \
   > "$OUT/scenes/box100k_dense.toml"
 [[ " $CASES " == *" fracture "* ]] && strong+=(nooru_mohamed_head)
-[[ " $CASES " == *" fluid "* ]] && strong+=(two_grains_head glowinski_head)
+[[ " $CASES " == *" fluid "* ]] && strong+=(two_grains_head glowinski_head suspension_head)
 for name in "${strong[@]}"; do
   scene="$OUT/scenes/$name.toml"
   rm -rf "$OUT/serial_$name"
@@ -73,7 +77,7 @@ done
 # other (the same work takes up to 40 % longer on one rank), which no single pair shows apart.
 if [[ " $CASES " == *" fluid "* ]]; then
   for ((k = 2; k <= ${REPEAT_FLUID:-4}; k++)); do
-    for name in two_grains_head glowinski_head; do
+    for name in two_grains_head glowinski_head suspension_head; do
       scene="$OUT/scenes/$name.toml"
       rm -rf "$OUT/serial_${name}_r$k"
       "$XPER" run "$scene" --out "$OUT/serial_${name}_r$k" --quiet

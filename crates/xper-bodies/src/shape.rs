@@ -54,8 +54,8 @@ pub enum Shape {
         /// Radius (m).
         radius: Real,
     },
-    /// A convex polygon (boxed, so that a set of disks does not pay for its vertex lists:
-    /// the enum is 16 bytes instead of 56).
+    /// A convex polygon, boxed so that the enum is 16 bytes instead of 56: a set of disks does
+    /// not pay for vertex lists (a polygon body pays one more allocation and indirection).
     Polygon(Box<ConvexPolygon>),
     /// A wall: the segment of half-length `half_length` (m) along the body's x axis.
     Segment {
@@ -63,6 +63,9 @@ pub enum Shape {
         half_length: Real,
     },
 }
+
+// The size the per-body memory figures of BENCHMARKS.md count on.
+const _: () = assert!(std::mem::size_of::<Shape>() == 16);
 
 impl Shape {
     /// Bounding box of the shape placed at `position` with rotation `angle`.

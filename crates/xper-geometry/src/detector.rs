@@ -111,10 +111,10 @@ impl Detector {
     ) {
         self.stats.calls += 1;
         self.carry_impulses(&contacts.contacts);
-        // Room for as many contacts as before and an eighth more, so the buffer tracks the
+        // Room for as many contacts as before and a sixteenth more, so the buffer tracks the
         // count instead of doubling (see `xper_math::buffer`).
         let previous = contacts.contacts.len();
-        clear_for(&mut contacts.contacts, previous + previous / 8 + 16);
+        clear_for(&mut contacts.contacts, previous + previous / 16 + 16);
         let moved = self.moved_since_build(bodies, alert);
         if moved.is_none_or(|m| m > self.skin) {
             self.build(bodies, alert, moved);
@@ -215,7 +215,7 @@ impl Detector {
             }),
         );
         let previous = self.candidates.len();
-        clear_for(&mut self.unsorted, previous + previous / 8 + 16);
+        clear_for(&mut self.unsorted, previous + previous / 16 + 16);
         (self.broad).find_pairs(bodies, alert + self.skin, &mut self.unsorted);
         sort_pairs(
             &self.unsorted,

@@ -2,7 +2,7 @@
 //! counted by [`CountingAllocator`].
 
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering::Relaxed};
+use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 
 /// Peak resident set size ("high water mark") of this process in bytes, read
 /// from `VmHWM` in `/proc/self/status`. `None` when not on Linux or when the
@@ -26,67 +26,78 @@ fn parse_status_field(status: &str, field: &str) -> Option<u64> {
     }
 }
 
-/// A global allocator that counts the bytes it holds: [`System`](std::alloc::System) plus two
-/// relaxed atomic updates per allocation. The resident set size includes the executable, its
-/// libraries and memory the C allocator keeps after it is freed; the count is what the data
-/// of a run needs, exactly and the same on every run. A binary installs it with
-/// `#[global_allocator] static ALLOCATOR: CountingAllocator = CountingAllocator;`.
+/// A global allocator that counts the bytes it holds: [`System`](std::alloc::System) plus a
+/// few relaxed atomic updates per allocation. The resident set size includes the executable,
+/// its libraries and memory the C allocator keeps after it is freed; the count is the bytes
+/// the program asked for (without the C allocator's headers), the same on every run of the
+/// same input and build. A reallocation counts its change of size (the old and new blocks of
+/// a moving reallocation briefly coexist; that moment is not counted). A binary installs it
+/// with `#[global_allocator] static ALLOCATOR: CountingAllocator = CountingAllocator;`.
 pub struct CountingAllocator;
 
 static HEAP_NOW: AtomicUsize = AtomicUsize::new(0);
 static HEAP_PEAK: AtomicUsize = AtomicUsize::new(0);
-static COUNTING: AtomicBool = AtomicBool::new(false);
 
-// SAFETY: every call is forwarded to `System` unchanged; only counters are updated.
+/// Adds `bytes` to the count and raises the peak if needed.
+#[inline]
+fn grow(bytes: usize) {
+    let now = HEAP_NOW.fetch_add(bytes, Relaxed) + bytes;
+    if now > HEAP_PEAK.load(Relaxed) {
+        HEAP_PEAK.fetch_max(now, Relaxed);
+    }
+}
+
+// SAFETY: every call is forwarded to `System` unchanged; the counters change only when it
+// succeeds.
 unsafe impl GlobalAlloc for CountingAllocator {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        COUNTING.store(true, Relaxed);
-        let now = HEAP_NOW.fetch_add(layout.size(), Relaxed) + layout.size();
-        HEAP_PEAK.fetch_max(now, Relaxed);
         // SAFETY: the caller's contract is `System`'s.
-        unsafe { System.alloc(layout) }
+        let ptr = unsafe { System.alloc(layout) };
+        if !ptr.is_null() {
+            grow(layout.size());
+        }
+        ptr
     }
 
     unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        COUNTING.store(true, Relaxed);
-        let now = HEAP_NOW.fetch_add(layout.size(), Relaxed) + layout.size();
-        HEAP_PEAK.fetch_max(now, Relaxed);
         // SAFETY: as for `alloc`.
-        unsafe { System.alloc_zeroed(layout) }
+        let ptr = unsafe { System.alloc_zeroed(layout) };
+        if !ptr.is_null() {
+            grow(layout.size());
+        }
+        ptr
     }
 
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        HEAP_NOW.fetch_sub(layout.size(), Relaxed);
         // SAFETY: `ptr` was allocated by `System` with `layout`.
-        unsafe { System.dealloc(ptr, layout) }
+        unsafe { System.dealloc(ptr, layout) };
+        HEAP_NOW.fetch_sub(layout.size(), Relaxed);
     }
 
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if new_size >= layout.size() {
-            let now =
-                HEAP_NOW.fetch_add(new_size - layout.size(), Relaxed) + new_size - layout.size();
-            HEAP_PEAK.fetch_max(now, Relaxed);
-        } else {
-            HEAP_NOW.fetch_sub(layout.size() - new_size, Relaxed);
-        }
         // SAFETY: as for `dealloc`; `new_size` is the caller's.
-        unsafe { System.realloc(ptr, layout, new_size) }
+        let moved = unsafe { System.realloc(ptr, layout, new_size) };
+        if !moved.is_null() {
+            if new_size >= layout.size() {
+                grow(new_size - layout.size());
+            } else {
+                HEAP_NOW.fetch_sub(layout.size() - new_size, Relaxed);
+            }
+        }
+        moved
     }
 }
 
 /// Largest number of heap bytes held at once so far, when this process counts its
 /// allocations (installs [`CountingAllocator`]); `None` otherwise.
 pub fn peak_heap_bytes() -> Option<u64> {
-    COUNTING
-        .load(Relaxed)
-        .then(|| HEAP_PEAK.load(Relaxed) as u64)
+    let peak = HEAP_PEAK.load(Relaxed);
+    (peak > 0).then_some(peak as u64)
 }
 
 /// Heap bytes held now, when this process counts its allocations; `None` otherwise.
 pub fn current_heap_bytes() -> Option<u64> {
-    COUNTING
-        .load(Relaxed)
-        .then(|| HEAP_NOW.load(Relaxed) as u64)
+    (HEAP_PEAK.load(Relaxed) > 0).then(|| HEAP_NOW.load(Relaxed) as u64)
 }
 
 #[cfg(test)]

@@ -1,18 +1,24 @@
-//! Reusable buffers sized exactly.
+//! Reusable buffers sized to what they hold.
 //!
 //! A stepper refills the same vectors every step. `Vec`'s own growth at least doubles the
 //! capacity, so a buffer refilled with a slowly growing count ends up to twice as large as
-//! needed; these helpers grow a buffer to exactly what it must hold, so its capacity is the
-//! largest count seen and the memory per body or per contact is what the data needs.
+//! needed. These helpers give a buffer that is short of room a new allocation of the count
+//! plus a sixteenth (so a count creeping up step by step reallocates rarely), freeing the old
+//! one first (nothing is copied, and the two never coexist): a buffer's capacity stays within
+//! a sixteenth of the largest count it held.
 
-/// Empties `buffer` and makes room for exactly `n` items (the capacity is kept when larger).
+/// Empties `buffer` and makes room for at least `n` items.
 #[inline]
 pub fn clear_for<T>(buffer: &mut Vec<T>, n: usize) {
-    buffer.clear();
-    buffer.reserve_exact(n);
+    if buffer.capacity() < n {
+        *buffer = Vec::new();
+        buffer.reserve_exact(n + n / 16);
+    } else {
+        buffer.clear();
+    }
 }
 
-/// Replaces the contents of `buffer` by `items`, growing it to exactly their number.
+/// Replaces the contents of `buffer` by `items` (see [`clear_for`]).
 #[inline]
 pub fn refill<T>(buffer: &mut Vec<T>, items: impl ExactSizeIterator<Item = T>) {
     clear_for(buffer, items.len());
@@ -24,18 +30,22 @@ mod tests {
     use super::*;
 
     #[test]
-    fn refilling_grows_to_the_largest_count_only() {
+    fn refilling_grows_to_the_largest_count_and_a_sixteenth() {
         let mut v: Vec<u32> = Vec::new();
-        let mut largest = 0;
-        for n in [100, 101, 103, 50, 104] {
+        // 1600 gets 1600 + 100; 1650 and 1700 fit; 1701 gets 1701 + 106.
+        for (n, capacity) in [
+            (1600, 1700),
+            (1650, 1700),
+            (1700, 1700),
+            (1701, 1807),
+            (50, 1807),
+        ] {
             refill(&mut v, 0..n);
-            largest = largest.max(n as usize);
             assert_eq!(v, (0..n).collect::<Vec<_>>());
-            // Vec's own growth would have doubled to 200 at the second refill.
-            assert_eq!(v.capacity(), largest);
+            assert_eq!(v.capacity(), capacity, "after {n} items");
         }
         clear_for(&mut v, 10);
         assert!(v.is_empty());
-        assert_eq!(v.capacity(), 104);
+        assert_eq!(v.capacity(), 1807);
     }
 }

@@ -31,6 +31,7 @@
 #![warn(missing_docs)]
 
 mod assemble;
+mod contact_solve;
 mod operator;
 mod report;
 mod step;

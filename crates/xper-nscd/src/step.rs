@@ -3,6 +3,8 @@
 //! update, project.
 
 use crate::assemble::assemble_problem;
+use crate::contact_solve::reborrow;
+pub use crate::contact_solve::ContactSolve;
 use crate::operator::{ContactRow, RigidContactOperator, RigidProblem};
 pub use crate::report::{StageTimes, StepError, StepReport};
 use crate::world::{VelocitySolver, World};
@@ -13,36 +15,8 @@ use xper_laws::InteractionLaw;
 use xper_math::buffer::{clear_for, refill};
 use xper_math::{Real, DOFS};
 use xper_solver::{
-    nlgs, solve, ContactOperator, FrictionProblem, NlgsParams, ProblemError, SolveError, SolveInfo,
+    nlgs, solve, ContactOperator, FrictionProblem, NlgsParams, ProblemError, SolveError,
 };
-
-/// A solver of the step's velocity and projection problems shared with other processes (a
-/// domain decomposition): [`MoreauJean::step_with`] hands it the problem of the contacts this
-/// process owns, on its copies of their bodies, instead of solving it alone.
-pub trait ContactSolve {
-    /// Solves the problem of `op` (zero impulses applied, `impulses` the warm start on entry
-    /// and the solution on exit) as [`xper_solver::nlgs`] does, together with the other
-    /// processes; every process gets the same outcome.
-    fn solve(
-        &mut self,
-        op: &mut RigidContactOperator,
-        mu: &[Real],
-        shift: &[Real],
-        impulses: &mut [[Real; 2]],
-        params: &NlgsParams,
-    ) -> Result<SolveInfo, SolveError>;
-    /// The largest `value` over the processes, for decisions they must all take alike.
-    fn agree_max(&mut self, value: Real) -> Real;
-}
-
-/// A shorter borrow of an optional shared solver (trait-object lifetimes shorten only at a
-/// coercion).
-fn reborrow<'b>(s: &'b mut Option<&mut dyn ContactSolve>) -> Option<&'b mut dyn ContactSolve> {
-    match s {
-        Some(s) => Some(&mut **s),
-        None => None,
-    }
-}
 
 /// Whether a body with these inverse masses per degree of freedom can be moved by contacts
 /// (at least one free degree of freedom); immovable bodies (walls, fully driven bodies) are
@@ -332,7 +306,8 @@ impl MoreauJean {
         report.contacts = world.contacts.len();
         report.times.detect = start.elapsed().as_secs_f64();
 
-        // Stage: assemble rows and local velocities at the beginning of the step.
+        // Stage: assemble the rows and keep the velocities at the beginning of the step (the
+        // local ones, U_i = H^T v_i, are computed from them where needed).
         let bodies = &world.bodies;
         refill(
             &mut self.v_begin,

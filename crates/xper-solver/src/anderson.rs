@@ -59,14 +59,15 @@ impl Acceleration {
 
 const MAX_DEPTH: usize = MAX_ANDERSON_DEPTH as usize;
 
-/// A stored difference: single precision.
+/// A difference as stored: rounded to single precision.
 #[inline(always)]
-fn single(d: [f64; 2]) -> [f32; 2] {
+fn to_stored(d: [f64; 2]) -> [f32; 2] {
     [d[0] as f32, d[1] as f32]
 }
 
+/// A stored difference back in double precision (exact).
 #[inline(always)]
-fn double(d: [f32; 2]) -> [f64; 2] {
+fn from_stored(d: [f32; 2]) -> [f64; 2] {
     [d[0] as f64, d[1] as f64]
 }
 
@@ -180,12 +181,12 @@ impl AndersonMixer {
                 let fp = self.f_prev[a];
                 let gp = self.g_prev[a];
                 // The Gram matrix is that of the stored (rounded) differences.
-                let d = single([f[0] - fp[0], f[1] - fp[1]]);
+                let d = to_stored([f[0] - fp[0], f[1] - fp[1]]);
                 self.df[s * n + a] = d;
-                self.dg[s * n + a] = single([g[0] - gp[0], g[1] - gp[1]]);
+                self.dg[s * n + a] = to_stored([g[0] - gp[0], g[1] - gp[1]]);
                 for j in 0..filled {
                     let dj = self.df[j * n + a];
-                    let (d, dj) = (double(d), double(dj));
+                    let (d, dj) = (from_stored(d), from_stored(dj));
                     row[j] += d[0] * dj[0] + d[1] * dj[1];
                     rhs[j] += dj[0] * f[0] + dj[1] * f[1];
                 }
@@ -234,7 +235,7 @@ impl AndersonMixer {
             let g = *impulse;
             let mut m = g;
             for (j, &c) in gamma.iter().enumerate().take(k) {
-                let d = double(self.dg[j * n + a]);
+                let d = from_stored(self.dg[j * n + a]);
                 m[0] -= c * d[0];
                 m[1] -= c * d[1];
             }
@@ -246,7 +247,10 @@ impl AndersonMixer {
     }
 
     /// `gamma` solving `(dF^T dF + eps I) gamma = dF^T f` by Cholesky, `eps` 1e-10 of the mean
-    /// diagonal; `None` without history or when the system is not positive definite.
+    /// diagonal; `None` without history or when the system is not positive definite. (A ridge
+    /// above the differences' single-precision rounding, 1e-6, spoils the finite termination
+    /// on linear maps that the test below checks; a mixing made poor by rounding raises the
+    /// residual, and the history then restarts.)
     fn coefficients(&self, rhs: &[f64; MAX_DEPTH]) -> Option<[f64; MAX_DEPTH]> {
         let k = self.len;
         if k == 0 {

@@ -423,8 +423,9 @@ impl<'a> NlgsSweeper<'a> {
         impulses: &mut [[f64; 2]],
         acc: &mut A,
     ) {
-        // Slices of the sweep's length, and the operator's count checked once, so that the
-        // loop indexes them without a bounds check per contact.
+        // Slices of the sweep's length and the operator's count checked once, so that the
+        // usual sweep indexes its contact data without a bounds check per contact (the
+        // proximal and adhesive data of the other variants keep theirs).
         let n = impulses.len();
         assert_eq!(
             op.contact_count(),
