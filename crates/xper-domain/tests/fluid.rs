@@ -343,3 +343,56 @@ fn a_periodic_vortex_on_blocks_agrees_with_the_serial_run() {
         })
     });
 }
+
+/// Twelve grains (3 times denser than the fluid) settling from rest around the middle of the two-grain box, where the cuts of
+/// 2 and 4 blocks lie: the work of their forcing moves across the cuts, so the blocks are cut
+/// again during the run (checked), and the runs still agree with the serial one within a
+/// small multiple of its own error.
+#[test]
+fn a_falling_cloud_is_rebalanced_and_agrees_with_the_serial_run() {
+    let cloud = |tolerance: f64| {
+        let (params, mut state) = two_grains(tolerance);
+        let mut bodies = BodySet::new();
+        for k in 0..12 {
+            let (column, row) = ((k % 3) as f64, (k / 3) as f64);
+            let centre = Vector::new(
+                (0.8 + 1.2 * column) * DIAMETER,
+                (16.0 + 1.5 * row) * DIAMETER,
+            );
+            bodies.insert(Body::disk(DIAMETER / 2.0, 3000.0, centre));
+        }
+        state.world = World::new(bodies, LawTable::new(1), state.world.params);
+        (params, state)
+    };
+    let steps = STEPS;
+    let (params, start) = cloud(1e-5);
+    let reference = serial(&params, start.clone(), steps);
+    let serial_error = grain_difference(&reference, &serial(&cloud(1e-7).0, start.clone(), steps));
+    for ranks in [2, 4] {
+        let out = run_on_threads(ranks, |comm| {
+            let mut run = DistributedFluid::new(comm, &params, &start).unwrap();
+            for _ in 0..steps {
+                run.step().unwrap();
+            }
+            let mut whole = start.clone();
+            run.gather(&mut whole);
+            (whole, run.rebalances(), run.load().cells)
+        });
+        let (whole, rebalances, _) = &out[0];
+        assert!(
+            *rebalances >= 1,
+            "{ranks} processes: the blocks were never cut again"
+        );
+        assert!(
+            out.iter().all(|o| o.1 == *rebalances),
+            "every process cuts alike"
+        );
+        assert_eq!(out.iter().map(|o| o.2).sum::<usize>(), 32 * 320);
+        let difference = grain_difference(whole, &reference);
+        eprintln!("{ranks} processes: {rebalances} new cuts, grains {difference:e} m (serial error {serial_error:e})");
+        assert!(
+            difference <= 10.0 * serial_error.max(1e-15),
+            "{ranks} processes: grains differ by {difference:e} m, serial error {serial_error:e}"
+        );
+    }
+}

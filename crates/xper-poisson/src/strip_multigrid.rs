@@ -364,6 +364,31 @@ mod tests {
     }
 
     #[test]
+    fn weighted_layouts_share_the_weight_at_the_same_cuts() {
+        // Uniform weights: the balanced cuts where the shares fall on block boundaries.
+        let uniform = vec![1.0; 640];
+        for strips in [2, 4] {
+            assert_eq!(
+                StripLayout::weighted(64, 640, strips, &uniform).unwrap(),
+                StripLayout::balanced(64, 640, strips).unwrap()
+            );
+        }
+        // The top 160 rows three times heavier: rows 0..480 weigh 480, rows 480..640 too.
+        let mut heavy = vec![1.0; 640];
+        heavy[480..].iter_mut().for_each(|w| *w = 3.0);
+        let layout = StripLayout::weighted(64, 640, 2, &heavy).unwrap();
+        // Cuts are multiples of 8 rows here (80 blocks).
+        assert_eq!(layout.starts, vec![0, 480, 640]);
+        // All the weight in the top rows: every strip still keeps its minimum of blocks.
+        let mut top = vec![0.0; 640];
+        top[639] = 1.0;
+        let layout = StripLayout::weighted(64, 640, 3, &top).unwrap();
+        assert_eq!(layout.starts, vec![0, 608, 624, 640]);
+        assert!(StripLayout::weighted(64, 640, 2, &heavy[1..]).is_err());
+        assert!(StripLayout::weighted(64, 640, 2, &[f64::NAN; 640]).is_err());
+    }
+
+    #[test]
     fn balanced_layouts_cut_at_coarsenable_rows() {
         let layout = StripLayout::balanced(64, 640, 2).unwrap();
         assert_eq!(layout.starts, vec![0, 320, 640]);

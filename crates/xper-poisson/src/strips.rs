@@ -76,6 +76,57 @@ impl StripLayout {
     /// [`MIN_STRIP_ROWS`] blocks of `2^k` rows, and is not beyond what brings the grid down to
     /// [`GATHERED_CELLS`]: the strips then coarsen `k` times without cutting a coarse cell.
     pub fn balanced(nx: usize, ny: usize, strips: usize) -> Result<Self, String> {
+        let unit = Self::unit_rows(nx, ny, strips)?;
+        let blocks = ny / unit;
+        let starts = (0..=strips).map(|s| unit * (blocks * s / strips)).collect();
+        Ok(StripLayout { starts })
+    }
+
+    /// `strips` strips over an `nx x ny` grid cut where [`StripLayout::balanced`] may cut, so
+    /// that the strips carry nearly equal sums of `row_weight` (one non-negative weight per
+    /// row: the work of the row), each keeping at least [`MIN_STRIP_ROWS`] blocks. Each cut is
+    /// the block boundary nearest to its share of the total weight.
+    pub fn weighted(
+        nx: usize,
+        ny: usize,
+        strips: usize,
+        row_weight: &[f64],
+    ) -> Result<Self, String> {
+        if row_weight.len() != ny || !row_weight.iter().all(|w| *w >= 0.0 && w.is_finite()) {
+            return Err(format!(
+                "{} row weights for {ny} rows, or a weight negative or not finite",
+                row_weight.len()
+            ));
+        }
+        let unit = Self::unit_rows(nx, ny, strips)?;
+        let blocks = ny / unit;
+        // before[b]: the weight of blocks 0..b.
+        let mut before = vec![0.0; blocks + 1];
+        for b in 0..blocks {
+            before[b + 1] = before[b] + row_weight[b * unit..(b + 1) * unit].iter().sum::<f64>();
+        }
+        let total = before[blocks];
+        let mut starts = vec![0; strips + 1];
+        let mut cut = 0;
+        for (s, start) in starts.iter_mut().enumerate().take(strips).skip(1) {
+            let share = total * s as f64 / strips as f64;
+            let mut b = before.partition_point(|&w| w < share).min(blocks);
+            if b > 0 && share - before[b - 1] < before[b] - share {
+                b -= 1;
+            }
+            let lowest = cut + MIN_STRIP_ROWS;
+            let highest = blocks - (strips - s) * MIN_STRIP_ROWS;
+            cut = b.clamp(lowest, highest);
+            *start = unit * cut;
+        }
+        starts[strips] = ny;
+        Ok(StripLayout { starts })
+    }
+
+    /// The rows of the blocks strips are cut in: the largest power of two `2^k` dividing `nx`
+    /// and `ny` that leaves every strip at least [`MIN_STRIP_ROWS`] blocks and does not coarsen
+    /// beyond [`GATHERED_CELLS`].
+    fn unit_rows(nx: usize, ny: usize, strips: usize) -> Result<usize, String> {
         if strips == 0 || ny < MIN_STRIP_ROWS * strips {
             return Err(format!(
                 "{ny} rows cannot be shared among {strips} strips (at least {MIN_STRIP_ROWS} rows each)"
@@ -89,9 +140,7 @@ impl StripLayout {
         {
             unit *= 2;
         }
-        let blocks = ny / unit;
-        let starts = (0..=strips).map(|s| unit * (blocks * s / strips)).collect();
-        Ok(StripLayout { starts })
+        Ok(unit)
     }
 
     /// Number of strips.
