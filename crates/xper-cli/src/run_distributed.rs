@@ -45,6 +45,9 @@ pub struct RankSummary {
     pub migrated_in: u64,
     /// Fluid cells held (runs with a fluid).
     pub cells: usize,
+    /// Times the fluid's blocks of rows were cut again as the grains moved (runs with a
+    /// fluid; the time it took is in the step times).
+    pub recuts: u64,
     /// Messages sent from the first step on (the initial distribution is left out; the
     /// gathers of outputs are in).
     pub messages: u64,
@@ -204,6 +207,7 @@ pub fn rank_summaries(
         stats.bytes as f64,
         stats.time.as_secs_f64(),
         load.cells as f64,
+        load.recuts as f64,
     ];
     (comm.all_gather(&mine).iter().enumerate())
         .map(|(rank, v)| RankSummary {
@@ -214,6 +218,7 @@ pub fn rank_summaries(
             interface_bodies: v[3] as usize,
             migrated_in: v[4] as u64,
             cells: v[8] as usize,
+            recuts: v[9] as u64,
             messages: v[5] as u64,
             bytes: v[6] as u64,
             communication_s: v[7],

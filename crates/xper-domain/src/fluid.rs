@@ -7,11 +7,13 @@
 //!    holds its block of the fluid ([`FluidState`] on the block's [`MacGrid`]) and every grain
 //!    (there are few grains and many cells: the grains' contact step is repeated by every
 //!    process, which gets the same forces and so the same bits, and a grain straddling a cut
-//!    needs no migration). Every [`REBALANCE_EVERY`] steps the cuts are recomputed from the
-//!    grains' positions (the same on every process, so every process takes the same
-//!    decision); when they moved, the blocks are gathered on every process and cut again, as
-//!    a resume from a checkpoint would. The cuts depend on the current state only, so a run
-//!    resumed from a step that is a multiple of [`REBALANCE_EVERY`] continues bit for bit.
+//!    needs no migration). Before every step the cuts are recomputed from the grains'
+//!    positions (a weight per row: cheap; the same on every process, so every process takes
+//!    the same decision); when they moved, the blocks are gathered on every process and cut
+//!    again, as a resume from a checkpoint would. The cuts are a function of the current state
+//!    alone, so a run resumed from any step, on the same number of processes, continues bit
+//!    for bit. (A cut that should not flip back and forth needs the current cuts in the
+//!    checkpoint; they are not there yet.)
 //! 2. **Step.** [`CoupledStepper::step_with`] runs the serial stages on the block, with
 //!    [`BlockLinks`] for what crosses blocks: the halo rows (one below, two above) after every
 //!    change of the velocity, pressure or pressure correction; the forcing and the fluid
@@ -92,9 +94,6 @@ impl<C: Communicator + ?Sized> BlockLinks for BlockComm<'_, C> {
 /// against 0.08 us per fluid cell.
 pub const FORCED_CELL_WEIGHT: Real = 0.5;
 
-/// Steps between two checks of the blocks' balance.
-pub const REBALANCE_EVERY: u64 = 20;
-
 /// The work of each row of `domain`: its cells, plus [`FORCED_CELL_WEIGHT`] per cell of the
 /// footprint of each disk of `world` that crosses it.
 pub fn row_weights(domain: &MacGrid, world: &World) -> Vec<Real> {
@@ -121,8 +120,9 @@ pub struct DistributedFluid<'c, C: Communicator + ?Sized> {
     domain: MacGrid,
     /// The parameters of the whole grid; `params` are the block's.
     whole_params: FluidParams,
-    /// Times the blocks were cut again.
+    /// Times the blocks were cut again, and the seconds it took.
     rebalances: u64,
+    rebalance_time: f64,
     params: FluidParams,
     state: CoupledState,
     stepper: CoupledStepper,
@@ -198,6 +198,7 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
             domain,
             whole_params: params.clone(),
             rebalances: 0,
+            rebalance_time: 0.0,
             params: block_params,
             state,
             stepper,
@@ -210,13 +211,15 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
 
     /// One coupled step of the whole grid (collective); the report's forces, norms and energy
     /// are the whole grid's, the grains' report is every process's own (identical) one.
+    /// The fluid's total time (`times[3]`) includes a re-cut of the blocks before the step.
     pub fn step(&mut self) -> Result<CoupledReport, CoupledError> {
-        let step = self.state.fluid.step;
-        if step > 0 && step.is_multiple_of(REBALANCE_EVERY) {
-            self.rebalance().map_err(CoupledError::Fluid)?;
-        }
-        self.stepper
-            .step_with(&self.params, &mut self.state, &mut self.links)
+        let started = std::time::Instant::now();
+        self.rebalance().map_err(CoupledError::Fluid)?;
+        let recut = started.elapsed().as_secs_f64();
+        let mut report =
+            (self.stepper).step_with(&self.params, &mut self.state, &mut self.links)?;
+        report.fluid.times[3] += recut;
+        Ok(report)
     }
 
     /// This process's block and grains.
@@ -234,6 +237,11 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
         self.rebalances
     }
 
+    /// Seconds spent cutting the blocks again (gathers and rebuilds).
+    pub fn rebalance_time(&self) -> f64 {
+        self.rebalance_time
+    }
+
     /// Cuts the blocks again if the grains have moved work across a cut (see the module
     /// documentation). Collective; every process decides alike.
     fn rebalance(&mut self) -> Result<(), FluidError> {
@@ -244,10 +252,12 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
         if layout == self.layout {
             return Ok(());
         }
+        let started = std::time::Instant::now();
         let whole = self.gather_everywhere();
-        let rebalances = self.rebalances + 1;
+        let (rebalances, time) = (self.rebalances + 1, self.rebalance_time);
         *self = Self::with_layout(self.comm, &self.whole_params, &whole, layout)?;
         self.rebalances = rebalances;
+        self.rebalance_time = time + started.elapsed().as_secs_f64();
         Ok(())
     }
 
@@ -262,6 +272,7 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
             bodies: self.state.world.bodies.len(),
             cells: self.state.fluid.grid.num_cells(),
             contacts: self.state.world.contacts.len(),
+            recuts: self.rebalances,
             ..RankLoad::default()
         }
     }

@@ -72,6 +72,8 @@ pub struct RankLoad {
     pub migrated_in: u64,
     /// Fluid cells held (runs with a fluid).
     pub cells: usize,
+    /// Times the fluid's blocks of rows were cut again (runs with a fluid).
+    pub recuts: u64,
 }
 
 const STATE: usize = 7;
