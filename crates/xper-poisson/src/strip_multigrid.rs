@@ -384,6 +384,10 @@ mod tests {
         top[639] = 1.0;
         let layout = StripLayout::weighted(64, 640, 3, &top).unwrap();
         assert_eq!(layout.starts, vec![0, 608, 624, 640]);
+        assert_eq!(
+            StripLayout::weighted(64, 640, 3, &[0.0; 640]).unwrap(),
+            StripLayout::balanced(64, 640, 3).unwrap()
+        );
         assert!(StripLayout::weighted(64, 640, 2, &heavy[1..]).is_err());
         assert!(StripLayout::weighted(64, 640, 2, &[f64::NAN; 640]).is_err());
     }

@@ -85,7 +85,8 @@ impl StripLayout {
     /// `strips` strips over an `nx x ny` grid cut where [`StripLayout::balanced`] may cut, so
     /// that the strips carry nearly equal sums of `row_weight` (one non-negative weight per
     /// row: the work of the row), each keeping at least [`MIN_STRIP_ROWS`] blocks. Each cut is
-    /// the block boundary nearest to its share of the total weight.
+    /// the block boundary nearest to its share of the total weight, so the shares are equal
+    /// to within half a block's weight. Weights all zero give the balanced strips.
     pub fn weighted(
         nx: usize,
         ny: usize,
@@ -106,6 +107,9 @@ impl StripLayout {
             before[b + 1] = before[b] + row_weight[b * unit..(b + 1) * unit].iter().sum::<f64>();
         }
         let total = before[blocks];
+        if total == 0.0 {
+            return Self::balanced(nx, ny, strips);
+        }
         let mut starts = vec![0; strips + 1];
         let mut cut = 0;
         for (s, start) in starts.iter_mut().enumerate().take(strips).skip(1) {
