@@ -120,9 +120,8 @@ pub struct DistributedFluid<'c, C: Communicator + ?Sized> {
     domain: MacGrid,
     /// The parameters of the whole grid; `params` are the block's.
     whole_params: FluidParams,
-    /// Times the blocks were cut again, and the seconds it took.
+    /// Times the blocks were cut again.
     rebalances: u64,
-    rebalance_time: f64,
     params: FluidParams,
     state: CoupledState,
     stepper: CoupledStepper,
@@ -198,7 +197,6 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
             domain,
             whole_params: params.clone(),
             rebalances: 0,
-            rebalance_time: 0.0,
             params: block_params,
             state,
             stepper,
@@ -237,11 +235,6 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
         self.rebalances
     }
 
-    /// Seconds spent cutting the blocks again (gathers and rebuilds).
-    pub fn rebalance_time(&self) -> f64 {
-        self.rebalance_time
-    }
-
     /// Cuts the blocks again if the grains have moved work across a cut (see the module
     /// documentation). Collective; every process decides alike.
     fn rebalance(&mut self) -> Result<(), FluidError> {
@@ -252,12 +245,10 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
         if layout == self.layout {
             return Ok(());
         }
-        let started = std::time::Instant::now();
         let whole = self.gather_everywhere();
-        let (rebalances, time) = (self.rebalances + 1, self.rebalance_time);
+        let rebalances = self.rebalances + 1;
         *self = Self::with_layout(self.comm, &self.whole_params, &whole, layout)?;
         self.rebalances = rebalances;
-        self.rebalance_time = time + started.elapsed().as_secs_f64();
         Ok(())
     }
 
@@ -285,8 +276,9 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
             return;
         }
         let sources: Vec<usize> = (1..self.comm.size()).collect();
-        let received = self.comm.exchange(&[], &sources);
-        self.unpack_all(&self.pack(), &received, whole);
+        let mut strips = vec![self.pack()];
+        strips.extend(self.comm.exchange(&[], &sources));
+        self.unpack_all(&strips, whole);
     }
 
     /// The whole fluid and the grains, on every process. Collective.
@@ -295,14 +287,13 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
         let own = self.pack();
         let others: Vec<usize> = (0..size).filter(|&s| s != me).collect();
         let sends: Vec<(usize, Vec<Real>)> = others.iter().map(|&s| (s, own.clone())).collect();
-        let mut received = self.comm.exchange(&sends, &others);
-        received.insert(me, own);
+        let mut strips = self.comm.exchange(&sends, &others);
+        strips.insert(me, own);
         let mut whole = CoupledState {
             fluid: FluidState::at_rest(self.domain, &self.whole_params.boundary),
             world: self.state.world.clone(),
         };
-        let (first, rest) = received.split_at(1);
-        self.unpack_all(&first[0], rest, &mut whole);
+        self.unpack_all(&strips, &mut whole);
         whole
     }
 
@@ -334,13 +325,12 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
         out
     }
 
-    /// Writes strip 0's `first` and the other strips' `rest` (in rank order) into `whole`,
-    /// with this process's time, step, inner momenta and grains.
-    fn unpack_all(&self, first: &[Real], rest: &[Vec<Real>], whole: &mut CoupledState) {
+    /// Writes every strip's [`Self::pack`] (in rank order) into `whole`, with this process's
+    /// time, step, inner momenta and grains.
+    fn unpack_all(&self, strips: &[Vec<Real>], whole: &mut CoupledState) {
         let (w, nx) = (self.domain.width(), self.domain.nx);
         let fluid = &mut whole.fluid;
-        let strips = std::iter::once(first).chain(rest.iter().map(Vec::as_slice));
-        for (s, data) in strips.enumerate() {
+        for (s, data) in strips.iter().enumerate() {
             let (low, high, rows) = self.sent_rows(s);
             let span = (high - low) * w;
             let mut parts = data.chunks(span);

@@ -104,8 +104,7 @@ impl BroadPhase {
             nx,
             ny,
         };
-        clear_for(&mut self.cell_start, nx * ny + 1);
-        self.cell_start.resize(nx * ny + 1, 0);
+        refill(&mut self.cell_start, std::iter::repeat_n(0, nx * ny + 1));
         clear_for(&mut self.cell_of, self.small.len());
         for &b in &self.small {
             let bb = &self.aabbs[b as usize];
@@ -117,8 +116,10 @@ impl BroadPhase {
         for c in 0..nx * ny {
             self.cell_start[c + 1] += self.cell_start[c];
         }
-        clear_for(&mut self.cell_bodies, self.small.len());
-        self.cell_bodies.resize(self.small.len(), 0);
+        refill(
+            &mut self.cell_bodies,
+            std::iter::repeat_n(0, self.small.len()),
+        );
         refill(&mut self.fill, self.cell_start.iter().copied());
         for (k, &b) in self.small.iter().enumerate() {
             let c = self.cell_of[k] as usize;

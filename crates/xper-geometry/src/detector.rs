@@ -284,16 +284,14 @@ fn sort_pairs(
     start: &mut Vec<u32>,
     sorted: &mut Vec<(u32, u32)>,
 ) {
-    clear_for(start, n_bodies + 1);
-    start.resize(n_bodies + 1, 0);
+    refill(start, std::iter::repeat_n(0, n_bodies + 1));
     for &(i, _) in pairs {
         start[i as usize + 1] += 1;
     }
     for b in 0..n_bodies {
         start[b + 1] += start[b];
     }
-    clear_for(sorted, pairs.len());
-    sorted.resize(pairs.len(), (0, 0));
+    refill(sorted, std::iter::repeat_n((0, 0), pairs.len()));
     for &(i, j) in pairs {
         let slot = &mut start[i as usize];
         sorted[*slot as usize] = (i, j);

@@ -548,10 +548,8 @@ impl MoreauJean {
         for body in &mut self.op.bodies {
             body.velocity = [0.0; DOFS];
         }
-        clear_for(&mut self.mu, n);
-        self.mu.resize(n, 0.0);
-        clear_for(&mut self.impulses, n);
-        self.impulses.resize(n, [0.0, 0.0]);
+        refill(&mut self.mu, std::iter::repeat_n(0.0, n));
+        refill(&mut self.impulses, std::iter::repeat_n([0.0, 0.0], n));
         let params = NlgsParams {
             acceleration: xper_solver::Acceleration::None,
             ..world.params.nlgs
