@@ -181,12 +181,12 @@ impl AndersonMixer {
                 let fp = self.f_prev[a];
                 let gp = self.g_prev[a];
                 // The Gram matrix is that of the stored (rounded) differences.
-                let d = to_stored([f[0] - fp[0], f[1] - fp[1]]);
-                self.df[s * n + a] = d;
+                let stored = to_stored([f[0] - fp[0], f[1] - fp[1]]);
+                self.df[s * n + a] = stored;
                 self.dg[s * n + a] = to_stored([g[0] - gp[0], g[1] - gp[1]]);
+                let d = from_stored(stored);
                 for j in 0..filled {
-                    let dj = self.df[j * n + a];
-                    let (d, dj) = (from_stored(d), from_stored(dj));
+                    let dj = from_stored(self.df[j * n + a]);
                     row[j] += d[0] * dj[0] + d[1] * dj[1];
                     rhs[j] += dj[0] * f[0] + dj[1] * f[1];
                 }
