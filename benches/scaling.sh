@@ -16,7 +16,11 @@
 #     (default 2000: 0.2 s of fall), and glowinski_sedimentation (160 x 640 cells), the first
 #     DURATION_GLOWINSKI seconds (default 0.5), and suspension_settling (300 grains,
 #     512 x 1024 cells), the first DURATION_SUSPENSION seconds (default 0.1); each pair runs
-#     REPEAT_FLUID times (default 4).
+#     REPEAT_FLUID times (default 4). Beside each fluid pair, the machine's own ceiling at that
+#     moment: the same scene run twice at once, serially (no communication, no imbalance; the
+#     serial time alone over the slower of the two is the efficiency the machine allowed), and
+#     xper-domain-sync-ceiling (equal strips of a grid relaxed and exchanged as often as the
+#     pressure multigrid does, against one process relaxing the whole grid).
 # Weak scaling: a deposit of 2500 disks per process on 1, 2 and 4 processes (oversubscribed on
 # a 2-core machine), 300 steps; and a fluid column of 64 x 320 cells per process with one
 # grain per block, 300 steps; reported as communication volume per step per process.
@@ -33,6 +37,7 @@ DURATION_GLOWINSKI=${DURATION_GLOWINSKI:-0.5}
 DURATION_SUSPENSION=${DURATION_SUSPENSION:-0.1}
 CASES=${CASES:-rigid fracture fluid weak weakfluid}
 cargo build --release -p xper-cli --features mpi
+cargo build --release -p xper-domain --features mpi --bin xper-domain-sync-ceiling
 XPER=target/release/xper
 OUT=bench-results/scaling
 mkdir -p "$OUT/scenes"
@@ -66,22 +71,36 @@ strong=()
   > "$OUT/scenes/box100k_dense.toml"
 [[ " $CASES " == *" fracture "* ]] && strong+=(nooru_mohamed_head)
 [[ " $CASES " == *" fluid "* ]] && strong+=(two_grains_head glowinski_head suspension_head)
+serial_pair() { # scene out: two serial runs of scene at once, into out/a and out/b
+  rm -rf "$2"
+  "$XPER" run "$1" --out "$2/a" --quiet &
+  local first=$!
+  "$XPER" run "$1" --out "$2/b" --quiet
+  wait "$first"
+}
 for name in "${strong[@]}"; do
   scene="$OUT/scenes/$name.toml"
   rm -rf "$OUT/serial_$name"
   "$XPER" run "$scene" --out "$OUT/serial_$name" --quiet
+  [[ $name == *_head && $name != box100k_head && $name != nooru_mohamed_head ]] &&
+    serial_pair "$scene" "$OUT/pair_$name"
   run 2 "$scene" "$OUT/strong_${name}_np2" --compare-serial
 done
-# The fluid pairs are short (seconds): repeated REPEAT_FLUID times, serial alone then 2
-# processes, since on this shared 2-core machine one core is at times much slower than the
-# other (the same work takes up to 40 % longer on one rank), which no single pair shows apart.
+# The fluid pairs are short (seconds): repeated REPEAT_FLUID times, serial alone, two serial
+# runs at once, then 2 processes, since on this shared 2-core machine the two cores do not
+# always run at the same speed, nor two processes at once as fast as one alone.
 if [[ " $CASES " == *" fluid "* ]]; then
-  for ((k = 2; k <= ${REPEAT_FLUID:-4}; k++)); do
+  for ((k = 1; k <= ${REPEAT_FLUID:-4}; k++)); do
+    suffix=$([[ $k -gt 1 ]] && echo "_r$k" || true)
+    timeout 600 mpirun -np 2 target/release/xper-domain-sync-ceiling \
+      --out "$OUT/strong_sync_ceiling_np2$suffix"
+    [[ $k -eq 1 ]] && continue
     for name in two_grains_head glowinski_head suspension_head; do
       scene="$OUT/scenes/$name.toml"
-      rm -rf "$OUT/serial_${name}_r$k"
-      "$XPER" run "$scene" --out "$OUT/serial_${name}_r$k" --quiet
-      run 2 "$scene" "$OUT/strong_${name}_np2_r$k" --compare-serial
+      rm -rf "$OUT/serial_${name}$suffix"
+      "$XPER" run "$scene" --out "$OUT/serial_${name}$suffix" --quiet
+      serial_pair "$scene" "$OUT/pair_${name}$suffix"
+      run 2 "$scene" "$OUT/strong_${name}_np2$suffix" --compare-serial
     done
   done
 fi
@@ -197,9 +216,20 @@ for d in sorted(os.listdir(out)):
     p = os.path.join(out, d, "summary.json")
     if os.path.exists(p):
         rows[d] = json.load(open(p))
+# The machine's ceiling beside a fluid pair: the serial run alone over the slower of two at once.
+wall = lambda p: json.load(open(p))["wall_time_s"]
+for d in sorted(os.listdir(out)):
+    if d.startswith("pair_") and os.path.exists(os.path.join(out, d, "b", "summary.json")):
+        name, _, suffix = d[len("pair_"):].partition("_head")
+        alone = wall(os.path.join(out, f"serial_{name}_head{suffix}", "summary.json"))
+        pair = [wall(os.path.join(out, d, x, "summary.json")) for x in "ab"]
+        strong = f"strong_{name}_head_np2{suffix}"
+        if strong in rows:
+            rows[strong]["machine_ceiling"] = {"serial_alone_s": alone, "two_at_once_s": pair,
+                                               "efficiency": alone / max(pair)}
 json.dump(rows, open(os.path.join(out, "scaling.json"), "w"), indent=1)
-print("| run | processes | steps | wall (s) | serial (s) | speed-up | efficiency | max |dx| (m) | comm share (max rank) | bytes / step / rank | messages / step / rank |")
-print("|---|---|---|---|---|---|---|---|---|---|---|")
+print("| run | processes | steps | wall (s) | serial (s) | speed-up | efficiency | machine ceiling | max |dx| (m) | comm share (max rank) | bytes / step / rank | messages / step / rank |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|")
 for d, s in rows.items():
     ranks = s.get("ranks", [])
     steps = max(s["steps"] - s.get("first_step", 0), 1)
@@ -214,6 +244,7 @@ for d, s in rows.items():
     fmt = lambda x, f: (f % x) if x != "" else "-"
     print(f"| {d} | {s['processes']} | {steps} | {c.get('distributed_wall_time_s', s['wall_time_s']):.2f} | "
           f"{fmt(c.get('serial_wall_time_s', ''), '%.2f')} | {fmt(c.get('speed_up', ''), '%.2f')} | "
-          f"{fmt(c.get('efficiency', ''), '%.2f')} | {fmt(c.get('max_position_difference_m', ''), '%.1e')} | "
+          f"{fmt(c.get('efficiency', ''), '%.2f')} | {fmt(s.get('machine_ceiling', {}).get('efficiency', ''), '%.2f')} | "
+          f"{fmt(c.get('max_position_difference_m', ''), '%.1e')} | "
           f"{share:.2f} | {bytes_:.0f} | {msgs:.0f} |")
 PY

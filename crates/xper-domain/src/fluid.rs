@@ -27,6 +27,7 @@
 use crate::communicator::Communicator;
 use crate::stepper::RankLoad;
 use crate::strips::{exchange_with_neighbours, strip_neighbours, StripComm};
+use std::ops::Range;
 use xper_bodies::Shape;
 use xper_fluid::blocks::{HALO_ABOVE, HALO_BELOW};
 use xper_fluid::solver::pressure_multigrid;
@@ -128,10 +129,55 @@ pub struct DistributedFluid<'c, C: Communicator + ?Sized> {
     links: BlockComm<'c, C>,
 }
 
-/// The rows `rows` of a padded array of the whole grid of width `w`, with the ghost row below
-/// and the two above.
-fn block_rows(whole: &[Real], w: usize, rows: &std::ops::Range<usize>) -> Vec<Real> {
-    whole[rows.start * w..(rows.end + 3) * w].to_vec()
+/// The padded rows of the block of rows `rows`: its own, the ghost row below and the two above.
+fn padded_rows(rows: &Range<usize>) -> Range<usize> {
+    rows.start..rows.end + 3
+}
+
+/// The rows two ranges have in common (empty when none).
+fn overlap(a: &Range<usize>, b: &Range<usize>) -> Range<usize> {
+    a.start.max(b.start)..a.end.min(b.end).max(a.start.max(b.start))
+}
+
+/// The grid of the block of rows `rows` of `domain`.
+fn block_grid(domain: &MacGrid, rows: &Range<usize>) -> MacGrid {
+    MacGrid {
+        ny: rows.len(),
+        origin: domain.origin + Vector::new(0.0, rows.start as Real * domain.h),
+        ..*domain
+    }
+}
+
+/// The block of rows `rows` of `whole`, with every grain.
+fn block_of(whole: &CoupledState, rows: &Range<usize>) -> CoupledState {
+    let fluid = &whole.fluid;
+    let (w, nx) = (fluid.grid.width(), fluid.grid.nx);
+    let padded = padded_rows(rows);
+    let block = |field: &[Real]| field[padded.start * w..padded.end * w].to_vec();
+    CoupledState {
+        fluid: FluidState {
+            grid: block_grid(&fluid.grid, rows),
+            velocity: [block(&fluid.velocity[0]), block(&fluid.velocity[1])],
+            pressure: block(&fluid.pressure),
+            increment: fluid.increment[rows.start * nx..rows.end * nx].to_vec(),
+            time: fluid.time,
+            step: fluid.step,
+            inner: fluid.inner.clone(),
+        },
+        world: whole.world.clone(),
+    }
+}
+
+/// Checks that every block of `layout` holds the rows a halo exchange needs.
+fn check_layout(layout: &StripLayout, domain: &MacGrid) -> Result<(), FluidError> {
+    let strips = layout.starts.len() - 1;
+    if (0..strips).any(|s| layout.rows(s).len() < HALO_ABOVE) {
+        return Err(FluidError::Setup(format!(
+            "{} rows are too few for {strips} processes: every block needs at least {HALO_ABOVE} rows",
+            domain.ny
+        )));
+    }
+    Ok(())
 }
 
 impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
@@ -146,46 +192,23 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
         let weights = row_weights(&domain, &whole.world);
         let layout = StripLayout::weighted(domain.nx, domain.ny, comm.size(), &weights)
             .map_err(|why| FluidError::Setup(format!("{why} (one block per process)")))?;
-        Self::with_layout(comm, params, whole, layout)
+        check_layout(&layout, &domain)?;
+        let state = block_of(whole, &layout.rows(comm.rank()));
+        Self::with_layout(comm, params, domain, state, layout)
     }
 
-    /// [`DistributedFluid::new`] with the blocks of `layout`.
+    /// [`DistributedFluid::new`] with the blocks of `layout`, this process's being `state`.
     fn with_layout(
         comm: &'c C,
         params: &FluidParams,
-        whole: &CoupledState,
+        domain: MacGrid,
+        state: CoupledState,
         layout: StripLayout,
     ) -> Result<Self, FluidError> {
-        let domain = whole.fluid.grid;
         let (me, size) = (comm.rank(), comm.size());
-        if (0..size).any(|s| layout.rows(s).len() < HALO_ABOVE) {
-            return Err(FluidError::Setup(format!(
-                "{} rows are too few for {size} processes: every block needs at least {HALO_ABOVE} rows",
-                domain.ny
-            )));
-        }
         let rows = layout.rows(me);
-        let grid = MacGrid {
-            ny: rows.len(),
-            origin: domain.origin + Vector::new(0.0, rows.start as Real * domain.h),
-            ..domain
-        };
         let mut block_params = params.clone();
         block_params.boundary = params.boundary.block(rows.clone(), domain.ny, size);
-        let (w, nx) = (domain.width(), domain.nx);
-        let fluid = &whole.fluid;
-        let state = CoupledState {
-            fluid: FluidState {
-                grid,
-                velocity: [0, 1].map(|d| block_rows(&fluid.velocity[d], w, &rows)),
-                pressure: block_rows(&fluid.pressure, w, &rows),
-                increment: fluid.increment[rows.start * nx..rows.end * nx].to_vec(),
-                time: fluid.time,
-                step: fluid.step,
-                inner: fluid.inner.clone(),
-            },
-            world: whole.world.clone(),
-        };
         let stepper = CoupledStepper::new_block(&block_params, &state, domain)?;
         let (shape, boundary, multigrid_params) = pressure_multigrid(&domain, params);
         let multigrid = StripMultigrid::new(shape, boundary, multigrid_params, layout.clone(), me)
@@ -245,11 +268,112 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
         if layout == self.layout {
             return Ok(());
         }
-        let whole = self.gather_everywhere();
+        self.recut(layout)
+    }
+
+    /// Cuts the blocks as `layout` says (the same on every process). Collective.
+    pub fn recut(&mut self, layout: StripLayout) -> Result<(), FluidError> {
+        if layout.starts.len() != self.comm.size() + 1
+            || layout.starts.last() != Some(&self.domain.ny)
+        {
+            return Err(FluidError::Setup(format!(
+                "a layout of {} blocks ending at row {:?} for {} processes and {} rows",
+                layout.starts.len() - 1,
+                layout.starts.last(),
+                self.comm.size(),
+                self.domain.ny
+            )));
+        }
+        check_layout(&layout, &self.domain)?;
+        let state = self.moved_to(&layout);
         let rebalances = self.rebalances + 1;
-        *self = Self::with_layout(self.comm, &self.whole_params, &whole, layout)?;
+        *self = Self::with_layout(self.comm, &self.whole_params, self.domain, state, layout)?;
         self.rebalances = rebalances;
         Ok(())
+    }
+
+    /// This process's block under `layout`, its rows received from the processes that hold
+    /// them under the current one (only the rows that change owner travel, each to the one
+    /// process that needs it). The same block as [`block_of`] the gathered whole. Collective.
+    fn moved_to(&self, layout: &StripLayout) -> CoupledState {
+        let (me, size) = (self.comm.rank(), self.comm.size());
+        let (w, nx) = (self.domain.width(), self.domain.nx);
+        // The padded rows each process holds now partition the whole grid's: its own rows,
+        // the ghost row below for the first block and the two above for the last.
+        let held = |s: usize| {
+            let (low, high, _) = self.sent_rows(s);
+            low..high
+        };
+        let pieces = |from: usize, to: usize| {
+            (
+                overlap(&held(from), &padded_rows(&layout.rows(to))),
+                overlap(&self.layout.rows(from), &layout.rows(to)),
+            )
+        };
+        let current = &self.state.fluid;
+        let old_start = self.layout.rows(me).start;
+        let pack = |(rows, increment): (Range<usize>, Range<usize>)| {
+            let mut out = Vec::with_capacity(3 * rows.len() * w + increment.len() * nx);
+            if !rows.is_empty() {
+                let (from, to) = ((rows.start - old_start) * w, (rows.end - old_start) * w);
+                for field in [
+                    &current.velocity[0],
+                    &current.velocity[1],
+                    &current.pressure,
+                ] {
+                    out.extend_from_slice(&field[from..to]);
+                }
+            }
+            if !increment.is_empty() {
+                let from = (increment.start - old_start) * nx;
+                out.extend_from_slice(&current.increment[from..from + increment.len() * nx]);
+            }
+            out
+        };
+        let moves = |(rows, increment): &(Range<usize>, Range<usize>)| {
+            !rows.is_empty() || !increment.is_empty()
+        };
+        let sends: Vec<(usize, Vec<Real>)> = (0..size)
+            .filter(|&s| s != me && moves(&pieces(me, s)))
+            .map(|s| (s, pack(pieces(me, s))))
+            .collect();
+        let sources: Vec<usize> = (0..size)
+            .filter(|&s| s != me && moves(&pieces(s, me)))
+            .collect();
+        let received = self.comm.exchange(&sends, &sources);
+        let rows = layout.rows(me);
+        let padded = padded_rows(&rows);
+        let mut velocity = [vec![0.0; padded.len() * w], vec![0.0; padded.len() * w]];
+        let mut pressure = vec![0.0; padded.len() * w];
+        let mut increment = vec![0.0; rows.len() * nx];
+        let own = pack(pieces(me, me));
+        for (s, data) in sources.iter().zip(&received).chain([(&me, &own)]) {
+            let (piece_rows, piece_increment) = pieces(*s, me);
+            let span = piece_rows.len() * w;
+            if span > 0 {
+                let at = (piece_rows.start - padded.start) * w;
+                let [u0, u1] = &mut velocity;
+                for (field, part) in [u0, u1, &mut pressure].into_iter().zip(data.chunks(span)) {
+                    field[at..at + span].copy_from_slice(part);
+                }
+            }
+            if !piece_increment.is_empty() {
+                let at = (piece_increment.start - rows.start) * nx;
+                increment[at..at + piece_increment.len() * nx].copy_from_slice(&data[3 * span..]);
+            }
+        }
+        CoupledState {
+            fluid: FluidState {
+                grid: block_grid(&self.domain, &rows),
+                velocity,
+                pressure,
+                increment,
+                time: current.time,
+                step: current.step,
+                inner: current.inner.clone(),
+            },
+            world: self.state.world.clone(),
+        }
     }
 
     /// The immersed bodies (as [`CoupledStepper::immersed`]).
@@ -281,25 +405,9 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
         self.unpack_all(&strips, whole);
     }
 
-    /// The whole fluid and the grains, on every process. Collective.
-    fn gather_everywhere(&self) -> CoupledState {
-        let (me, size) = (self.comm.rank(), self.comm.size());
-        let own = self.pack();
-        let others: Vec<usize> = (0..size).filter(|&s| s != me).collect();
-        let sends: Vec<(usize, Vec<Real>)> = others.iter().map(|&s| (s, own.clone())).collect();
-        let mut strips = self.comm.exchange(&sends, &others);
-        strips.insert(me, own);
-        let mut whole = CoupledState {
-            fluid: FluidState::at_rest(self.domain, &self.whole_params.boundary),
-            world: self.state.world.clone(),
-        };
-        self.unpack_all(&strips, &mut whole);
-        whole
-    }
-
     /// The padded rows of the whole grid strip `s` sends: its own rows, plus the ghost row
     /// below for the first strip and the two above for the last; and its rows.
-    fn sent_rows(&self, s: usize) -> (usize, usize, std::ops::Range<usize>) {
+    fn sent_rows(&self, s: usize) -> (usize, usize, Range<usize>) {
         let rows = self.layout.rows(s);
         let low = if s == 0 { 0 } else { rows.start + 1 };
         let high = if s + 1 == self.comm.size() {

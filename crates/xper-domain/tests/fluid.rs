@@ -416,3 +416,47 @@ fn a_rebalanced_run_resumed_at_any_step_matches_the_uninterrupted_run_bit_for_bi
     assert_eq!(grain_difference(&resumed, &straight), 0.0);
     assert_eq!(velocity_difference(&resumed, &straight), 0.0);
 }
+
+/// A re-cut moves only the rows that change owner, between the processes concerned; the new
+/// blocks are exactly (every field, halos included) the rows of the gathered whole, for cuts
+/// that move by one row, by most of a block, and past a neighbour's block.
+#[test]
+fn a_recut_moves_the_rows_to_their_new_owners_exactly() {
+    let (params, start) = falling_cloud(1e-5);
+    let ny = start.fluid.grid.ny;
+    for starts in [
+        vec![0, 80, 161, 240, ny],
+        vec![0, 16, 32, 300, ny],
+        vec![0, 250, 260, 270, ny],
+    ] {
+        let layout = xper_poisson::StripLayout { starts };
+        let out = run_on_threads(4, |comm| {
+            let mut run = DistributedFluid::new(comm, &params, &start).unwrap();
+            for _ in 0..5 {
+                run.step().unwrap();
+            }
+            let mut whole = start.clone();
+            run.gather(&mut whole);
+            let before = run.layout().clone();
+            run.recut(layout.clone()).unwrap();
+            (whole, before, run.state().clone())
+        });
+        let whole = &out[0].0;
+        let (w, nx) = (whole.fluid.grid.width(), whole.fluid.grid.nx);
+        for (rank, (_, before, block)) in out.iter().enumerate() {
+            assert_ne!(*before, layout);
+            let rows = layout.rows(rank);
+            let padded = rows.start * w..(rows.end + 3) * w;
+            let fluid = &block.fluid;
+            assert_eq!(fluid.grid.ny, rows.len());
+            assert_eq!(fluid.velocity[0], whole.fluid.velocity[0][padded.clone()]);
+            assert_eq!(fluid.velocity[1], whole.fluid.velocity[1][padded.clone()]);
+            assert_eq!(fluid.pressure, whole.fluid.pressure[padded]);
+            assert_eq!(
+                fluid.increment,
+                whole.fluid.increment[rows.start * nx..rows.end * nx]
+            );
+            assert_eq!(fluid.step, whole.fluid.step);
+        }
+    }
+}

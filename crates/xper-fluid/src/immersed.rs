@@ -75,6 +75,24 @@ impl SolidIndicator {
             SolidIndicator::Smoothed => (0.5 - d / h).clamp(0.0, 1.0),
         }
     }
+
+    /// The squared distances from a disk's centre (radius `r`) beyond which a face's fraction
+    /// is certainly 0 and within which it is certainly 1, each with a relative margin of 1e-9
+    /// (far above the rounding of the distance), so that only the faces between them need
+    /// [`SolidIndicator::fraction`] and its square root.
+    #[inline]
+    fn certain_squared_distances(&self, r: Real, h: Real) -> (Real, Real) {
+        let (outer, inner) = match self {
+            SolidIndicator::Sharp => (r, r),
+            SolidIndicator::Smoothed => (r + 0.5 * h, r - 0.5 * h),
+        };
+        let inner_squared = if inner > 0.0 {
+            inner * inner * (1.0 - 1e-9)
+        } else {
+            -1.0
+        };
+        (outer * outer * (1.0 + 1e-9), inner_squared)
+    }
 }
 
 /// Force (N/m) and torque (N m/m) of the fluid on one grain.
@@ -131,6 +149,7 @@ impl ImmersedForcing {
         let h = grid.h;
         for (p, disk) in disks.iter().enumerate() {
             let reach = disk.radius + h;
+            let (outside, inside) = indicator.certain_squared_distances(disk.radius, h);
             for d in 0..DIM {
                 let faces = boundary.predicted_faces(grid, d);
                 let cells = 0..grid.cells(1 - d) as isize;
@@ -146,8 +165,15 @@ impl ImmersedForcing {
                     for a in ra.clone() {
                         let (i, j) = if d == 0 { (a, b) } else { (b, a) };
                         let x = grid.face_position(d, i, j);
-                        let fraction =
-                            indicator.fraction((x - disk.centre).norm() - disk.radius, h);
+                        let squared = (x - disk.centre).norm_squared();
+                        if squared > outside {
+                            continue;
+                        }
+                        let fraction = if squared < inside {
+                            1.0
+                        } else {
+                            indicator.fraction(squared.sqrt() - disk.radius, h)
+                        };
                         let k = grid.index(i, j);
                         if fraction > self.alpha[d][k] {
                             if self.alpha[d][k] == 0.0 {
