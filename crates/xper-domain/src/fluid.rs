@@ -9,10 +9,10 @@
 //!    process, which gets the same forces and so the same bits, and a grain straddling a cut
 //!    needs no migration). Before every step the cuts are recomputed from the grains'
 //!    positions (a weight per row: cheap; the same on every process, so every process takes
-//!    the same decision); when they moved, the blocks are gathered on every process and cut
-//!    again, as a resume from a checkpoint would. The cuts are a function of the current state
-//!    alone, so a run resumed from any step, on the same number of processes, continues bit
-//!    for bit. (A cut that should not flip back and forth needs the current cuts in the
+//!    the same decision); when they moved, the rows that change owner are sent to their new
+//!    owners ([`DistributedFluid::recut`]), which then hold what a resume from a checkpoint
+//!    would give them. The cuts are a function of the current state alone, so a run resumed
+//!    from any step, on the same number of processes, continues bit for bit. (A cut that should not flip back and forth needs the current cuts in the
 //!    checkpoint; they are not there yet.)
 //! 2. **Step.** [`CoupledStepper::step_with`] runs the serial stages on the block, with
 //!    [`BlockLinks`] for what crosses blocks: the halo rows (one below, two above) after every
