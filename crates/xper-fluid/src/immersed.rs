@@ -117,8 +117,26 @@ pub struct InnerMomentum {
 #[derive(Default)]
 pub struct ImmersedForcing {
     alpha: [Vec<Real>; DIM],
-    owner: [Vec<u32>; DIM],
-    touched: [Vec<usize>; DIM],
+    /// Where each face with a non-zero fraction is in `forced`.
+    slot: [Vec<u32>; DIM],
+    /// The faces with a non-zero fraction, in the order they were first marked, with their
+    /// fraction and grain: the forcing and the inner momentum read these records in sequence
+    /// instead of two whole-grid arrays (whose footprint rows the stages between have evicted
+    /// from the caches).
+    forced: [Vec<ForcedFace>; DIM],
+}
+
+/// A face covered by a grain.
+#[derive(Clone, Copy, Debug)]
+struct ForcedFace {
+    /// Index in the padded layout.
+    index: usize,
+    /// The grain.
+    owner: u32,
+    /// Face coordinates `(i, j)`.
+    at: [i32; 2],
+    /// Solid fraction.
+    alpha: Real,
 }
 
 impl ImmersedForcing {
@@ -126,8 +144,8 @@ impl ImmersedForcing {
     pub fn new(grid: &MacGrid) -> Self {
         ImmersedForcing {
             alpha: grid.zero_velocity(),
-            owner: [vec![0; grid.padded_len()], vec![0; grid.padded_len()]],
-            touched: [Vec::new(), Vec::new()],
+            slot: [vec![0; grid.padded_len()], vec![0; grid.padded_len()]],
+            forced: [Vec::new(), Vec::new()],
         }
     }
 
@@ -141,10 +159,10 @@ impl ImmersedForcing {
         indicator: SolidIndicator,
     ) {
         for d in 0..DIM {
-            for &k in &self.touched[d] {
-                self.alpha[d][k] = 0.0;
+            for face in &self.forced[d] {
+                self.alpha[d][face.index] = 0.0;
             }
-            self.touched[d].clear();
+            self.forced[d].clear();
         }
         let h = grid.h;
         for (p, disk) in disks.iter().enumerate() {
@@ -176,11 +194,20 @@ impl ImmersedForcing {
                         };
                         let k = grid.index(i, j);
                         if fraction > self.alpha[d][k] {
+                            let forced = &mut self.forced[d];
                             if self.alpha[d][k] == 0.0 {
-                                self.touched[d].push(k);
+                                self.slot[d][k] = forced.len() as u32;
+                                forced.push(ForcedFace {
+                                    index: k,
+                                    owner: p as u32,
+                                    at: [i as i32, j as i32],
+                                    alpha: fraction,
+                                });
+                            } else {
+                                let face = &mut forced[self.slot[d][k] as usize];
+                                (face.owner, face.alpha) = (p as u32, fraction);
                             }
                             self.alpha[d][k] = fraction;
-                            self.owner[d][k] = p as u32;
                         }
                     }
                 }
@@ -203,13 +230,12 @@ impl ImmersedForcing {
         forces.resize(disks.len(), HydrodynamicForce::default());
         let area = grid.h * grid.h / dt;
         for (d, ud) in u.iter_mut().enumerate() {
-            for &k in &self.touched[d] {
-                let p = self.owner[d][k] as usize;
+            for face in &self.forced[d] {
+                let (k, p) = (face.index, face.owner as usize);
                 let disk = &disks[p];
-                let (i, j) = face_of(grid, k);
-                let x = grid.face_position(d, i, j);
+                let x = grid.face_position(d, face.at[0] as isize, face.at[1] as isize);
                 let target = disk.velocity_at(&x)[d];
-                let change = self.alpha[d][k] * (target - ud[k]);
+                let change = face.alpha * (target - ud[k]);
                 ud[k] += change;
                 let mut on_fluid = Vector::zeros();
                 on_fluid[d] = density * change * area;
@@ -232,12 +258,11 @@ impl ImmersedForcing {
         out.resize(disks.len(), InnerMomentum::default());
         let area = grid.h * grid.h;
         for (d, ud) in u.iter().enumerate() {
-            for &k in &self.touched[d] {
-                let p = self.owner[d][k] as usize;
-                let (i, j) = face_of(grid, k);
-                let x = grid.face_position(d, i, j);
+            for face in &self.forced[d] {
+                let (k, p) = (face.index, face.owner as usize);
+                let x = grid.face_position(d, face.at[0] as isize, face.at[1] as isize);
                 let mut momentum = Vector::zeros();
-                momentum[d] = density * self.alpha[d][k] * ud[k] * area;
+                momentum[d] = density * face.alpha * ud[k] * area;
                 out[p].linear += momentum;
                 out[p].angular += cross(&(x - disks[p].centre), &momentum);
             }
@@ -248,11 +273,4 @@ impl ImmersedForcing {
     pub fn fraction(&self, d: usize) -> &[Real] {
         &self.alpha[d]
     }
-}
-
-/// The `(i, j)` of a padded index.
-#[inline]
-fn face_of(grid: &MacGrid, k: usize) -> (isize, isize) {
-    let w = grid.width();
-    ((k % w) as isize - 1, (k / w) as isize - 1)
 }
