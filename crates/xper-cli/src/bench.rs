@@ -13,8 +13,9 @@ use xper_nscd::MoreauJean;
 /// Arguments of `xper bench`.
 #[derive(clap::Args)]
 pub struct BenchArgs {
-    /// Scene files (default: scenes/box10k, scenes/box10k_anderson and scenes/box100k).
-    #[arg(long = "scene")]
+    /// Scene files or directories holding scene.toml (default: scenes/box10k,
+    /// scenes/box10k_anderson and scenes/box100k).
+    #[arg(long = "scene", value_parser = crate::scene_path)]
     scenes: Vec<PathBuf>,
     /// Run at most this many steps of each scene (default: the scene's own count).
     #[arg(long)]

@@ -30,3 +30,22 @@ pub enum CliError {
     /// The run could not complete: exit code 1.
     Runtime(String),
 }
+
+/// The scene file a command-line argument names: the path itself, or `DIR/scene.toml` when it
+/// is a directory (the layout of `scenes/<name>/`). For clap's `value_parser`: a directory
+/// without `scene.toml` is an error naming both.
+pub fn scene_path(argument: &str) -> Result<std::path::PathBuf, String> {
+    let path = std::path::PathBuf::from(argument);
+    if !path.is_dir() {
+        return Ok(path);
+    }
+    let file = path.join("scene.toml");
+    if file.is_file() {
+        Ok(file)
+    } else {
+        Err(format!(
+            "{argument} is a directory without a scene file ({} does not exist)",
+            file.display()
+        ))
+    }
+}

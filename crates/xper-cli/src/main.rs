@@ -30,13 +30,15 @@ struct Cli {
 enum Command {
     /// Validate a scene file: exit 0, or print every error (file:line:column: field: reason) and exit 2.
     Check {
-        /// Scene file (TOML).
+        /// Scene file (TOML), or a directory holding scene.toml.
+        #[arg(value_parser = xper_cli::scene_path)]
         scene: PathBuf,
     },
     /// Run a scene and write result.pvd, frames/, series.csv, series.png, summary.json,
     /// checkpoint.bin (fracture scenes: also force_displacement.png and crack_pattern.png).
     Run {
-        /// Scene file (TOML).
+        /// Scene file (TOML), or a directory holding scene.toml.
+        #[arg(value_parser = xper_cli::scene_path)]
         scene: PathBuf,
         /// Output directory (created if needed).
         #[arg(long)]

@@ -127,3 +127,28 @@ fn missing_file_and_bad_flags() {
     let out = xper(&["run", "x.toml"]);
     assert_eq!(out.status.code(), Some(2), "missing --out");
 }
+
+/// A scene directory stands for its `scene.toml`; a directory without one is refused with
+/// both names and exit code 2.
+#[test]
+fn a_scene_directory_stands_for_its_scene_file() {
+    let dir = temp_dir("scene_directory");
+    std::fs::write(dir.join("scene.toml"), VALID).unwrap();
+    let out = xper(&["check", dir.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{out:?}");
+    let empty = temp_dir("scene_directory_empty");
+    let out_dir = empty.join("out");
+    for args in [
+        vec!["check"],
+        vec!["run", "--out", out_dir.to_str().unwrap()],
+    ] {
+        let cmd = args[0];
+        let out = xper(&[&args[..], &[empty.to_str().unwrap()]].concat());
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{cmd}: {stderr}");
+        assert!(
+            stderr.contains(empty.to_str().unwrap()) && stderr.contains("scene.toml"),
+            "{cmd}: {stderr}"
+        );
+    }
+}

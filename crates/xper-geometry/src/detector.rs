@@ -26,7 +26,10 @@ use xper_math::buffer::{clear_for, refill};
 use xper_math::Real;
 
 /// Calls a candidate list should last, at the rate the bodies moved during the previous one.
-pub const TARGET_STEPS_PER_BUILD: Real = 4.0;
+/// On box10k, 8 rather than 4 builds the list 328 times instead of 406 in 1500 steps and
+/// lowers the mean detection time by about 8 ns per body (two runs each, 2026-11-22); the
+/// larger skin costs the steps that keep the list no measurable time.
+pub const TARGET_STEPS_PER_BUILD: Real = 8.0;
 
 /// Largest skin, as a fraction of the largest bounding-box extent of a body that is not a
 /// wall: beyond it, the candidates would reach past the nearest neighbours.
@@ -176,6 +179,8 @@ impl Detector {
         if self.built.len() != bodies.len() || self.built_alert != alert {
             return None;
         }
+        // The two largest squared bounds: the square root is taken of these two only (for a
+        // disk, `d_b^2` is the squared displacement itself).
         let (mut first, mut second): (Real, Real) = (0.0, 0.0);
         for (b, pose) in self.built.iter().enumerate() {
             if bodies.id[b] != pose.id {
@@ -183,14 +188,15 @@ impl Detector {
             }
             let p = bodies.position[b];
             let (dx, dy) = (p.x - pose.x, p.y - pose.y);
-            let mut d = (dx * dx + dy * dy).sqrt();
+            let mut squared = dx * dx + dy * dy;
             if pose.reach > 0.0 {
-                d += pose.reach * (bodies.angle[b] - pose.angle).abs();
+                let d = squared.sqrt() + pose.reach * (bodies.angle[b] - pose.angle).abs();
+                squared = d * d;
             }
-            second = second.max(d.min(first));
-            first = first.max(d);
+            second = second.max(squared.min(first));
+            first = first.max(squared);
         }
-        Some(first + second)
+        Some(first.sqrt() + second.sqrt())
     }
 
     /// Runs the broad phase with the alert distance grown by a new skin, and records the
