@@ -74,16 +74,17 @@ strong=()
 serial_pair() { # scene out: two serial runs of scene at once, into out/a and out/b
   rm -rf "$2"
   "$XPER" run "$1" --out "$2/a" --quiet &
-  local first=$!
-  "$XPER" run "$1" --out "$2/b" --quiet
-  wait "$first"
+  local first=$! status=0
+  "$XPER" run "$1" --out "$2/b" --quiet || status=$?
+  wait "$first" || status=$?
+  return "$status"
 }
+fluid_scenes=(two_grains_head glowinski_head suspension_head)
 for name in "${strong[@]}"; do
   scene="$OUT/scenes/$name.toml"
   rm -rf "$OUT/serial_$name"
   "$XPER" run "$scene" --out "$OUT/serial_$name" --quiet
-  [[ $name == *_head && $name != box100k_head && $name != nooru_mohamed_head ]] &&
-    serial_pair "$scene" "$OUT/pair_$name"
+  [[ " ${fluid_scenes[*]} " == *" $name "* ]] && serial_pair "$scene" "$OUT/pair_$name"
   run 2 "$scene" "$OUT/strong_${name}_np2" --compare-serial
 done
 # The fluid pairs are short (seconds): repeated REPEAT_FLUID times, serial alone, two serial
@@ -95,7 +96,7 @@ if [[ " $CASES " == *" fluid "* ]]; then
     timeout 600 mpirun -np 2 target/release/xper-domain-sync-ceiling \
       --out "$OUT/strong_sync_ceiling_np2$suffix"
     [[ $k -eq 1 ]] && continue
-    for name in two_grains_head glowinski_head suspension_head; do
+    for name in "${fluid_scenes[@]}"; do
       scene="$OUT/scenes/$name.toml"
       rm -rf "$OUT/serial_${name}$suffix"
       "$XPER" run "$scene" --out "$OUT/serial_${name}$suffix" --quiet
@@ -221,10 +222,11 @@ wall = lambda p: json.load(open(p))["wall_time_s"]
 for d in sorted(os.listdir(out)):
     if d.startswith("pair_") and os.path.exists(os.path.join(out, d, "b", "summary.json")):
         name, _, suffix = d[len("pair_"):].partition("_head")
-        alone = wall(os.path.join(out, f"serial_{name}_head{suffix}", "summary.json"))
-        pair = [wall(os.path.join(out, d, x, "summary.json")) for x in "ab"]
+        alone = os.path.join(out, f"serial_{name}_head{suffix}", "summary.json")
         strong = f"strong_{name}_head_np2{suffix}"
-        if strong in rows:
+        if strong in rows and os.path.exists(alone):
+            alone = wall(alone)
+            pair = [wall(os.path.join(out, d, x, "summary.json")) for x in "ab"]
             rows[strong]["machine_ceiling"] = {"serial_alone_s": alone, "two_at_once_s": pair,
                                                "efficiency": alone / max(pair)}
 json.dump(rows, open(os.path.join(out, "scaling.json"), "w"), indent=1)

@@ -15,7 +15,7 @@ use xper_nscd::MoreauJean;
 pub struct BenchArgs {
     /// Scene files or directories holding scene.toml (default: scenes/box10k,
     /// scenes/box10k_anderson and scenes/box100k).
-    #[arg(long = "scene", value_parser = crate::scene_path)]
+    #[arg(long = "scene", value_parser = crate::scene_path_parser())]
     scenes: Vec<PathBuf>,
     /// Run at most this many steps of each scene (default: the scene's own count).
     #[arg(long)]

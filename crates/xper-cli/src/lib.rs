@@ -32,10 +32,9 @@ pub enum CliError {
 }
 
 /// The scene file a command-line argument names: the path itself, or `DIR/scene.toml` when it
-/// is a directory (the layout of `scenes/<name>/`). For clap's `value_parser`: a directory
-/// without `scene.toml` is an error naming both.
-pub fn scene_path(argument: &str) -> Result<std::path::PathBuf, String> {
-    let path = std::path::PathBuf::from(argument);
+/// is a directory (the layout of `scenes/<name>/`). A directory without `scene.toml` is an
+/// error naming both.
+pub fn scene_path(path: std::path::PathBuf) -> Result<std::path::PathBuf, String> {
     if !path.is_dir() {
         return Ok(path);
     }
@@ -44,8 +43,15 @@ pub fn scene_path(argument: &str) -> Result<std::path::PathBuf, String> {
         Ok(file)
     } else {
         Err(format!(
-            "{argument} is a directory without a scene file ({} does not exist)",
+            "{} is a directory without a scene file ({} does not exist)",
+            path.display(),
             file.display()
         ))
     }
+}
+
+/// [`scene_path`] as clap's parser of a scene argument (any path the system accepts).
+pub fn scene_path_parser() -> impl clap::builder::TypedValueParser<Value = std::path::PathBuf> {
+    use clap::builder::TypedValueParser;
+    clap::builder::PathBufValueParser::new().try_map(scene_path)
 }

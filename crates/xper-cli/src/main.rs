@@ -31,14 +31,14 @@ enum Command {
     /// Validate a scene file: exit 0, or print every error (file:line:column: field: reason) and exit 2.
     Check {
         /// Scene file (TOML), or a directory holding scene.toml.
-        #[arg(value_parser = xper_cli::scene_path)]
+        #[arg(value_parser = xper_cli::scene_path_parser())]
         scene: PathBuf,
     },
     /// Run a scene and write result.pvd, frames/, series.csv, series.png, summary.json,
     /// checkpoint.bin (fracture scenes: also force_displacement.png and crack_pattern.png).
     Run {
         /// Scene file (TOML), or a directory holding scene.toml.
-        #[arg(value_parser = xper_cli::scene_path)]
+        #[arg(value_parser = xper_cli::scene_path_parser())]
         scene: PathBuf,
         /// Output directory (created if needed).
         #[arg(long)]

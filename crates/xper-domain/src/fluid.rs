@@ -9,11 +9,12 @@
 //!    process, which gets the same forces and so the same bits, and a grain straddling a cut
 //!    needs no migration). Before every step the cuts are recomputed from the grains'
 //!    positions (a weight per row: cheap; the same on every process, so every process takes
-//!    the same decision); when they moved, the rows that change owner are sent to their new
-//!    owners ([`DistributedFluid::recut`]), which then hold what a resume from a checkpoint
-//!    would give them. The cuts are a function of the current state alone, so a run resumed
-//!    from any step, on the same number of processes, continues bit for bit. (A cut that should not flip back and forth needs the current cuts in the
-//!    checkpoint; they are not there yet.)
+//!    the same decision); when they moved, each process receives the rows its new block needs
+//!    from the processes holding them, those that change owner and its halo rows
+//!    ([`DistributedFluid::recut`]), and then holds what a resume from a checkpoint would
+//!    give it. The cuts are a function of the current state alone, so a run resumed from any
+//!    step, on the same number of processes, continues bit for bit. (A cut that should not
+//!    flip back and forth needs the current cuts in the checkpoint; they are not there yet.)
 //! 2. **Step.** [`CoupledStepper::step_with`] runs the serial stages on the block, with
 //!    [`BlockLinks`] for what crosses blocks: the halo rows (one below, two above) after every
 //!    change of the velocity, pressure or pressure correction; the forcing and the fluid
@@ -274,12 +275,13 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
     /// Cuts the blocks as `layout` says (the same on every process). Collective.
     pub fn recut(&mut self, layout: StripLayout) -> Result<(), FluidError> {
         if layout.starts.len() != self.comm.size() + 1
+            || layout.starts.first() != Some(&0)
             || layout.starts.last() != Some(&self.domain.ny)
         {
             return Err(FluidError::Setup(format!(
-                "a layout of {} blocks ending at row {:?} for {} processes and {} rows",
-                layout.starts.len() - 1,
-                layout.starts.last(),
+                "block boundaries {:?} for {} processes and {} rows (one more boundary than \
+                 processes, from 0 to the number of rows)",
+                layout.starts,
                 self.comm.size(),
                 self.domain.ny
             )));
@@ -292,9 +294,9 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
         Ok(())
     }
 
-    /// This process's block under `layout`, its rows received from the processes that hold
-    /// them under the current one (only the rows that change owner travel, each to the one
-    /// process that needs it). The same block as [`block_of`] the gathered whole. Collective.
+    /// This process's block under `layout`, the rows it needs (those that change owner and
+    /// its new halo rows) received from the processes that hold them under the current one;
+    /// nothing else travels. The same block as [`block_of`] the gathered whole. Collective.
     fn moved_to(&self, layout: &StripLayout) -> CoupledState {
         let (me, size) = (self.comm.rank(), self.comm.size());
         let (w, nx) = (self.domain.width(), self.domain.nx);

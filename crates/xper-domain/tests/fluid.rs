@@ -10,7 +10,7 @@
 //! one by a small multiple of that error, and by less when the tolerance is tightened.
 
 use xper_bodies::{Body, BodySet};
-use xper_domain::{run_on_threads, DistributedFluid, RankLoad};
+use xper_domain::{run_on_threads, Communicator, DistributedFluid, RankLoad};
 use xper_fluid::{CoupledState, CoupledStepper, FluidBoundary, FluidParams, FluidState, MacGrid};
 use xper_laws::LawTable;
 use xper_math::Vector;
@@ -417,9 +417,10 @@ fn a_rebalanced_run_resumed_at_any_step_matches_the_uninterrupted_run_bit_for_bi
     assert_eq!(velocity_difference(&resumed, &straight), 0.0);
 }
 
-/// A re-cut moves only the rows that change owner, between the processes concerned; the new
-/// blocks are exactly (every field, halos included) the rows of the gathered whole, for cuts
-/// that move by one row, by most of a block, and past a neighbour's block.
+/// A re-cut sends each process only the rows its new block needs (less than one whole grid in
+/// all, where gathering it everywhere would send it three times over), and the new blocks are
+/// exactly (every field, halos included) the rows of the gathered whole, for cuts that move by
+/// a few rows, by most of a block, and past a neighbour's block.
 #[test]
 fn a_recut_moves_the_rows_to_their_new_owners_exactly() {
     let (params, start) = falling_cloud(1e-5);
@@ -438,12 +439,22 @@ fn a_recut_moves_the_rows_to_their_new_owners_exactly() {
             let mut whole = start.clone();
             run.gather(&mut whole);
             let before = run.layout().clone();
+            let sent = comm.stats();
             run.recut(layout.clone()).unwrap();
-            (whole, before, run.state().clone())
+            let sent = comm.stats().since(&sent).bytes;
+            (whole, before, run.state().clone(), sent)
         });
         let whole = &out[0].0;
         let (w, nx) = (whole.fluid.grid.width(), whole.fluid.grid.nx);
-        for (rank, (_, before, block)) in out.iter().enumerate() {
+        // Gathering the whole grid on every process would send it three times over.
+        let whole_bytes = 8 * (3 * (ny + 3) * w + ny * nx) as u64;
+        let sent: u64 = out.iter().map(|o| o.3).sum();
+        assert!(
+            sent < whole_bytes,
+            "{:?}: {sent} bytes sent, the whole grid is {whole_bytes}",
+            layout.starts
+        );
+        for (rank, (_, before, block, _)) in out.iter().enumerate() {
             assert_ne!(*before, layout);
             let rows = layout.rows(rank);
             let padded = rows.start * w..(rows.end + 3) * w;

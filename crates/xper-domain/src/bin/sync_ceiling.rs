@@ -3,8 +3,9 @@
 //! solver does and has no imbalance and no other communication cost.
 //!
 //! The work is Jacobi sweeps of the 5-point Laplacian, `u_new[i,j] = (u[i-1,j] + u[i+1,j] +
-//! u[i,j-1] + u[i,j+1]) / 4`, over a hierarchy of grids (each level halves both sizes, as a
-//! multigrid cycle visits them), the rows split into equal strips, one halo row exchanged with
+//! u[i,j-1] + u[i,j+1]) / 4`, over a hierarchy of grids (each level halves both sizes of a
+//! strip, as a multigrid cycle visits them; the serial run's levels are the strips' stacked),
+//! the rows split into equal strips, one halo row exchanged with
 //! each neighbour after every sweep. One step is `K` sweeps on every level. The processes run
 //! `S` steps together; then process 0 runs the same `S` steps on the whole grid alone while the
 //! others wait, as `xper run --compare-serial` does. The efficiency is
@@ -83,13 +84,22 @@ impl Strip {
     }
 }
 
-/// The grids of one process: level `l` has `nx >> l` columns and `rows >> l` rows, down to 8
-/// rows of its own.
-fn levels(nx: usize, rows: usize, rank: usize) -> Vec<Strip> {
+/// The sizes `(columns, rows)` of the levels of a strip of `rows` rows of `nx` columns: each
+/// halves both, down to 8 of each.
+fn level_sizes(nx: usize, rows: usize) -> Vec<(usize, usize)> {
     (0..)
         .map(|l| (nx >> l, rows >> l))
         .take_while(|&(x, r)| r >= 8 && x >= 8)
-        .map(|(x, r)| Strip::new(x, r, rank))
+        .collect()
+}
+
+/// The grids of the strips' levels, each with `strips` times a strip's rows (1 for a strip,
+/// the number of processes for the whole grid relaxed by one process), so that the serial run
+/// does the same work as the strips together.
+fn levels(sizes: &[(usize, usize)], strips: usize, seed: usize) -> Vec<Strip> {
+    sizes
+        .iter()
+        .map(|&(x, r)| Strip::new(x, strips * r, seed))
         .collect()
 }
 
@@ -138,22 +148,23 @@ fn main() {
         comm.abort("--out DIR is required", 2)
     };
     let (rank, size) = (comm.rank(), comm.size());
-    if ny % size != 0 || ny / size < 8 {
+    if ny % size != 0 || ny / size < 8 || nx < 8 {
         comm.abort(
-            &format!("{ny} rows do not split into {size} strips of at least 8"),
+            &format!("{nx} x {ny} cells do not split into {size} strips of at least 8 x 8"),
             2,
         );
     }
-    let mut grids = levels(nx, ny / size, rank);
-    let before = comm.stats();
+    let sizes = level_sizes(nx, ny / size);
+    let mut grids = levels(&sizes, 1, rank);
     let mut barrier = [0.0];
     comm.all_reduce_sum(&mut barrier);
+    let before = comm.stats();
     let distributed = run(&mut grids, steps, sweeps, Some(&comm));
     let mut wall = [distributed];
     comm.all_reduce_max(&mut wall);
     let traffic = comm.stats().since(&before);
     let serial = if rank == 0 {
-        let mut whole = levels(nx, ny, 0);
+        let mut whole = levels(&sizes, size, 0);
         run(&mut whole, steps, sweeps, None)
     } else {
         0.0
