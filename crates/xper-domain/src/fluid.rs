@@ -300,44 +300,24 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
     fn moved_to(&self, layout: &StripLayout) -> CoupledState {
         let (me, size) = (self.comm.rank(), self.comm.size());
         let (w, nx) = (self.domain.width(), self.domain.nx);
-        // The padded rows each process holds now partition the whole grid's: its own rows,
-        // the ghost row below for the first block and the two above for the last.
-        let held = |s: usize| {
-            let (low, high, _) = self.sent_rows(s);
-            low..high
-        };
+        // What process `from` holds now of what process `to` needs under `layout`.
         let pieces = |from: usize, to: usize| {
             (
-                overlap(&held(from), &padded_rows(&layout.rows(to))),
+                overlap(&self.held_rows(from), &padded_rows(&layout.rows(to))),
                 overlap(&self.layout.rows(from), &layout.rows(to)),
             )
         };
         let current = &self.state.fluid;
         let old_start = self.layout.rows(me).start;
-        let pack = |(rows, increment): (Range<usize>, Range<usize>)| {
-            let mut out = Vec::with_capacity(3 * rows.len() * w + increment.len() * nx);
-            if !rows.is_empty() {
-                let (from, to) = ((rows.start - old_start) * w, (rows.end - old_start) * w);
-                for field in [
-                    &current.velocity[0],
-                    &current.velocity[1],
-                    &current.pressure,
-                ] {
-                    out.extend_from_slice(&field[from..to]);
-                }
-            }
-            if !increment.is_empty() {
-                let from = (increment.start - old_start) * nx;
-                out.extend_from_slice(&current.increment[from..from + increment.len() * nx]);
-            }
-            out
-        };
         let moves = |(rows, increment): &(Range<usize>, Range<usize>)| {
             !rows.is_empty() || !increment.is_empty()
         };
         let sends: Vec<(usize, Vec<Real>)> = (0..size)
             .filter(|&s| s != me && moves(&pieces(me, s)))
-            .map(|s| (s, pack(pieces(me, s))))
+            .map(|s| {
+                let (rows, increment) = pieces(me, s);
+                (s, pack_rows(current, old_start, &rows, &increment))
+            })
             .collect();
         let sources: Vec<usize> = (0..size)
             .filter(|&s| s != me && moves(&pieces(s, me)))
@@ -345,35 +325,23 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
         let received = self.comm.exchange(&sends, &sources);
         let rows = layout.rows(me);
         let padded = padded_rows(&rows);
-        let mut velocity = [vec![0.0; padded.len() * w], vec![0.0; padded.len() * w]];
-        let mut pressure = vec![0.0; padded.len() * w];
-        let mut increment = vec![0.0; rows.len() * nx];
-        let own = pack(pieces(me, me));
+        let mut block = FluidState {
+            grid: block_grid(&self.domain, &rows),
+            velocity: [vec![0.0; padded.len() * w], vec![0.0; padded.len() * w]],
+            pressure: vec![0.0; padded.len() * w],
+            increment: vec![0.0; rows.len() * nx],
+            time: current.time,
+            step: current.step,
+            inner: current.inner.clone(),
+        };
+        let (own_rows, own_increment) = pieces(me, me);
+        let own = pack_rows(current, old_start, &own_rows, &own_increment);
         for (s, data) in sources.iter().zip(&received).chain([(&me, &own)]) {
             let (piece_rows, piece_increment) = pieces(*s, me);
-            let span = piece_rows.len() * w;
-            if span > 0 {
-                let at = (piece_rows.start - padded.start) * w;
-                let [u0, u1] = &mut velocity;
-                for (field, part) in [u0, u1, &mut pressure].into_iter().zip(data.chunks(span)) {
-                    field[at..at + span].copy_from_slice(part);
-                }
-            }
-            if !piece_increment.is_empty() {
-                let at = (piece_increment.start - rows.start) * nx;
-                increment[at..at + piece_increment.len() * nx].copy_from_slice(&data[3 * span..]);
-            }
+            unpack_rows(&mut block, rows.start, data, &piece_rows, &piece_increment);
         }
         CoupledState {
-            fluid: FluidState {
-                grid: block_grid(&self.domain, &rows),
-                velocity,
-                pressure,
-                increment,
-                time: current.time,
-                step: current.step,
-                inner: current.inner.clone(),
-            },
+            fluid: block,
             world: self.state.world.clone(),
         }
     }
@@ -407,9 +375,10 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
         self.unpack_all(&strips, whole);
     }
 
-    /// The padded rows of the whole grid strip `s` sends: its own rows, plus the ghost row
-    /// below for the first strip and the two above for the last; and its rows.
-    fn sent_rows(&self, s: usize) -> (usize, usize, Range<usize>) {
+    /// The padded rows of the whole grid process `s` holds and sends: its own rows, plus the
+    /// ghost row below for the first block and the two above for the last. They partition the
+    /// whole grid's padded rows.
+    fn held_rows(&self, s: usize) -> Range<usize> {
         let rows = self.layout.rows(s);
         let low = if s == 0 { 0 } else { rows.start + 1 };
         let high = if s + 1 == self.comm.size() {
@@ -417,43 +386,82 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
         } else {
             rows.end + 1
         };
-        (low, high, rows)
+        low..high
     }
 
     /// This process's rows of the velocity, pressure and pressure increment.
     fn pack(&self) -> Vec<Real> {
-        let w = self.domain.width();
-        let fluid = &self.state.fluid;
-        let (low, high, rows) = self.sent_rows(self.comm.rank());
-        let (from, to) = ((low - rows.start) * w, (high - rows.start) * w);
-        let mut out = Vec::new();
-        for d in 0..2 {
-            out.extend_from_slice(&fluid.velocity[d][from..to]);
-        }
-        out.extend_from_slice(&fluid.pressure[from..to]);
-        out.extend_from_slice(&fluid.increment);
-        out
+        let (me, rows) = (self.comm.rank(), self.layout.rows(self.comm.rank()));
+        pack_rows(&self.state.fluid, rows.start, &self.held_rows(me), &rows)
     }
 
-    /// Writes every strip's [`Self::pack`] (in rank order) into `whole`, with this process's
+    /// Writes every process's [`Self::pack`] (in rank order) into `whole`, with this process's
     /// time, step, inner momenta and grains.
     fn unpack_all(&self, strips: &[Vec<Real>], whole: &mut CoupledState) {
-        let (w, nx) = (self.domain.width(), self.domain.nx);
-        let fluid = &mut whole.fluid;
         for (s, data) in strips.iter().enumerate() {
-            let (low, high, rows) = self.sent_rows(s);
-            let span = (high - low) * w;
-            let mut parts = data.chunks(span);
-            let [u0, u1] = &mut fluid.velocity;
-            for field in [u0, u1, &mut fluid.pressure] {
-                field[low * w..high * w].copy_from_slice(parts.next().unwrap_or_default());
-            }
-            let increment = &data[3 * span..];
-            fluid.increment[rows.start * nx..rows.end * nx].copy_from_slice(increment);
+            unpack_rows(
+                &mut whole.fluid,
+                0,
+                data,
+                &self.held_rows(s),
+                &self.layout.rows(s),
+            );
         }
+        let fluid = &mut whole.fluid;
         fluid.time = self.state.fluid.time;
         fluid.step = self.state.fluid.step;
         fluid.inner.clone_from(&self.state.fluid.inner);
         whole.world.clone_from(&self.state.world);
+    }
+}
+
+/// The padded rows `padded` (of the whole grid) of both velocity components and the pressure,
+/// then the rows `increment` of the pressure increment, of `fluid`, a block whose first row is
+/// row `first` of the whole grid (0 for the whole grid).
+fn pack_rows(
+    fluid: &FluidState,
+    first: usize,
+    padded: &Range<usize>,
+    increment: &Range<usize>,
+) -> Vec<Real> {
+    let (w, nx) = (fluid.grid.width(), fluid.grid.nx);
+    let mut out = Vec::with_capacity(3 * padded.len() * w + increment.len() * nx);
+    if !padded.is_empty() {
+        let (from, to) = ((padded.start - first) * w, (padded.end - first) * w);
+        for field in [&fluid.velocity[0], &fluid.velocity[1], &fluid.pressure] {
+            out.extend_from_slice(&field[from..to]);
+        }
+    }
+    if !increment.is_empty() {
+        let from = (increment.start - first) * nx;
+        out.extend_from_slice(&fluid.increment[from..from + increment.len() * nx]);
+    }
+    out
+}
+
+/// Writes `data`, packed by [`pack_rows`] with the same rows, into `fluid`, a block whose first
+/// row is row `first` of the whole grid.
+fn unpack_rows(
+    fluid: &mut FluidState,
+    first: usize,
+    data: &[Real],
+    padded: &Range<usize>,
+    increment: &Range<usize>,
+) {
+    let (w, nx) = (fluid.grid.width(), fluid.grid.nx);
+    let span = padded.len() * w;
+    if span > 0 {
+        let at = (padded.start - first) * w;
+        let [u0, u1] = &mut fluid.velocity;
+        for (field, part) in [u0, u1, &mut fluid.pressure]
+            .into_iter()
+            .zip(data.chunks(span))
+        {
+            field[at..at + span].copy_from_slice(part);
+        }
+    }
+    if !increment.is_empty() {
+        let at = (increment.start - first) * nx;
+        fluid.increment[at..at + increment.len() * nx].copy_from_slice(&data[3 * span..]);
     }
 }
