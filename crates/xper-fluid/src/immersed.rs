@@ -129,14 +129,21 @@ pub struct ImmersedForcing {
 /// A face covered by a grain.
 #[derive(Clone, Copy, Debug)]
 struct ForcedFace {
-    /// Index in the padded layout.
-    index: usize,
     /// The grain.
     owner: u32,
     /// Face coordinates `(i, j)`.
     at: [i32; 2],
     /// Solid fraction.
     alpha: Real,
+}
+
+impl ForcedFace {
+    /// The face's coordinates and its index in the padded layout of `grid`.
+    #[inline]
+    fn place(&self, grid: &MacGrid) -> (isize, isize, usize) {
+        let (i, j) = (self.at[0] as isize, self.at[1] as isize);
+        (i, j, grid.index(i, j))
+    }
 }
 
 impl ImmersedForcing {
@@ -160,7 +167,7 @@ impl ImmersedForcing {
     ) {
         for d in 0..DIM {
             for face in &self.forced[d] {
-                self.alpha[d][face.index] = 0.0;
+                self.alpha[d][face.place(grid).2] = 0.0;
             }
             self.forced[d].clear();
         }
@@ -198,7 +205,6 @@ impl ImmersedForcing {
                             if self.alpha[d][k] == 0.0 {
                                 self.slot[d][k] = forced.len() as u32;
                                 forced.push(ForcedFace {
-                                    index: k,
                                     owner: p as u32,
                                     at: [i as i32, j as i32],
                                     alpha: fraction,
@@ -231,9 +237,9 @@ impl ImmersedForcing {
         let area = grid.h * grid.h / dt;
         for (d, ud) in u.iter_mut().enumerate() {
             for face in &self.forced[d] {
-                let (k, p) = (face.index, face.owner as usize);
+                let ((i, j, k), p) = (face.place(grid), face.owner as usize);
                 let disk = &disks[p];
-                let x = grid.face_position(d, face.at[0] as isize, face.at[1] as isize);
+                let x = grid.face_position(d, i, j);
                 let target = disk.velocity_at(&x)[d];
                 let change = face.alpha * (target - ud[k]);
                 ud[k] += change;
@@ -259,8 +265,8 @@ impl ImmersedForcing {
         let area = grid.h * grid.h;
         for (d, ud) in u.iter().enumerate() {
             for face in &self.forced[d] {
-                let (k, p) = (face.index, face.owner as usize);
-                let x = grid.face_position(d, face.at[0] as isize, face.at[1] as isize);
+                let ((i, j, k), p) = (face.place(grid), face.owner as usize);
+                let x = grid.face_position(d, i, j);
                 let mut momentum = Vector::zeros();
                 momentum[d] = density * face.alpha * ud[k] * area;
                 out[p].linear += momentum;
