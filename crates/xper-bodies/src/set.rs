@@ -131,6 +131,23 @@ impl BodySet {
         handle
     }
 
+    /// Releases the room the arrays have beyond their bodies (a set filled by
+    /// [`BodySet::insert`] grows by doubling, up to twice the room it needs).
+    pub fn shrink_to_fit(&mut self) {
+        self.position.shrink_to_fit();
+        self.angle.shrink_to_fit();
+        self.velocity.shrink_to_fit();
+        self.angular_velocity.shrink_to_fit();
+        self.mass.shrink_to_fit();
+        self.inertia.shrink_to_fit();
+        self.inv_mass.shrink_to_fit();
+        self.shape.shrink_to_fit();
+        self.group.shrink_to_fit();
+        self.id.shrink_to_fit();
+        self.ownership.shrink_to_fit();
+        self.driven.shrink_to_fit();
+    }
+
     /// Generalised velocity (vx, vy, w) of a body.
     #[inline(always)]
     pub fn generalized_velocity(&self, b: usize) -> [Real; DOFS] {

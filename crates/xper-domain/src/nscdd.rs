@@ -95,7 +95,7 @@ impl SplitMasses for RigidContactOperator {
         self.rows[a].bodies
     }
     fn set_block(&mut self, a: usize, block: Block2) {
-        self.rows[a].block = block;
+        self.rows[a].set_full_block(block);
     }
     fn refresh_block(&mut self, a: usize) {
         self.rows[a].refresh_block(&self.bodies);

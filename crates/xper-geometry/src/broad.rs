@@ -5,22 +5,79 @@
 //! sort and tested against their own cell and four neighbour cells (half of the 3x3
 //! neighbourhood, so each pair is met once). Walls ("large") are tested against the small
 //! bodies in the cells their bounding box covers, and against each other by brute force.
+//!
+//! The boxes are kept in single precision, rounded outwards ([`OuterBox`]): half the bytes
+//! to hold and read, and every pair the double-precision boxes would find is still found.
 
 use xper_bodies::{BodySet, Shape};
 use xper_math::buffer::{clear_for, refill};
-use xper_math::{Aabb, Real, Vector};
+use xper_math::{Aabb, Real, Vector, DIM};
+
+/// A bounding box in single precision that contains the double-precision box it was made
+/// from (each bound rounded outwards), so that boxes that overlap still overlap. The broad
+/// phase's pairs are thus a superset of the exact boxes' pairs, and the narrow phase, in
+/// double precision, finds the same contacts.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct OuterBox {
+    /// Lower corner, rounded down.
+    pub min: [f32; DIM],
+    /// Upper corner, rounded up.
+    pub max: [f32; DIM],
+}
+
+impl OuterBox {
+    /// The smallest single-precision box containing `b`.
+    pub fn around(b: &Aabb) -> Self {
+        let down = |x: Real| {
+            let f = x as f32;
+            if f as Real > x {
+                f.next_down()
+            } else {
+                f
+            }
+        };
+        let up = |x: Real| {
+            let f = x as f32;
+            if (f as Real) < x {
+                f.next_up()
+            } else {
+                f
+            }
+        };
+        OuterBox {
+            min: std::array::from_fn(|k| down(b.min[k])),
+            max: std::array::from_fn(|k| up(b.max[k])),
+        }
+    }
+
+    /// The box in double precision (exact).
+    pub fn aabb(&self) -> Aabb {
+        Aabb {
+            min: Vector::from_fn(|k, _| self.min[k] as Real),
+            max: Vector::from_fn(|k, _| self.max[k] as Real),
+        }
+    }
+
+    /// Whether two boxes overlap (touching counts), without branches.
+    #[inline(always)]
+    pub fn intersects(&self, other: &OuterBox) -> bool {
+        (0..DIM).fold(true, |hit, k| {
+            hit & (self.min[k] <= other.max[k]) & (other.min[k] <= self.max[k])
+        })
+    }
+}
 
 /// The broad phase with its reusable buffers.
 #[derive(Clone, Debug, Default)]
 pub struct BroadPhase {
-    aabbs: Vec<Aabb>,
+    aabbs: Vec<OuterBox>,
     small: Vec<u32>,
     large: Vec<u32>,
     cell_of: Vec<u32>,
     cell_start: Vec<u32>,
     cell_bodies: Vec<u32>,
     /// `aabbs[cell_bodies[k]]`: the boxes in cell order, read contiguously by the pair loops.
-    cell_boxes: Vec<Aabb>,
+    cell_boxes: Vec<OuterBox>,
     fill: Vec<u32>,
 }
 
@@ -61,7 +118,7 @@ impl BroadPhase {
             let aabb = bodies.shape[b]
                 .aabb(&bodies.position[b], bodies.angle[b])
                 .loosened(alert / 2.0);
-            self.aabbs.push(aabb);
+            self.aabbs.push(OuterBox::around(&aabb));
             if matches!(bodies.shape[b], Shape::Segment { .. }) {
                 self.large.push(b as u32);
             } else {
@@ -83,11 +140,11 @@ impl BroadPhase {
 
     fn bin_small_bodies(&mut self) -> Option<Grid> {
         let first = *self.small.first()?;
-        let mut bounds = self.aabbs[first as usize];
+        let mut bounds = self.aabbs[first as usize].aabb();
         let mut cell: Real = 0.0;
         for &b in &self.small {
-            let bb = &self.aabbs[b as usize];
-            bounds = bounds.merged(bb);
+            let bb = self.aabbs[b as usize].aabb();
+            bounds = bounds.merged(&bb);
             cell = cell.max(bb.max_extent());
         }
         let extent = bounds.max - bounds.min;
@@ -107,7 +164,7 @@ impl BroadPhase {
         refill(&mut self.cell_start, std::iter::repeat_n(0, nx * ny + 1));
         clear_for(&mut self.cell_of, self.small.len());
         for &b in &self.small {
-            let bb = &self.aabbs[b as usize];
+            let bb = self.aabbs[b as usize].aabb();
             let (cx, cy) = grid.coords(&((bb.min + bb.max) / 2.0));
             let c = (cy * nx + cx) as u32;
             self.cell_of.push(c);
@@ -140,7 +197,7 @@ impl BroadPhase {
 
     /// The bodies of cell `c` and their boxes.
     #[inline(always)]
-    fn cell_slices(&self, c: usize) -> (&[u32], &[Aabb]) {
+    fn cell_slices(&self, c: usize) -> (&[u32], &[OuterBox]) {
         let range = self.cell_start[c] as usize..self.cell_start[c + 1] as usize;
         (&self.cell_bodies[range.clone()], &self.cell_boxes[range])
     }
@@ -179,7 +236,7 @@ impl BroadPhase {
     fn large_small_pairs(&self, grid: &Grid, pairs: &mut Vec<(u32, u32)>) {
         for &l in &self.large {
             // Small bodies are binned by centre and reach half a cell beyond it.
-            let bb = self.aabbs[l as usize].loosened(grid.cell / 2.0);
+            let bb = self.aabbs[l as usize].aabb().loosened(grid.cell / 2.0);
             let (x0, y0) = grid.coords(&bb.min);
             let (x1, y1) = grid.coords(&bb.max);
             for cy in y0..=y1 {

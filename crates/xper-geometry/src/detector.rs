@@ -68,14 +68,12 @@ pub struct DetectorStats {
 
 /// Detection with its reusable buffers: candidate pairs, narrow phase, carry-over of impulses.
 ///
-/// Only the non-zero impulses of the previous step are kept between calls (32 bytes each),
-/// not the previous contacts themselves.
+/// Between calls it holds the candidate pairs and the poses they were built at. During a call
+/// it also holds the non-zero impulses of the previous contacts (32 bytes each), for the
+/// merge with the new ones, and during a list build the broad phase's arrays.
 #[derive(Clone, Debug, Default)]
 pub struct Detector {
-    broad: BroadPhase,
     candidates: Vec<(u32, u32)>,
-    unsorted: Vec<(u32, u32)>,
-    group_start: Vec<u32>,
     built: Vec<BuildPose>,
     built_alert: Real,
     skin: Real,
@@ -113,16 +111,17 @@ impl Detector {
         contacts: &mut ContactSet,
     ) {
         self.stats.calls += 1;
-        self.carry_impulses(&contacts.contacts);
-        // Room for as many contacts as before and a sixteenth more, so the buffer tracks the
-        // count instead of doubling (see `xper_math::buffer`).
-        let previous = contacts.contacts.len();
-        clear_for(&mut contacts.contacts, previous + previous / 16 + 16);
+        // The list first, then the impulses to carry over: the two are never held at once.
         let moved = self.moved_since_build(bodies, alert);
         if moved.is_none_or(|m| m > self.skin) {
             self.build(bodies, alert, moved);
         }
         self.calls_since_build += 1;
+        self.carry_impulses(&contacts.contacts);
+        // Room for as many contacts as before and a sixteenth more, so the buffer tracks the
+        // count instead of doubling (see `xper_math::buffer`).
+        let previous = contacts.contacts.len();
+        clear_for(&mut contacts.contacts, previous + previous / 16 + 16);
         let immobile = |b: usize| bodies.inv_mass[b].iter().all(|&m| m == 0.0);
         let mut next_carried = 0;
         for &(i, j) in &self.candidates {
@@ -170,6 +169,8 @@ impl Detector {
                 });
             }
         }
+        // Held during detection only, so not during the solve (32 bytes per contact).
+        self.carried = Vec::new();
     }
 
     /// How far two bodies may have moved towards each other since the list was built: the
@@ -220,13 +221,22 @@ impl Detector {
                 },
             }),
         );
+        // What serves only this build is held only during it, and never all at once: the list
+        // that ends (dropped first), the broad phase's arrays (dropped once the pairs are
+        // found), the unsorted pairs and the sort's counts (dropped once sorted). Between
+        // builds the detector holds the list and the poses alone; at a build its peak is the
+        // broad phase's arrays and the unsorted pairs.
         let previous = self.candidates.len();
-        clear_for(&mut self.unsorted, previous + previous / 16 + 16);
-        (self.broad).find_pairs(bodies, alert + self.skin, &mut self.unsorted);
+        self.candidates = Vec::new();
+        let mut unsorted = Vec::with_capacity(previous + previous / 16 + 16);
+        let mut broad = BroadPhase::new();
+        broad.find_pairs(bodies, alert + self.skin, &mut unsorted);
+        drop(broad);
+        let mut group_start = Vec::new();
         sort_pairs(
-            &self.unsorted,
+            &unsorted,
             bodies.len(),
-            &mut self.group_start,
+            &mut group_start,
             &mut self.candidates,
         );
     }

@@ -10,7 +10,7 @@ mod contacts;
 mod detector;
 pub mod narrow;
 
-pub use broad::BroadPhase;
+pub use broad::{BroadPhase, OuterBox};
 pub use contacts::{Contact, ContactSet};
 pub use detector::{Detector, DetectorStats, SKIN_CAP_OVER_SIZE, TARGET_STEPS_PER_BUILD};
 pub use narrow::{collide, ContactPoint, Manifold};

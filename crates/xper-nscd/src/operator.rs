@@ -21,7 +21,8 @@ pub struct SolverBody {
     pub inv_mass: [Real; DOFS],
 }
 
-/// What one contact needs: its bodies, normal, lever arms and diagonal Delassus block.
+/// What one contact needs: its bodies, normal, lever arms and diagonal Delassus block
+/// (80 bytes).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct ContactRow {
     /// Bodies `[i, j]`; the normal points from `i` to `j`.
@@ -30,8 +31,8 @@ pub struct ContactRow {
     pub normal: [Real; 2],
     /// `[r_i x n, r_i x t, r_j x n, r_j x t]`, lever arms from each centre to the point.
     pub arms: [Real; 4],
-    /// `W_aa`.
-    pub block: Block2,
+    /// `W_aa = G_i^T M_i^-1 G_i + G_j^T M_j^-1 G_j`, symmetric, as `[W_NN, W_NT, W_TT]`.
+    pub block: [Real; 3],
 }
 
 impl ContactRow {
@@ -42,18 +43,29 @@ impl ContactRow {
         let t = tangent(&n);
         let [i, j] = [self.bodies[0] as usize, self.bodies[1] as usize];
         let arms = self.arms;
-        let mut block = [0.0; 4];
+        let mut block = [0.0; 3];
         for (m, an, at) in [
             (bodies[i].inv_mass, arms[0], arms[1]),
             (bodies[j].inv_mass, arms[2], arms[3]),
         ] {
-            let nt = m[0] * n.x * t.x + m[1] * n.y * t.y + m[2] * an * at;
             block[0] += m[0] * n.x * n.x + m[1] * n.y * n.y + m[2] * an * an;
-            block[1] += nt;
-            block[2] += nt;
-            block[3] += m[0] * t.x * t.x + m[1] * t.y * t.y + m[2] * at * at;
+            block[1] += m[0] * n.x * t.x + m[1] * n.y * t.y + m[2] * an * at;
+            block[2] += m[0] * t.x * t.x + m[1] * t.y * t.y + m[2] * at * at;
         }
         self.block = block;
+    }
+
+    /// `W_aa` as a 2x2 block `[W_NN, W_NT, W_TN, W_TT]`.
+    #[inline(always)]
+    pub fn full_block(&self) -> Block2 {
+        let [nn, nt, tt] = self.block;
+        [nn, nt, nt, tt]
+    }
+
+    /// Sets `W_aa` from a 2x2 block, which must be symmetric (as a Delassus block is).
+    pub fn set_full_block(&mut self, block: Block2) {
+        debug_assert_eq!(block[1], block[2], "a Delassus block is symmetric");
+        self.block = [block[0], block[1], block[3]];
     }
 }
 
@@ -111,20 +123,21 @@ impl RigidContactOperator {
             bodies: c.bodies,
             normal: [n.x, n.y],
             arms,
-            block: [0.0; 4],
+            block: [0.0; 3],
         };
         row.refresh_block(inv_mass);
         row
     }
 
-    /// The local velocity `(U_N, U_T)` of row `a` for the generalised body velocities
-    /// `velocities` instead of the working ones (e.g. those at the beginning of the step).
+    /// The local velocity `(U_N, U_T)` of row `a` for the velocities of the bodies of `set`
+    /// instead of the working ones (e.g. those at the beginning of the step, which a body
+    /// set holds until the step's update).
     #[inline(always)]
-    pub fn local_velocity_for(&self, a: usize, velocities: &[[Real; DOFS]]) -> [Real; 2] {
+    pub fn local_velocity_at(&self, a: usize, set: &BodySet) -> [Real; 2] {
         let row = &self.rows[a];
-        let vi = &velocities[row.bodies[0] as usize];
-        let vj = &velocities[row.bodies[1] as usize];
-        relative_velocity(row, vi, vj)
+        let vi = set.generalized_velocity(row.bodies[0] as usize);
+        let vj = set.generalized_velocity(row.bodies[1] as usize);
+        relative_velocity(row, &vi, &vj)
     }
 
     /// Generalised impulses `(on body i, on body j)` of a local impulse `r` at a row.
@@ -148,7 +161,7 @@ impl ContactOperator for RigidContactOperator {
 
     #[inline(always)]
     fn diagonal_block(&self, a: usize) -> Block2 {
-        self.rows[a].block
+        self.rows[a].full_block()
     }
 
     #[inline(always)]
@@ -175,11 +188,12 @@ impl ContactOperator for RigidContactOperator {
         let row = &self.rows[a];
         let vi = self.bodies[row.bodies[0] as usize].velocity;
         let vj = self.bodies[row.bodies[1] as usize].velocity;
-        let d = solve(&row.block, relative_velocity(row, &vi, &vj));
+        let block = row.full_block();
+        let d = solve(&block, relative_velocity(row, &vi, &vj));
         if d[0] != 0.0 || d[1] != 0.0 {
             push_bodies(&mut self.bodies, row, d);
         }
-        (row.block, d)
+        (block, d)
     }
 }
 

@@ -86,9 +86,6 @@ pub struct MoreauJean {
     mu: Vec<Real>,
     shift: Vec<Real>,
     impulses: Vec<[Real; 2]>,
-    /// Generalised velocities at the beginning of the step; the local ones `U_i = H^T v_i`
-    /// are computed from them where needed (not stored per contact).
-    v_begin: Vec<[Real; DOFS]>,
     /// Forces applied to the bodies during each step besides gravity and drives (e.g. the
     /// fluid's), one generalised force per body; empty when there are none.
     external_forces: Vec<[Real; DOFS]>,
@@ -171,21 +168,25 @@ impl MoreauJean {
         let mut imposed_work = 0.0;
         for k in 0..self.active.len() {
             let (r, row) = (self.impulses[k], &self.op.rows[k]);
-            let u0 = self.op.local_velocity_for(k, &self.v_begin);
+            let u0 = self.op.local_velocity_at(k, &world.bodies);
             let u1 = self.op.local_velocity(k);
             dissipated -= r[0] * (u0[0] + u1[0]) / 2.0 + r[1] * (u0[1] + u1[1]) / 2.0;
             let (gi, gj) = RigidContactOperator::generalized_impulses(row, r);
             for (b, g) in [(row.bodies[0] as usize, gi), (row.bodies[1] as usize, gj)] {
-                let body = &self.op.bodies[b];
+                let (body, v0) = (&self.op.bodies[b], world.bodies.generalized_velocity(b));
                 for (d, &gd) in g.iter().enumerate() {
                     if body.inv_mass[d] == 0.0 {
-                        imposed_work += gd * (self.v_begin[b][d] + body.velocity[d]) / 2.0;
+                        imposed_work += gd * (v0[d] + body.velocity[d]) / 2.0;
                     }
                 }
             }
         }
         world.energy.dissipated += dissipated;
         world.energy.external_work += self.driven_work(world, t_begin, t_end) - imposed_work;
+
+        // Stage: linearised gaps at the end of the step, while the bodies still hold the
+        // velocities at its beginning.
+        let deepest = self.end_gaps(world);
 
         // Stage: update velocities and positions; keep impulses for the warm start.
         self.update(world)?;
@@ -199,7 +200,7 @@ impl MoreauJean {
         // Stage: project positions out of overlaps.
         let t_project = Instant::now();
         (report.projection_iterations, report.max_overlap) =
-            self.project(world, reborrow(&mut shared))?;
+            self.project(world, deepest, reborrow(&mut shared))?;
         report.times.project = t_project.elapsed().as_secs_f64();
 
         world.step += 1;
@@ -306,15 +307,12 @@ impl MoreauJean {
         report.contacts = world.contacts.len();
         report.times.detect = start.elapsed().as_secs_f64();
 
-        // Stage: assemble the rows and keep the velocities at the beginning of the step (the
-        // local ones, U_i = H^T v_i, are computed from them where needed).
+        // Stage: assemble the rows. The velocities at the beginning of the step stay in the
+        // bodies until the update; the local ones, U_i = H^T v_i, are computed from them
+        // where needed (not stored).
         let bodies = &world.bodies;
-        refill(
-            &mut self.v_begin,
-            (0..bodies.len()).map(|b| bodies.generalized_velocity(b)),
-        );
-        let v_begin = &self.v_begin;
-        self.op.load_bodies(bodies, |b| v_begin[b]);
+        self.op
+            .load_bodies(bodies, |b| bodies.generalized_velocity(b));
         let contacts = &world.contacts.contacts;
         refill(
             &mut self.op.rows,
@@ -332,7 +330,7 @@ impl MoreauJean {
         clear_for(&mut self.impulses, n);
         let closed = world.params.projection_tolerance.unwrap_or(0.0);
         for (a, c) in world.contacts.contacts.iter().enumerate() {
-            let un = self.op.local_velocity_for(a, &self.v_begin)[0];
+            let un = self.op.local_velocity_at(a, &world.bodies)[0];
             let InteractionLaw::SignoriniCoulomb(law) = *world.laws.law(c.law);
             let Some(shift) = normal_shift(c.gap, un, h, theta, law.restitution, closed) else {
                 continue;
@@ -448,7 +446,10 @@ impl MoreauJean {
             if !owned(b) {
                 continue;
             }
-            let (v0, v1) = (self.v_begin[b], self.op.bodies[b].velocity);
+            let (v0, v1) = (
+                world.bodies.generalized_velocity(b),
+                self.op.bodies[b].velocity,
+            );
             let masses = [
                 world.bodies.mass[b],
                 world.bodies.mass[b],
@@ -475,7 +476,10 @@ impl MoreauJean {
             if !owned(b) {
                 continue;
             }
-            let (v0, v1) = (self.v_begin[b], self.op.bodies[b].velocity);
+            let (v0, v1) = (
+                world.bodies.generalized_velocity(b),
+                self.op.bodies[b].velocity,
+            );
             for d in 0..DOFS {
                 if self.op.bodies[b].inv_mass[d] > 0.0 {
                     work += h * force[d] * (v0[d] + v1[d]) / 2.0;
@@ -490,7 +494,7 @@ impl MoreauJean {
         let (h, theta) = (world.params.dt, world.params.theta);
         let bodies = &mut world.bodies;
         for b in 0..bodies.len() {
-            let (v0, v1) = (self.v_begin[b], self.op.bodies[b].velocity);
+            let (v0, v1) = (bodies.generalized_velocity(b), self.op.bodies[b].velocity);
             let dq: [Real; DOFS] =
                 std::array::from_fn(|d| h * ((1.0 - theta) * v0[d] + theta * v1[d]));
             bodies.position[b].x += dq[0];
@@ -506,43 +510,48 @@ impl MoreauJean {
         Ok(())
     }
 
-    /// Removes overlaps larger than the projection tolerance: returns the sweeps used and the
-    /// largest overlap before projection.
-    fn project(
-        &mut self,
-        world: &mut World,
-        mut shared: Option<&mut dyn ContactSolve>,
-    ) -> Result<(u32, Real), StepError> {
+    /// The linearised gap at the end of the step of every contact, into `self.shift`, and
+    /// the largest overlap among them; called before [`Self::update`], while the bodies hold
+    /// the velocities at the beginning of the step.
+    fn end_gaps(&mut self, world: &World) -> Real {
         let (h, theta) = (world.params.dt, world.params.theta);
-        // Linearised gaps at the end of the step, over every contact's row.
-        let subset = self.active_is_subset;
-        if subset {
+        if self.active_is_subset {
             std::mem::swap(&mut self.op.rows, &mut self.all_rows);
         }
         clear_for(&mut self.shift, world.contacts.len());
         let mut deepest: Real = 0.0;
         for (a, c) in world.contacts.contacts.iter().enumerate() {
             let u_end = self.op.local_velocity(a)[0];
-            let u_begin = self.op.local_velocity_for(a, &self.v_begin)[0];
+            let u_begin = self.op.local_velocity_at(a, &world.bodies)[0];
             let gap = c.gap + h * ((1.0 - theta) * u_begin + theta * u_end);
             deepest = deepest.max(-gap);
             self.shift.push(gap);
         }
+        if self.active_is_subset {
+            std::mem::swap(&mut self.op.rows, &mut self.all_rows);
+        }
+        deepest
+    }
+
+    /// Removes overlaps larger than the projection tolerance, from the end gaps that
+    /// [`Self::end_gaps`] left in `self.shift` and their largest overlap `deepest` on this
+    /// process: returns the sweeps used and the largest overlap before projection.
+    fn project(
+        &mut self,
+        world: &mut World,
+        deepest: Real,
+        mut shared: Option<&mut dyn ContactSolve>,
+    ) -> Result<(u32, Real), StepError> {
+        let mut deepest = deepest;
         if let Some(s) = reborrow(&mut shared) {
             deepest = s.agree_max(deepest);
         }
-        let restore = |me: &mut Self| {
-            if subset {
-                std::mem::swap(&mut me.op.rows, &mut me.all_rows);
-            }
-        };
-        let Some(tolerance) = world.params.projection_tolerance else {
-            restore(self);
+        if !(world.params.projection_tolerance).is_some_and(|tolerance| deepest > tolerance) {
             return Ok((0, deepest));
-        };
-        if deepest <= tolerance {
-            restore(self);
-            return Ok((0, deepest));
+        }
+        let subset = self.active_is_subset;
+        if subset {
+            std::mem::swap(&mut self.op.rows, &mut self.all_rows);
         }
         let n = self.op.rows.len();
         for body in &mut self.op.bodies {
@@ -571,7 +580,9 @@ impl MoreauJean {
             bodies.position[b].y += body.velocity[1];
             bodies.angle[b] += body.velocity[2];
         }
-        restore(self);
+        if subset {
+            std::mem::swap(&mut self.op.rows, &mut self.all_rows);
+        }
         Ok((info.iterations, deepest))
     }
 }

@@ -78,8 +78,9 @@ pub struct World {
 }
 
 impl World {
-    /// A world at time 0.
-    pub fn new(bodies: BodySet, laws: LawTable, params: StepParams) -> Self {
+    /// A world at time 0. The body set's spare room is released: it is complete.
+    pub fn new(mut bodies: BodySet, laws: LawTable, params: StepParams) -> Self {
+        bodies.shrink_to_fit();
         let initial = bodies.kinetic_energy() + bodies.potential_energy(&params.gravity);
         World {
             bodies,

@@ -163,7 +163,7 @@ fn assembled_w_applies_impulses_like_the_operator() {
     }
     // Diagonal blocks agree with the operator's own W_aa (a different formula).
     for (a, row) in op.rows.iter().enumerate() {
-        let b = row.block;
+        let b = row.full_block();
         for (k, l, v) in [(0, 0, b[0]), (0, 1, b[1]), (1, 0, b[2]), (1, 1, b[3])] {
             let got = p.w.get(2 * a + k, 2 * a + l);
             assert!((got - v).abs() <= 1e-12 * b[0], "contact {a}: {got} vs {v}");
