@@ -332,6 +332,27 @@ fn read_results<T: serde::de::DeserializeOwned>(
         .collect()
 }
 
+/// The machine the rows were measured on or, when they differ, each machine with its scenes.
+fn machines_line<'a>(rows: impl Iterator<Item = (&'a str, &'a str)>) -> String {
+    let mut machines: Vec<(&str, Vec<&str>)> = Vec::new();
+    for (scene, machine) in rows {
+        match machines.iter_mut().find(|(m, _)| *m == machine) {
+            Some((_, scenes)) => scenes.push(scene),
+            None => machines.push((machine, vec![scene])),
+        }
+    }
+    match machines.as_slice() {
+        [] => String::new(),
+        [(machine, _)] => format!("\nMachine: {machine}.\n"),
+        _ => {
+            let each: Vec<String> = (machines.iter())
+                .map(|(machine, scenes)| format!("{}: {machine}", scenes.join(", ")))
+                .collect();
+            format!("\nMachines: {}.\n", each.join("; "))
+        }
+    }
+}
+
 /// Regenerates the Markdown report from every JSON result in `dir`.
 fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
     let mut results: Vec<BenchResult> = read_results(dir, None)?;
@@ -358,9 +379,11 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
             r.overlap_median_m * 1e6, r.overlap_p99_m * 1e6, r.overlap_max_m * 1e6, r.non_converged_steps
         ));
     }
-    if let Some(r) = results.first() {
-        md.push_str(&format!("\nMachine: {}.\n", r.machine));
-    }
+    md.push_str(&machines_line(
+        results
+            .iter()
+            .map(|r| (r.scene.as_str(), r.machine.as_str())),
+    ));
     md.push_str(
         "\n## Reference figures of other codes on box10k (from `../shared/bench/box10k.md`, same kind of machine)\n\n\
          | code | step (ms) | settled step (ms) | sweeps settled | contacts settled | ns / contact update | detection (ms) | peak memory (MB) | overlap median / p99 (um) |\n\
@@ -398,4 +421,18 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
     xper_io::write_atomic(report, md.as_bytes()).map_err(|e| CliError::Runtime(e.to_string()))?;
     println!("wrote {}", report.display());
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::machines_line;
+
+    #[test]
+    fn rows_from_several_machines_name_each_machine_with_its_scenes() {
+        let one = machines_line([("box10k", "M1"), ("box100k", "M1")].into_iter());
+        assert_eq!(one, "\nMachine: M1.\n");
+        let two = machines_line([("a", "M1"), ("b", "M2"), ("c", "M1")].into_iter());
+        assert_eq!(two, "\nMachines: a, c: M1; b: M2.\n");
+        assert_eq!(machines_line(std::iter::empty()), "");
+    }
 }

@@ -26,27 +26,23 @@ pub struct OuterBox {
 }
 
 impl OuterBox {
-    /// The smallest single-precision box containing `b`.
+    /// A single-precision box containing `b`: each bound rounded to nearest, then moved
+    /// outwards by two units in the last place (the rounding error is at most half of one,
+    /// the move's own rounding another half) and the smallest normal number (for bounds
+    /// near zero). Without branches, so that the loop over the bodies vectorises.
     pub fn around(b: &Aabb) -> Self {
-        let down = |x: Real| {
-            let f = x as f32;
-            if f as Real > x {
-                f.next_down()
-            } else {
-                f
-            }
-        };
-        let up = |x: Real| {
-            let f = x as f32;
-            if (f as Real) < x {
-                f.next_up()
-            } else {
-                f
-            }
-        };
+        const WIDEN: f32 = 1.0 / (1u32 << 22) as f32;
+        let near = |x: Real| (x as f32).clamp(-f32::MAX, f32::MAX);
+        let margin = |f: f32| f.abs() * WIDEN + f32::MIN_POSITIVE;
         OuterBox {
-            min: std::array::from_fn(|k| down(b.min[k])),
-            max: std::array::from_fn(|k| up(b.max[k])),
+            min: std::array::from_fn(|k| {
+                let f = near(b.min[k]);
+                f - margin(f)
+            }),
+            max: std::array::from_fn(|k| {
+                let f = near(b.max[k]);
+                f + margin(f)
+            }),
         }
     }
 

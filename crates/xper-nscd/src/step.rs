@@ -1,6 +1,6 @@
 //! One Moreau-Jean step as a sequence of named stages: detect, assemble, free velocity,
 //! select, solve (NLGS, or an `xper_solver` solver on the assembled problem), energy,
-//! update, project.
+//! end gaps, update, project.
 
 use crate::assemble::assemble_problem;
 use crate::contact_solve::reborrow;
