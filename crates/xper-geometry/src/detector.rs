@@ -78,7 +78,6 @@ pub struct Detector {
     built_alert: Real,
     skin: Real,
     calls_since_build: u64,
-    carried: Vec<CarriedImpulse>,
     stats: DetectorStats,
 }
 
@@ -117,7 +116,8 @@ impl Detector {
             self.build(bodies, alert, moved);
         }
         self.calls_since_build += 1;
-        self.carry_impulses(&contacts.contacts);
+        // Held during detection only, so not during the solve (32 bytes per contact).
+        let carried = carried_impulses(&contacts.contacts);
         // Room for as many contacts as before and a sixteenth more, so the buffer tracks the
         // count instead of doubling (see `xper_math::buffer`).
         let previous = contacts.contacts.len();
@@ -153,7 +153,7 @@ impl Detector {
             if m.as_slice().is_empty() {
                 continue;
             }
-            let previous = self.carried_of_pair(&mut next_carried, [i, j]);
+            let previous = carried_of_pair(&carried, &mut next_carried, [i, j]);
             for p in m.as_slice() {
                 let impulse = (previous.iter())
                     .find(|c| c.feature == p.feature)
@@ -169,8 +169,6 @@ impl Detector {
                 });
             }
         }
-        // Held during detection only, so not during the solve (32 bytes per contact).
-        self.carried = Vec::new();
     }
 
     /// How far two bodies may have moved towards each other since the list was built: the
@@ -256,39 +254,43 @@ impl Detector {
         let rate = moved / self.calls_since_build as Real;
         (TARGET_STEPS_PER_BUILD * rate).clamp(alert, cap)
     }
+}
 
-    /// Keeps the non-zero impulses of `previous` (ascending by bodies), for the merge with the
-    /// new contacts.
-    fn carry_impulses(&mut self, previous: &[Contact]) {
-        let loaded = |c: &&Contact| c.impulse != [0.0, 0.0];
-        clear_for(&mut self.carried, previous.iter().filter(loaded).count());
-        self.carried
-            .extend(previous.iter().filter(loaded).map(|c| CarriedImpulse {
-                bodies: c.bodies,
-                feature: c.feature,
-                impulse: c.impulse,
-            }));
-        // Contacts from elsewhere (a checkpoint of an older version) may be in another order.
-        if !self.carried.is_sorted_by_key(|c| c.bodies) {
-            self.carried.sort_by_key(|c| (c.bodies, c.feature));
-        }
+/// The non-zero impulses of `previous`, ascending by bodies, for the merge with the new
+/// contacts.
+fn carried_impulses(previous: &[Contact]) -> Vec<CarriedImpulse> {
+    let loaded = |c: &&Contact| c.impulse != [0.0, 0.0];
+    // Sized exactly: collecting a filter would grow the vector by doubling.
+    let mut carried = Vec::with_capacity(previous.iter().filter(loaded).count());
+    carried.extend(previous.iter().filter(loaded).map(|c| CarriedImpulse {
+        bodies: c.bodies,
+        feature: c.feature,
+        impulse: c.impulse,
+    }));
+    // Contacts from elsewhere (a checkpoint of an older version) may be in another order.
+    if !carried.is_sorted_by_key(|c| c.bodies) {
+        carried.sort_by_key(|c| (c.bodies, c.feature));
     }
+    carried
+}
 
-    /// The carried impulses of pair `bodies`, advancing the merge cursor `next`; the pairs
-    /// are met in ascending order.
-    fn carried_of_pair(&self, next: &mut usize, bodies: [u32; 2]) -> &[CarriedImpulse] {
-        let carried = &self.carried;
-        let mut start = *next;
-        while start < carried.len() && carried[start].bodies < bodies {
-            start += 1;
-        }
-        let mut end = start;
-        while end < carried.len() && carried[end].bodies == bodies {
-            end += 1;
-        }
-        *next = end;
-        &carried[start..end]
+/// The impulses of `carried` of pair `bodies`, advancing the merge cursor `next`; the pairs
+/// are met in ascending order.
+fn carried_of_pair<'a>(
+    carried: &'a [CarriedImpulse],
+    next: &mut usize,
+    bodies: [u32; 2],
+) -> &'a [CarriedImpulse] {
+    let mut start = *next;
+    while start < carried.len() && carried[start].bodies < bodies {
+        start += 1;
     }
+    let mut end = start;
+    while end < carried.len() && carried[end].bodies == bodies {
+        end += 1;
+    }
+    *next = end;
+    &carried[start..end]
 }
 
 /// `pairs` (each `(i, j)` with `i < j`) into `sorted` in ascending order: a counting sort by

@@ -510,14 +510,20 @@ impl MoreauJean {
         Ok(())
     }
 
+    /// Exchanges the operator's rows (the active contacts') with every contact's rows when
+    /// the active contacts are a subset; a second call restores them.
+    fn exchange_rows(&mut self) {
+        if self.active_is_subset {
+            std::mem::swap(&mut self.op.rows, &mut self.all_rows);
+        }
+    }
+
     /// The linearised gap at the end of the step of every contact, into `self.shift`, and
     /// the largest overlap among them; called before [`Self::update`], while the bodies hold
     /// the velocities at the beginning of the step.
     fn end_gaps(&mut self, world: &World) -> Real {
         let (h, theta) = (world.params.dt, world.params.theta);
-        if self.active_is_subset {
-            std::mem::swap(&mut self.op.rows, &mut self.all_rows);
-        }
+        self.exchange_rows();
         clear_for(&mut self.shift, world.contacts.len());
         let mut deepest: Real = 0.0;
         for (a, c) in world.contacts.contacts.iter().enumerate() {
@@ -527,9 +533,7 @@ impl MoreauJean {
             deepest = deepest.max(-gap);
             self.shift.push(gap);
         }
-        if self.active_is_subset {
-            std::mem::swap(&mut self.op.rows, &mut self.all_rows);
-        }
+        self.exchange_rows();
         deepest
     }
 
@@ -539,20 +543,16 @@ impl MoreauJean {
     fn project(
         &mut self,
         world: &mut World,
-        deepest: Real,
+        mut deepest: Real,
         mut shared: Option<&mut dyn ContactSolve>,
     ) -> Result<(u32, Real), StepError> {
-        let mut deepest = deepest;
         if let Some(s) = reborrow(&mut shared) {
             deepest = s.agree_max(deepest);
         }
         if !(world.params.projection_tolerance).is_some_and(|tolerance| deepest > tolerance) {
             return Ok((0, deepest));
         }
-        let subset = self.active_is_subset;
-        if subset {
-            std::mem::swap(&mut self.op.rows, &mut self.all_rows);
-        }
+        self.exchange_rows();
         let n = self.op.rows.len();
         for body in &mut self.op.bodies {
             body.velocity = [0.0; DOFS];
@@ -580,9 +580,7 @@ impl MoreauJean {
             bodies.position[b].y += body.velocity[1];
             bodies.angle[b] += body.velocity[2];
         }
-        if subset {
-            std::mem::swap(&mut self.op.rows, &mut self.all_rows);
-        }
+        self.exchange_rows();
         Ok((info.iterations, deepest))
     }
 }
