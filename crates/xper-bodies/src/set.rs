@@ -67,9 +67,9 @@ pub struct BodySet {
     pub mass: Vec<Real>,
     /// Moments of inertia (kg m^2 per m).
     pub inertia: Vec<Real>,
-    /// Inverse mass per degree of freedom (x, y, rotation); 0 where the velocity is imposed
-    /// or the mass infinite, so contact impulses cannot change it.
-    pub inv_mass: Vec<[Real; DOFS]>,
+    /// The degrees of freedom whose velocity is imposed, one bit each (x: 1, y: 2,
+    /// rotation: 4); see [`BodySet::inv_mass`].
+    pub imposed: Vec<u8>,
     /// Shapes.
     pub shape: Vec<Shape>,
     /// Group index of each body.
@@ -101,26 +101,16 @@ impl BodySet {
     /// Adds a body and returns its handle.
     pub fn insert(&mut self, body: Body) -> BodyHandle {
         let handle = BodyHandle(self.len() as u32);
-        let inv = |m: Real| {
-            if m.is_finite() && m > 0.0 {
-                1.0 / m
-            } else {
-                0.0
-            }
-        };
-        let mut inv_mass = [inv(body.mass), inv(body.mass), inv(body.inertia)];
-        for (k, d) in body.drives.iter().enumerate() {
-            if d.is_imposed_velocity() {
-                inv_mass[k] = 0.0;
-            }
-        }
+        let imposed = (body.drives.iter().enumerate())
+            .filter(|(_, d)| d.is_imposed_velocity())
+            .fold(0u8, |bits, (k, _)| bits | 1 << k);
         self.position.push(body.position);
         self.angle.push(body.angle);
         self.velocity.push(body.velocity);
         self.angular_velocity.push(body.angular_velocity);
         self.mass.push(body.mass);
         self.inertia.push(body.inertia);
-        self.inv_mass.push(inv_mass);
+        self.imposed.push(imposed);
         self.shape.push(body.shape);
         self.group.push(body.group);
         self.id.push(handle.0 as u64);
@@ -140,12 +130,41 @@ impl BodySet {
         self.angular_velocity.shrink_to_fit();
         self.mass.shrink_to_fit();
         self.inertia.shrink_to_fit();
-        self.inv_mass.shrink_to_fit();
+        self.imposed.shrink_to_fit();
         self.shape.shrink_to_fit();
         self.group.shrink_to_fit();
         self.id.shrink_to_fit();
         self.ownership.shrink_to_fit();
         self.driven.shrink_to_fit();
+    }
+
+    /// Inverse mass per degree of freedom (x, y, rotation) of body `b`: `1 / m`, `1 / m`,
+    /// `1 / I`, with 0 where the velocity is imposed or the mass infinite, so contact impulses
+    /// cannot change it. Computed, not stored (24 bytes per body less; the solver keeps its
+    /// own copy during a step).
+    #[inline]
+    pub fn inv_mass(&self, b: usize) -> [Real; DOFS] {
+        let inv = |m: Real, k: usize| {
+            if self.imposed[b] & 1 << k == 0 && m.is_finite() && m > 0.0 {
+                1.0 / m
+            } else {
+                0.0
+            }
+        };
+        [
+            inv(self.mass[b], 0),
+            inv(self.mass[b], 1),
+            inv(self.inertia[b], 2),
+        ]
+    }
+
+    /// Whether contacts can move body `b`: some degree of freedom is free and of finite,
+    /// positive mass (some [`BodySet::inv_mass`] is not 0), without a division.
+    #[inline]
+    pub fn is_movable(&self, b: usize) -> bool {
+        let finite = |m: Real| m.is_finite() && m > 0.0;
+        let free = |k: usize| self.imposed[b] & 1 << k == 0;
+        (free(0) || free(1)) && finite(self.mass[b]) || free(2) && finite(self.inertia[b])
     }
 
     /// Generalised velocity (vx, vy, w) of a body.

@@ -97,7 +97,7 @@ fn describe(all: &BodySet, held: &[(u32, Ownership)], driven_of: &[u32], local: 
     );
     fill(&mut local.mass, ids().map(|b| all.mass[b]));
     fill(&mut local.inertia, ids().map(|b| all.inertia[b]));
-    fill(&mut local.inv_mass, ids().map(|b| all.inv_mass[b]));
+    fill(&mut local.imposed, ids().map(|b| all.imposed[b]));
     fill(&mut local.shape, ids().map(|b| all.shape[b].clone()));
     fill(&mut local.group, ids().map(|b| all.group[b]));
     fill(&mut local.id, ids().map(|b| b as u64));

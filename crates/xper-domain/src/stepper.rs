@@ -38,9 +38,7 @@ use crate::shared_solve::SharedNlgs;
 use xper_bodies::{BodySet, Ownership};
 use xper_geometry::Contact;
 use xper_math::{Real, Vector};
-use xper_nscd::{
-    contact_owner_body, is_movable, EnergyBudget, MoreauJean, StepError, StepReport, World,
-};
+use xper_nscd::{contact_owner_body, EnergyBudget, MoreauJean, StepError, StepReport, World};
 
 /// Tuning of a distributed run.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -112,9 +110,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
     /// Distributes `world` (the same on every process: read from the scene or a checkpoint).
     pub fn new(comm: &'c C, world: World, params: DistributedParams) -> Self {
         let n = world.bodies.len();
-        let movable: Vec<bool> = (0..n)
-            .map(|b| is_movable(&world.bodies.inv_mass[b]))
-            .collect();
+        let movable: Vec<bool> = (0..n).map(|b| world.bodies.is_movable(b)).collect();
         let mut driven_of = vec![u32::MAX; n];
         for (k, (handle, _)) in world.bodies.driven.iter().enumerate() {
             driven_of[handle.index()] = k as u32;

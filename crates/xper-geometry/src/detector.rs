@@ -43,14 +43,46 @@ struct CarriedImpulse {
     impulse: [Real; 2],
 }
 
-/// A body's pose and identity when the candidate list was built.
+/// A body's pose when the candidate list was built, in single precision (16 bytes instead of
+/// 40 with the id): the rounding is bounded by [`Detector::pose_rounding`] and added to the
+/// displacement bounds, so no pair within the alert distance is missed.
 #[derive(Clone, Copy, Debug)]
 struct BuildPose {
-    id: u64,
-    x: Real,
-    y: Real,
-    angle: Real,
-    reach: Real,
+    x: f32,
+    y: f32,
+    angle: f32,
+    /// The reach, rounded up.
+    reach: f32,
+}
+
+impl BuildPose {
+    /// The pose of `(x, y, angle)` with `reach`, and the most its rounding can hide of the
+    /// displacement bound `d_b`: `|p' - p| + reach' |angle' - angle|`.
+    fn rounded(x: Real, y: Real, angle: Real, reach: Real) -> (Self, Real) {
+        let mut reach32 = reach as f32;
+        if (reach32 as Real) < reach {
+            reach32 = reach32.next_up();
+        }
+        let pose = BuildPose {
+            x: x as f32,
+            y: y as f32,
+            angle: angle as f32,
+            reach: reach32,
+        };
+        let (dx, dy) = (pose.x as Real - x, pose.y as Real - y);
+        let hidden =
+            (dx * dx + dy * dy).sqrt() + reach32 as Real * (pose.angle as Real - angle).abs();
+        (pose, hidden)
+    }
+}
+
+/// A fingerprint of the bodies' ids in order (a 64-bit multiplicative hash): a list is kept
+/// only for the bodies, in the order, it was built for. Two different id sequences share a
+/// fingerprint with a probability of about 2^-64.
+fn ids_fingerprint(ids: &[u64]) -> u64 {
+    ids.iter().fold(ids.len() as u64, |h, &id| {
+        (h.rotate_left(23) ^ id).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+    })
 }
 
 /// Counters of a detector's work, for benchmarks.
@@ -75,6 +107,10 @@ pub struct DetectorStats {
 pub struct Detector {
     candidates: Vec<(u32, u32)>,
     built: Vec<BuildPose>,
+    /// [`ids_fingerprint`] of the bodies at the build.
+    built_ids: u64,
+    /// The largest displacement bound the single-precision poses may hide (m).
+    pose_rounding: Real,
     built_alert: Real,
     skin: Real,
     calls_since_build: u64,
@@ -122,7 +158,7 @@ impl Detector {
         // count instead of doubling (see `xper_math::buffer`).
         let previous = contacts.contacts.len();
         clear_for(&mut contacts.contacts, previous + previous / 16 + 16);
-        let immobile = |b: usize| bodies.inv_mass[b].iter().all(|&m| m == 0.0);
+        let immobile = |b: usize| !bodies.is_movable(b);
         let mut next_carried = 0;
         for &(i, j) in &self.candidates {
             let (a, b) = (i as usize, j as usize);
@@ -175,27 +211,28 @@ impl Detector {
     /// sum of the two largest displacement bounds `d_b`; `None` when the list is no use (none
     /// yet, another alert distance, bodies added, removed or renumbered).
     fn moved_since_build(&self, bodies: &BodySet, alert: Real) -> Option<Real> {
-        if self.built.len() != bodies.len() || self.built_alert != alert {
+        if self.built.len() != bodies.len()
+            || self.built_alert != alert
+            || ids_fingerprint(&bodies.id) != self.built_ids
+        {
             return None;
         }
         // The two largest squared bounds: the square root is taken of these two only (for a
         // disk, `d_b^2` is the squared displacement itself).
         let (mut first, mut second): (Real, Real) = (0.0, 0.0);
         for (b, pose) in self.built.iter().enumerate() {
-            if bodies.id[b] != pose.id {
-                return None;
-            }
             let p = bodies.position[b];
-            let (dx, dy) = (p.x - pose.x, p.y - pose.y);
+            let (dx, dy) = (p.x - pose.x as Real, p.y - pose.y as Real);
             let mut squared = dx * dx + dy * dy;
             if pose.reach > 0.0 {
-                let d = squared.sqrt() + pose.reach * (bodies.angle[b] - pose.angle).abs();
+                let turned = (bodies.angle[b] - pose.angle as Real).abs();
+                let d = squared.sqrt() + pose.reach as Real * turned;
                 squared = d * d;
             }
             second = second.max(squared.min(first));
             first = first.max(squared);
         }
-        Some(first.sqrt() + second.sqrt())
+        Some(first.sqrt() + second.sqrt() + 2.0 * self.pose_rounding)
     }
 
     /// Runs the broad phase with the alert distance grown by a new skin, and records the
@@ -205,20 +242,23 @@ impl Detector {
         self.built_alert = alert;
         self.calls_since_build = 0;
         self.stats.builds += 1;
+        self.built_ids = ids_fingerprint(&bodies.id);
+        let mut rounding: Real = 0.0;
         refill(
             &mut self.built,
-            (0..bodies.len()).map(|b| BuildPose {
-                id: bodies.id[b],
-                x: bodies.position[b].x,
-                y: bodies.position[b].y,
-                angle: bodies.angle[b],
-                reach: match &bodies.shape[b] {
+            (0..bodies.len()).map(|b| {
+                let reach = match &bodies.shape[b] {
                     Shape::Disk { .. } => 0.0,
                     Shape::Polygon(p) => p.bounding_radius,
                     Shape::Segment { half_length } => *half_length,
-                },
+                };
+                let p = bodies.position[b];
+                let (pose, hidden) = BuildPose::rounded(p.x, p.y, bodies.angle[b], reach);
+                rounding = rounding.max(hidden);
+                pose
             }),
         );
+        self.pose_rounding = rounding;
         // What serves only this build is held only during it, and never all at once: the list
         // that ends (dropped first), the broad phase's arrays (dropped once the pairs are
         // found), the unsorted pairs and the sort's counts (dropped once sorted). Between
@@ -320,5 +360,51 @@ fn sort_pairs(
     for &end in &start[..n_bodies] {
         sorted[begin..end as usize].sort_unstable();
         begin = end as usize;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_single_precision_pose_hides_no_more_than_its_rounding_bound() {
+        let mut s = 3u64;
+        let mut rnd = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 11) as Real / (1u64 << 53) as Real * 2.0 - 1.0
+        };
+        for _ in 0..10_000 {
+            let scale = 10f64.powi((rnd() * 6.0) as i32);
+            let (x, y, angle, reach) = (rnd() * scale, rnd() * scale, rnd() * 7.0, rnd().abs());
+            let (pose, hidden) = BuildPose::rounded(x, y, angle, reach);
+            assert!(pose.reach as Real >= reach, "reach rounded up");
+            // The bound a body at the true pose gets from the stored one, and what it hides.
+            let (dx, dy) = (x - pose.x as Real, y - pose.y as Real);
+            let seen = (dx * dx + dy * dy).sqrt()
+                + pose.reach as Real * (angle - pose.angle as Real).abs();
+            assert!(seen <= hidden * (1.0 + 1e-12), "{seen} > {hidden}");
+            assert!(hidden <= 4.0 * f32::EPSILON as Real * (x.abs() + y.abs() + angle.abs() + 1.0));
+        }
+    }
+
+    #[test]
+    fn the_ids_fingerprint_changes_when_bodies_are_renumbered_added_or_removed() {
+        let ids: Vec<u64> = (0..100).collect();
+        let mut swapped = ids.clone();
+        swapped.swap(10, 11);
+        let fingerprints = [
+            ids_fingerprint(&ids),
+            ids_fingerprint(&swapped),
+            ids_fingerprint(&ids[..99]),
+            ids_fingerprint(&[ids.as_slice(), &[100]].concat()),
+        ];
+        for a in 0..fingerprints.len() {
+            for b in a + 1..fingerprints.len() {
+                assert_ne!(fingerprints[a], fingerprints[b], "{a} and {b}");
+            }
+        }
     }
 }

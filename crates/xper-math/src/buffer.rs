@@ -18,6 +18,23 @@ pub fn clear_for<T>(buffer: &mut Vec<T>, n: usize) {
     }
 }
 
+/// Frees `buffer`, then gives it room for exactly `n` items: for a buffer that lives during
+/// one stage only and is released after it, so that it never holds room for a larger count
+/// of an earlier step (the old block is freed before the new one is taken).
+#[inline]
+pub fn renew_for<T>(buffer: &mut Vec<T>, n: usize) {
+    *buffer = Vec::new();
+    buffer.reserve_exact(n);
+}
+
+/// Replaces the contents of `buffer` by `items`, in room for exactly their count (see
+/// [`renew_for`]).
+#[inline]
+pub fn renew<T>(buffer: &mut Vec<T>, items: impl ExactSizeIterator<Item = T>) {
+    renew_for(buffer, items.len());
+    buffer.extend(items);
+}
+
 /// Replaces the contents of `buffer` by `items` (see [`clear_for`]).
 #[inline]
 pub fn refill<T>(buffer: &mut Vec<T>, items: impl ExactSizeIterator<Item = T>) {
@@ -47,5 +64,18 @@ mod tests {
         clear_for(&mut v, 10);
         assert!(v.is_empty());
         assert_eq!(v.capacity(), 1807);
+    }
+
+    #[test]
+    fn renewing_holds_exactly_the_count_whatever_was_held_before() {
+        let mut v: Vec<u32> = Vec::new();
+        for n in [1600, 50, 1701, 0] {
+            renew(&mut v, 0..n);
+            assert_eq!(v, (0..n).collect::<Vec<_>>());
+            assert_eq!(v.capacity(), n as usize, "after {n} items");
+        }
+        renew_for(&mut v, 7);
+        assert!(v.is_empty());
+        assert_eq!(v.capacity(), 7);
     }
 }

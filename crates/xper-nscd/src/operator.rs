@@ -7,7 +7,7 @@
 
 use xper_bodies::BodySet;
 use xper_geometry::Contact;
-use xper_math::buffer::refill;
+use xper_math::buffer::renew;
 use xper_math::{cross, tangent, Real, Vector, DOFS};
 use xper_solver::{Block2, ContactOperator};
 
@@ -96,13 +96,14 @@ pub struct RigidContactOperator {
 }
 
 impl RigidContactOperator {
-    /// Loads the inverse masses of `set` and the given velocities.
+    /// Loads the inverse masses of `set` and the given velocities (in room for exactly the
+    /// bodies).
     pub fn load_bodies(&mut self, set: &BodySet, velocity: impl Fn(usize) -> [Real; DOFS]) {
-        refill(
+        renew(
             &mut self.bodies,
             (0..set.len()).map(|b| SolverBody {
                 velocity: velocity(b),
-                inv_mass: set.inv_mass[b],
+                inv_mass: set.inv_mass(b),
             }),
         );
     }

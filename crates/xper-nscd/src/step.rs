@@ -12,7 +12,7 @@ use std::time::Instant;
 use xper_bodies::{BodySet, Ownership};
 use xper_geometry::Detector;
 use xper_laws::InteractionLaw;
-use xper_math::buffer::{clear_for, refill};
+use xper_math::buffer::{clear_for, refill, renew, renew_for};
 use xper_math::{Real, DOFS};
 use xper_solver::{
     nlgs, solve, ContactOperator, FrictionProblem, NlgsParams, ProblemError, SolveError,
@@ -30,7 +30,7 @@ pub fn is_movable(inv_mass: &[Real; DOFS]) -> bool {
 /// immovable (a wall, held by every process).
 #[inline]
 pub fn contact_owner_body(bodies: &BodySet, i: usize, j: usize) -> usize {
-    if is_movable(&bodies.inv_mass[i]) {
+    if bodies.is_movable(i) {
         i
     } else {
         j
@@ -71,7 +71,12 @@ fn problem_error(e: ProblemError) -> StepError {
     StepError::Solver(SolveError::SizeMismatch { what: e.0 })
 }
 
-/// The Moreau-Jean stepper with its reusable buffers.
+/// The Moreau-Jean stepper with its buffers.
+///
+/// Between steps it holds the detector's candidate list only: the solver's bodies, the rows,
+/// friction coefficients, shifts and impulses are taken, in room for exactly their count,
+/// when a step assembles its problem and released when it ends, so that they never coexist
+/// with the detection's own buffers (the carried impulses, a list build's arrays).
 #[derive(Default)]
 pub struct MoreauJean {
     capture: bool,
@@ -82,6 +87,8 @@ pub struct MoreauJean {
     /// `op.rows` holds every row) when every contact is active, the usual case with e = 0.
     all_rows: Vec<ContactRow>,
     active_is_subset: bool,
+    /// The indices of the active contacts when they are a subset; empty when every contact
+    /// is active (see [`MoreauJean::active_contact`]).
     active: Vec<u32>,
     mu: Vec<Real>,
     shift: Vec<Real>,
@@ -166,7 +173,7 @@ impl MoreauJean {
         // Stage: energy exchanged at contacts, with the same H at both ends of the step.
         let mut dissipated = 0.0;
         let mut imposed_work = 0.0;
-        for k in 0..self.active.len() {
+        for k in 0..self.impulses.len() {
             let (r, row) = (self.impulses[k], &self.op.rows[k]);
             let u0 = self.op.local_velocity_at(k, &world.bodies);
             let u1 = self.op.local_velocity(k);
@@ -193,8 +200,8 @@ impl MoreauJean {
         for c in &mut world.contacts.contacts {
             c.impulse = [0.0, 0.0];
         }
-        for (k, &a) in self.active.iter().enumerate() {
-            world.contacts.contacts[a as usize].impulse = self.impulses[k];
+        for (k, &r) in self.impulses.iter().enumerate() {
+            world.contacts.contacts[self.active_contact(k)].impulse = r;
         }
 
         // Stage: project positions out of overlaps.
@@ -202,6 +209,7 @@ impl MoreauJean {
         (report.projection_iterations, report.max_overlap) =
             self.project(world, deepest, reborrow(&mut shared))?;
         report.times.project = t_project.elapsed().as_secs_f64();
+        self.release_step_buffers();
 
         world.step += 1;
         world.time = t_end;
@@ -226,6 +234,26 @@ impl MoreauJean {
             });
         }
         Ok(report)
+    }
+
+    /// The contact (index in the world's contacts) of active row `k`.
+    #[inline]
+    fn active_contact(&self, k: usize) -> usize {
+        if self.active_is_subset {
+            self.active[k] as usize
+        } else {
+            k
+        }
+    }
+
+    /// Frees what only a step's problem needs (see [`MoreauJean`]).
+    fn release_step_buffers(&mut self) {
+        self.op = RigidContactOperator::default();
+        self.all_rows = Vec::new();
+        self.active = Vec::new();
+        self.mu = Vec::new();
+        self.shift = Vec::new();
+        self.impulses = Vec::new();
     }
 
     /// What the contact detector has done so far (calls, candidate-list builds, skin).
@@ -314,7 +342,7 @@ impl MoreauJean {
         self.op
             .load_bodies(bodies, |b| bodies.generalized_velocity(b));
         let contacts = &world.contacts.contacts;
-        refill(
+        renew(
             &mut self.op.rows,
             (contacts.iter()).map(|c| RigidContactOperator::row(bodies, &self.op.bodies, c)),
         );
@@ -324,34 +352,43 @@ impl MoreauJean {
 
         // Stage: select the active contacts (predicted gap closed) and their law data.
         let n = world.contacts.len();
-        clear_for(&mut self.active, n);
-        clear_for(&mut self.mu, n);
-        clear_for(&mut self.shift, n);
-        clear_for(&mut self.impulses, n);
+        self.active = Vec::new();
+        renew_for(&mut self.mu, n);
+        renew_for(&mut self.shift, n);
+        renew_for(&mut self.impulses, n);
         let closed = world.params.projection_tolerance.unwrap_or(0.0);
+        let mut subset = false;
         for (a, c) in world.contacts.contacts.iter().enumerate() {
             let un = self.op.local_velocity_at(a, &world.bodies)[0];
             let InteractionLaw::SignoriniCoulomb(law) = *world.laws.law(c.law);
             let Some(shift) = normal_shift(c.gap, un, h, theta, law.restitution, closed) else {
+                if !subset {
+                    // The first contact left out: the active ones so far are all before it.
+                    subset = true;
+                    renew_for(&mut self.active, n - 1);
+                    self.active.extend(0..a as u32);
+                }
                 continue;
             };
-            self.active.push(a as u32);
+            if subset {
+                self.active.push(a as u32);
+            }
             self.mu.push(law.friction);
             self.shift.push(shift);
             self.impulses.push(c.impulse);
         }
         // Rows of the active contacts: every row as it is when all are active (no copy).
-        self.active_is_subset = self.active.len() < self.op.rows.len();
-        self.all_rows.clear();
+        self.active_is_subset = subset;
+        self.all_rows = Vec::new();
         if self.active_is_subset {
             std::mem::swap(&mut self.op.rows, &mut self.all_rows);
             let all = &self.all_rows;
-            refill(
+            renew(
                 &mut self.op.rows,
                 self.active.iter().map(|&a| all[a as usize]),
             );
         }
-        report.active = self.active.len();
+        report.active = self.impulses.len();
     }
 
     /// Stage solve: the velocity problem by the world's [`VelocitySolver`]; on return the
