@@ -7,7 +7,7 @@
 
 use xper_bodies::BodySet;
 use xper_geometry::Contact;
-use xper_math::buffer::renew;
+use xper_math::buffer::refill;
 use xper_math::{cross, tangent, Real, Vector, DOFS};
 use xper_solver::{Block2, ContactOperator};
 
@@ -96,10 +96,9 @@ pub struct RigidContactOperator {
 }
 
 impl RigidContactOperator {
-    /// Loads the inverse masses of `set` and the given velocities (in room for exactly the
-    /// bodies).
+    /// Loads the inverse masses of `set` and the given velocities.
     pub fn load_bodies(&mut self, set: &BodySet, velocity: impl Fn(usize) -> [Real; DOFS]) {
-        renew(
+        refill(
             &mut self.bodies,
             (0..set.len()).map(|b| SolverBody {
                 velocity: velocity(b),

@@ -73,10 +73,10 @@ fn problem_error(e: ProblemError) -> StepError {
 
 /// The Moreau-Jean stepper with its buffers.
 ///
-/// Between steps it holds the detector's candidate list only: the solver's bodies, the rows,
-/// friction coefficients, shifts and impulses are taken, in room for exactly their count,
-/// when a step assembles its problem and released when it ends, so that they never coexist
-/// with the detection's own buffers (the carried impulses, a list build's arrays).
+/// Between steps it holds the detector's candidate list and the solver's bodies only: the
+/// rows, friction coefficients, shifts and impulses are taken, in room for exactly their
+/// count, when a step assembles its problem and released when it ends, so that they never
+/// coexist with the detection's own buffers (the carried impulses, a list build's arrays).
 #[derive(Default)]
 pub struct MoreauJean {
     capture: bool,
@@ -246,9 +246,12 @@ impl MoreauJean {
         }
     }
 
-    /// Frees what only a step's problem needs (see [`MoreauJean`]).
+    /// Frees what only a step's problem needs (see [`MoreauJean`]). The solver's bodies are
+    /// kept: their count does not change from step to step, the detection's own buffers fit
+    /// beside them below the solve's peak, and a block of 48 bytes per body mapped afresh
+    /// every step cost box1m (a million disks) 20 ms per step in page faults.
     fn release_step_buffers(&mut self) {
-        self.op = RigidContactOperator::default();
+        self.op.rows = Vec::new();
         self.all_rows = Vec::new();
         self.active = Vec::new();
         self.mu = Vec::new();
