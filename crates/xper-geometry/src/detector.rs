@@ -76,12 +76,16 @@ impl BuildPose {
     }
 }
 
-/// A fingerprint of the bodies' ids in order (a 64-bit multiplicative hash): a list is kept
-/// only for the bodies, in the order, it was built for. Two different id sequences share a
-/// fingerprint with a probability of about 2^-64.
+/// A fingerprint of the bodies' ids in order: a list is kept only for the bodies, in the
+/// order, it was built for. It is the wrapping sum over the bodies of a multiplicative mix of
+/// each `(index, id)` pair, so no term waits for the one before (a chained hash is one
+/// multiplication's latency per body, 1.3 ns per body on box1m's detection); two different
+/// id sequences share a fingerprint with a probability of about 2^-64.
 fn ids_fingerprint(ids: &[u64]) -> u64 {
-    ids.iter().fold(ids.len() as u64, |h, &id| {
-        (h.rotate_left(23) ^ id).wrapping_mul(0x9E37_79B9_7F4A_7C15)
+    const ODD: u64 = 0x9E37_79B9_7F4A_7C15;
+    (ids.iter().zip(0u64..)).fold(ids.len() as u64, |sum, (&id, b)| {
+        let z = (id ^ b.wrapping_mul(ODD)).wrapping_mul(ODD);
+        sum.wrapping_add(z ^ z >> 29)
     })
 }
 
