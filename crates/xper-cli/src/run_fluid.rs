@@ -284,7 +284,7 @@ fn fluid_image(state: &CoupledState, params: &FluidParams, immersed: &[usize]) -
         Vec::with_capacity(n),
     );
     let forcing = solid_fraction(state, params, immersed);
-    let fraction = [forcing.fraction(0), forcing.fraction(1)];
+    let fraction = [forcing.fraction(&g, 0), forcing.fraction(&g, 1)];
     for j in 0..g.ny {
         for i in 0..g.nx {
             let v = fluid.cell_velocity(i, j);

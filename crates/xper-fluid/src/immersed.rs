@@ -116,9 +116,15 @@ pub struct InnerMomentum {
 /// The faces covered by grains: solid fraction and owning grain.
 #[derive(Default)]
 pub struct ImmersedForcing {
-    alpha: [Vec<Real>; DIM],
-    /// Where each face with a non-zero fraction is in `forced`.
-    slot: [Vec<u32>; DIM],
+    /// Per face (padded layout): the marking that last covered it in the high 32 bits and
+    /// its record in `forced` in the low 32. A face is covered now when its marking is
+    /// [`ImmersedForcing::marking`], so a new marking neither clears the faces of the last
+    /// one nor keeps a whole-grid array of fractions: the footprints' rows of one array are
+    /// all it touches (marking 300 grains took 3.1 ms per step with a fraction array cleared
+    /// and read beside the slots).
+    slot: [Vec<u64>; DIM],
+    /// The current marking (never 0 once marked: 0 is the slots' initial value).
+    marking: u32,
     /// The faces with a non-zero fraction, in the order they were first marked, with their
     /// fraction and grain: the forcing and the inner momentum read these records in sequence
     /// instead of two whole-grid arrays (whose footprint rows the stages between have evicted
@@ -150,8 +156,8 @@ impl ImmersedForcing {
     /// Workspaces for `grid`.
     pub fn new(grid: &MacGrid) -> Self {
         ImmersedForcing {
-            alpha: grid.zero_velocity(),
             slot: [vec![0; grid.padded_len()], vec![0; grid.padded_len()]],
+            marking: 0,
             forced: [Vec::new(), Vec::new()],
         }
     }
@@ -165,11 +171,15 @@ impl ImmersedForcing {
         disks: &[ImmersedDisk],
         indicator: SolidIndicator,
     ) {
-        for d in 0..DIM {
-            for face in &self.forced[d] {
-                self.alpha[d][face.place(grid).2] = 0.0;
-            }
-            self.forced[d].clear();
+        self.marking = self.marking.wrapping_add(1);
+        if self.marking == 0 {
+            // After 2^32 markings: every slot back to "never covered".
+            self.slot.iter_mut().for_each(|slots| slots.fill(0));
+            self.marking = 1;
+        }
+        let marking = (self.marking as u64) << 32;
+        for forced in &mut self.forced {
+            forced.clear();
         }
         let h = grid.h;
         for (p, disk) in disks.iter().enumerate() {
@@ -199,21 +209,23 @@ impl ImmersedForcing {
                         } else {
                             indicator.fraction(squared.sqrt() - disk.radius, h)
                         };
-                        let k = grid.index(i, j);
-                        if fraction > self.alpha[d][k] {
-                            let forced = &mut self.forced[d];
-                            if self.alpha[d][k] == 0.0 {
-                                self.slot[d][k] = forced.len() as u32;
-                                forced.push(ForcedFace {
-                                    owner: p as u32,
-                                    at: [i as i32, j as i32],
-                                    alpha: fraction,
-                                });
-                            } else {
-                                let face = &mut forced[self.slot[d][k] as usize];
+                        if fraction <= 0.0 {
+                            continue;
+                        }
+                        let (slot, forced) =
+                            (&mut self.slot[d][grid.index(i, j)], &mut self.forced[d]);
+                        if *slot & !0xFFFF_FFFF != marking {
+                            *slot = marking | forced.len() as u64;
+                            forced.push(ForcedFace {
+                                owner: p as u32,
+                                at: [i as i32, j as i32],
+                                alpha: fraction,
+                            });
+                        } else {
+                            let face = &mut forced[(*slot & 0xFFFF_FFFF) as usize];
+                            if fraction > face.alpha {
                                 (face.owner, face.alpha) = (p as u32, fraction);
                             }
-                            self.alpha[d][k] = fraction;
                         }
                     }
                 }
@@ -275,8 +287,13 @@ impl ImmersedForcing {
         }
     }
 
-    /// Solid fraction of each face of component `d` (padded layout).
-    pub fn fraction(&self, d: usize) -> &[Real] {
-        &self.alpha[d]
+    /// Solid fraction of each face of component `d` of `grid` (padded layout), from the
+    /// last marking: for the outputs.
+    pub fn fraction(&self, grid: &MacGrid, d: usize) -> Vec<Real> {
+        let mut alpha = vec![0.0; grid.padded_len()];
+        for face in &self.forced[d] {
+            alpha[face.place(grid).2] = face.alpha;
+        }
+        alpha
     }
 }
