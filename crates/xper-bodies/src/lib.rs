@@ -1,7 +1,8 @@
 //! Rigid bodies: shapes, mass properties, driven degrees of freedom and the body set.
 //!
 //! Bodies live in a [`BodySet`] stored as a structure of arrays indexed by [`BodyHandle`], so
-//! that the contact solver streams only what it needs (velocities and inverse masses).
+//! that the contact solver streams only what it needs (positions and velocities; inverse
+//! masses are computed from the masses and the imposed degrees of freedom).
 //! Each body carries a global `id` and an [`Ownership`] so that a domain-decomposed run can
 //! hold shadow copies of bodies owned by another process without changing this layout.
 

@@ -209,7 +209,7 @@ impl ImmersedForcing {
                         } else {
                             indicator.fraction(squared.sqrt() - disk.radius, h)
                         };
-                        if fraction <= 0.0 {
+                        if fraction.is_nan() || fraction <= 0.0 {
                             continue;
                         }
                         let (slot, forced) =

@@ -6,7 +6,7 @@
 //! 'experiments' on classical fluids", Phys. Rev. 159:98, 1967, for molecular dynamics): a
 //! point of body `b` has moved by at most `d_b = |x_b - x_b0| + reach_b |theta_b - theta_b0|`
 //! since the build (`reach_b` the largest distance from the body's position to its shape, 0
-//! for a disk), so its box lies in its box at the build grown by `d_b`, and every pair within
+//! for a disk; the rotation taken modulo 2 pi, on which a shape depends), so its box lies in its box at the build grown by `d_b`, and every pair within
 //! the alert distance is still a candidate while the two largest `d_b` sum to at most `s`.
 //!
 //! The candidates are kept in ascending `(first body, second body)` order, and the narrow
@@ -50,6 +50,8 @@ struct CarriedImpulse {
 struct BuildPose {
     x: f32,
     y: f32,
+    /// The rotation brought into `[-pi, pi]` (see [`wrapped`]), so that its rounding stays
+    /// small however long the body has turned (a rotating drum).
     angle: f32,
     /// The reach, rounded up.
     reach: f32,
@@ -57,23 +59,41 @@ struct BuildPose {
 
 impl BuildPose {
     /// The pose of `(x, y, angle)` with `reach`, and the most its rounding can hide of the
-    /// displacement bound `d_b`: `|p' - p| + reach' |angle' - angle|`.
+    /// displacement bound `d_b`: `|p' - p| + reach' (|angle' - wrapped(angle)| + e)`, with `e`
+    /// the rounding of the wrap itself.
     fn rounded(x: Real, y: Real, angle: Real, reach: Real) -> (Self, Real) {
         let mut reach32 = reach as f32;
         if (reach32 as Real) < reach {
             reach32 = reach32.next_up();
         }
+        let turned = wrapped(angle);
         let pose = BuildPose {
             x: x as f32,
             y: y as f32,
-            angle: angle as f32,
+            angle: turned as f32,
             reach: reach32,
         };
         let (dx, dy) = (pose.x as Real - x, pose.y as Real - y);
-        let hidden =
-            (dx * dx + dy * dy).sqrt() + reach32 as Real * (pose.angle as Real - angle).abs();
+        let angle_error = (pose.angle as Real - turned).abs() + wrap_error(angle);
+        let hidden = (dx * dx + dy * dy).sqrt() + reach32 as Real * angle_error;
         (pose, hidden)
     }
+}
+
+/// `angle` less the nearest multiple of 2 pi, in `[-pi, pi]`: the smallest rotation that
+/// brings a shape from one orientation to another is `|wrapped(theta - theta_0)|`, whatever
+/// whole turns lie between them.
+#[inline]
+fn wrapped(angle: Real) -> Real {
+    use std::f64::consts::TAU;
+    angle - TAU * (angle / TAU).round()
+}
+
+/// A bound on the rounding of [`wrapped`]`(angle)` (a few units in the last place of `angle`
+/// and of 2 pi times the turns).
+#[inline]
+fn wrap_error(angle: Real) -> Real {
+    8.0 * Real::EPSILON * (angle.abs() + 1.0)
 }
 
 /// A fingerprint of the bodies' ids in order: a list is kept only for the bodies, in the
@@ -229,7 +249,8 @@ impl Detector {
             let (dx, dy) = (p.x - pose.x as Real, p.y - pose.y as Real);
             let mut squared = dx * dx + dy * dy;
             if pose.reach > 0.0 {
-                let turned = (bodies.angle[b] - pose.angle as Real).abs();
+                let angle = bodies.angle[b];
+                let turned = wrapped(angle - pose.angle as Real).abs() + wrap_error(angle);
                 let d = squared.sqrt() + pose.reach as Real * turned;
                 squared = d * d;
             }
@@ -388,9 +409,29 @@ mod tests {
             // The bound a body at the true pose gets from the stored one, and what it hides.
             let (dx, dy) = (x - pose.x as Real, y - pose.y as Real);
             let seen = (dx * dx + dy * dy).sqrt()
-                + pose.reach as Real * (angle - pose.angle as Real).abs();
+                + pose.reach as Real * wrapped(angle - pose.angle as Real).abs();
             assert!(seen <= hidden * (1.0 + 1e-12), "{seen} > {hidden}");
             assert!(hidden <= 4.0 * f32::EPSILON as Real * (x.abs() + y.abs() + angle.abs() + 1.0));
+        }
+    }
+
+    /// Regression: with the rotation stored as it is, a body that had turned for long (a
+    /// drum of 0.5 m after 1000 turns, 6283 rad) hid 1.2e-4 m in its single-precision angle,
+    /// as much as an alert distance, and its list was rebuilt at every step.
+    #[test]
+    fn a_long_turning_body_hides_no_more_than_one_that_never_turned() {
+        let reach = 0.5;
+        for turns in [0.0, 1.0, 1000.0, 1.0e5] {
+            let angle = 0.3 + std::f64::consts::TAU * turns;
+            let (pose, hidden) = BuildPose::rounded(0.1, 0.2, angle, reach);
+            assert!(
+                hidden <= 1e-7 * (1.0 + turns * 1e-8),
+                "{turns} turns: {hidden} m"
+            );
+            // A further turn and a small rotation read as that small rotation.
+            let later = angle + std::f64::consts::TAU + 1e-3;
+            let turned = wrapped(later - pose.angle as Real).abs();
+            assert!((turned - 1e-3).abs() < 1e-6, "{turns} turns: {turned}");
         }
     }
 

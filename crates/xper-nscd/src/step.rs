@@ -73,10 +73,11 @@ fn problem_error(e: ProblemError) -> StepError {
 
 /// The Moreau-Jean stepper with its buffers.
 ///
-/// Between steps it holds the detector's candidate list and the solver's bodies only: the
-/// rows, friction coefficients, shifts and impulses are taken, in room for exactly their
-/// count, when a step assembles its problem and released when it ends, so that they never
-/// coexist with the detection's own buffers (the carried impulses, a list build's arrays).
+/// After a step that completes it holds the detector's candidate list, the solver's bodies and
+/// the external forces: the rows, friction coefficients, shifts and impulses are taken, in
+/// room for the step's contacts exactly, when a step assembles its problem and released when
+/// it ends, so that they never coexist with the detection's own buffers (the carried
+/// impulses, a list build's arrays).
 #[derive(Default)]
 pub struct MoreauJean {
     capture: bool,
