@@ -6,8 +6,9 @@
 //! 'experiments' on classical fluids", Phys. Rev. 159:98, 1967, for molecular dynamics): a
 //! point of body `b` has moved by at most `d_b = |x_b - x_b0| + reach_b |theta_b - theta_b0|`
 //! since the build (`reach_b` the largest distance from the body's position to its shape, 0
-//! for a disk; the rotation taken modulo 2 pi, on which a shape depends), so its box lies in its box at the build grown by `d_b`, and every pair within
-//! the alert distance is still a candidate while the two largest `d_b` sum to at most `s`.
+//! for a disk; the rotation taken modulo 2 pi, on which a shape depends), so its box lies in
+//! its box at the build grown by `d_b`, and every pair within the alert distance is still a
+//! candidate while the two largest `d_b` sum to at most `s`.
 //!
 //! The candidates are kept in ascending `(first body, second body)` order, and the narrow
 //! phase finds exactly the contacts within the alert distance, so the contacts, their order
