@@ -20,8 +20,8 @@
 //!    change of the velocity, pressure or pressure correction; the forcing and the fluid
 //!    momentum inside each grain summed over blocks (each face is forced by one block, so a
 //!    grain across a cut is counted once); norms and the largest speed (the time step) reduced;
-//!    the pressure solved by [`StripMultigrid`] with its rows exchanged after each smoothing
-//!    colour.
+//!    the pressure solved by [`StripMultigrid`], deep ghost rows exchanged twice per level
+//!    and cycle.
 //! 3. **Gather** (outputs, checkpoints): rank 0 receives every block's rows and holds the whole
 //!    fluid, from which a run resumes on any number of processes.
 

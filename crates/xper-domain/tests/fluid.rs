@@ -4,10 +4,12 @@
 //!
 //! The measure of agreement: the largest difference of a grain position (and of a face
 //! velocity) between the runs, against the serial run's own error, the difference between the
-//! serial run at the pressure tolerance 1e-5 and at 1e-7 (at the default 1e-8 every run agrees to round-off, which would measure nothing). The pressure multigrid stops at its
-//! tolerance, not at the solution, and the strip multigrid is a different iteration (other
-//! smoothing order, the coarse grid gathered), so a distributed run may differ from the serial
-//! one by a small multiple of that error, and by less when the tolerance is tightened.
+//! serial run at the pressure tolerance 1e-5 and at 1e-7. The pressure multigrid stops at its
+//! tolerance, not at the solution; the strip multigrid follows the serial iteration (the same
+//! sweeps and transfers, one serial V-cycle on the gathered coarse grid), so the runs agree
+//! far closer than that error, but the sums over strips (the norms, the mean removed from a
+//! singular problem) round differently, so a stopping test may fall on another cycle: the
+//! tests allow a small multiple of the error.
 
 use xper_bodies::{Body, BodySet};
 use xper_domain::{run_on_threads, Communicator, DistributedFluid, RankLoad};
@@ -94,6 +96,90 @@ fn the_strip_multigrid_on_several_processes_agrees_with_the_serial_multigrid() {
                 "{boundary:?} on {ranks}: difference {difference:e} of {size:e} ({cycles} cycles)"
             );
             assert!(cycles <= 14, "{boundary:?} on {ranks}: {cycles} cycles");
+        }
+    }
+}
+
+/// The deep ghost rows: every value a strip computes in its neighbours' rows is the one the
+/// neighbour computes, so a problem with no mean to remove (whose every operation is then the
+/// same whatever the cuts) gives the same bits on 1 to 4 thread processes, cycle for cycle.
+/// A ghost row one row too shallow, or relaxed with a stale value, changes the bits.
+#[test]
+fn a_non_singular_strip_solve_gives_the_same_bits_on_1_to_4_processes() {
+    use SideCondition::{Dirichlet, Neumann, Periodic};
+    let boundaries = [
+        Boundary {
+            top: Dirichlet,
+            ..Boundary::all(Neumann)
+        },
+        Boundary {
+            left: Periodic,
+            right: Periodic,
+            bottom: Dirichlet,
+            top: Neumann,
+        },
+    ];
+    for (nx, ny) in [(64, 256), (128, 128)] {
+        let shape = GridShape {
+            nx,
+            ny,
+            hx: 1.0 / nx as f64,
+            hy: 1.0 / nx as f64,
+        };
+        // Four cycles whatever the residual, so every run does the same work.
+        let params = MultigridParams {
+            relative_tolerance: 1e-30,
+            max_cycles: 4,
+            ..MultigridParams::default()
+        };
+        let mut seed = 99u64;
+        let rhs: Vec<f64> = (0..nx * ny)
+            .map(|_| {
+                seed = seed
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+            })
+            .collect();
+        for boundary in boundaries {
+            let solve_on = |ranks: usize| -> Vec<f64> {
+                run_on_threads(ranks, |comm| {
+                    let layout = StripLayout::balanced(nx, ny, ranks).unwrap();
+                    let rows = layout.rows(comm.rank());
+                    let mut solver =
+                        StripMultigrid::new(shape, boundary, params, layout, comm.rank()).unwrap();
+                    let mut links = xper_domain::strips::StripComm {
+                        comm,
+                        neighbours: xper_domain::strips::strip_neighbours(
+                            comm.rank(),
+                            ranks,
+                            boundary.bottom == Periodic,
+                        ),
+                    };
+                    let local = &rhs[rows.start * nx..rows.end * nx];
+                    let mut phi = vec![0.0; local.len()];
+                    let outcome = solver.solve(&mut links, local, &mut phi);
+                    assert!(matches!(
+                        outcome,
+                        Err(xper_poisson::SolveError::NotConverged { .. })
+                    ));
+                    phi
+                })
+                .concat()
+            };
+            let one = solve_on(1);
+            for ranks in 2..=4 {
+                let several = solve_on(ranks);
+                let differing = one
+                    .iter()
+                    .zip(&several)
+                    .filter(|(a, b)| a.to_bits() != b.to_bits())
+                    .count();
+                assert_eq!(
+                    differing, 0,
+                    "{nx}x{ny} {boundary:?} on {ranks}: {differing} values differ"
+                );
+            }
         }
     }
 }
@@ -225,18 +311,24 @@ fn two_grain_sedimentation_on_1_2_and_4_processes_agrees_with_the_serial_run() {
     }
 }
 
+/// The strip multigrid is the serial multigrid's iteration: the same red-black sweeps, the
+/// same transfers, and below the strips one V-cycle of the serial solver on the gathered
+/// coarse grid. So at a loose pressure tolerance a distributed run agrees with the serial
+/// run to round-off, far closer than the serial run agrees with itself at a tighter
+/// tolerance: 2.7e-17 m/s against 3.5e-14 m/s between the serial runs at 1e-7 and 1e-10.
+/// (With the coarse grid solved to a tolerance of its own instead, a different iteration, the
+/// distributed run differed by 2.1e-14 m/s, about the serial tolerance error.)
 #[test]
-fn the_distributed_error_shrinks_with_the_pressure_tolerance() {
-    let mut differences = Vec::new();
-    for tolerance in [1e-7, 1e-10] {
-        let (params, start) = two_grains(tolerance);
-        let reference = serial(&params, start.clone(), STEPS / 2);
-        let (whole, _) = distributed(&params, &start, 3, STEPS / 2);
-        differences.push(velocity_difference(&whole, &reference));
-    }
+fn the_distributed_run_follows_the_serial_iteration_to_round_off() {
+    let (loose, start) = two_grains(1e-7);
+    let reference = serial(&loose, start.clone(), STEPS / 2);
+    let (tight, tight_start) = two_grains(1e-10);
+    let tolerance_error = velocity_difference(&serial(&tight, tight_start, STEPS / 2), &reference);
+    let (whole, _) = distributed(&loose, &start, 3, STEPS / 2);
+    let difference = velocity_difference(&whole, &reference);
     assert!(
-        differences[1] < 0.05 * differences[0],
-        "velocity differences {differences:?} at tolerances 1e-7 and 1e-10"
+        difference < 0.01 * tolerance_error,
+        "velocity difference {difference:e} against the serial tolerance error {tolerance_error:e}"
     );
 }
 

@@ -85,6 +85,7 @@ mod coarse;
 mod level;
 mod multigrid;
 mod operator;
+mod strip_level;
 pub mod strip_multigrid;
 pub mod strips;
 mod transfer;
@@ -319,6 +320,8 @@ pub enum SetupError {
         ny: usize,
         /// The strip asked for.
         strip: usize,
+        /// The fewest rows a strip may have: the ghost rows of the cycle asked for.
+        min_rows: usize,
     },
 }
 
@@ -348,11 +351,15 @@ impl fmt::Display for SetupError {
             SetupError::BadParameter { name, value } => {
                 write!(f, "multigrid parameter {name} = {value} is out of range")
             }
-            SetupError::BadStrips { starts, ny, strip } => write!(
+            SetupError::BadStrips {
+                starts,
+                ny,
+                strip,
+                min_rows,
+            } => write!(
                 f,
                 "strip {strip} of the row cuts {starts:?}: the cuts must rise from 0 to {ny} \
-                 by at least {} rows and the strip must exist",
-                crate::strips::MIN_STRIP_ROWS
+                 by at least {min_rows} rows and the strip must exist"
             ),
         }
     }
