@@ -40,6 +40,19 @@ pub trait Communicator {
     /// Neighbour exchange: sends each `(rank, data)` of `sends` and receives one message from
     /// each rank of `sources`, returned in the order of `sources`.
     fn exchange(&self, sends: &[(usize, Vec<f64>)], sources: &[usize]) -> Vec<Vec<f64>>;
+    /// [`Communicator::exchange`], running `work` (which must not need what arrives) after
+    /// the sends are posted and before the receives wait, so it overlaps the transfer and
+    /// absorbs a neighbour's small lag. Its time is not counted as communication. The default
+    /// runs it first.
+    fn exchange_overlapped(
+        &self,
+        sends: &[(usize, Vec<f64>)],
+        sources: &[usize],
+        work: &mut dyn FnMut(),
+    ) -> Vec<Vec<f64>> {
+        work();
+        self.exchange(sends, sources)
+    }
     /// Replaces each value by its sum over the ranks.
     fn all_reduce_sum(&self, values: &mut [f64]) {
         let gathered = self.all_gather(values);

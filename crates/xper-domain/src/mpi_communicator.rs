@@ -5,7 +5,7 @@ use mpi::request::WaitGuard;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::{Communicator as _, CommunicatorCollectives, Destination, Source};
 use std::cell::Cell;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// The processes of `MPI_COMM_WORLD`.
 pub struct MpiCommunicator {
@@ -45,19 +45,27 @@ impl MpiCommunicator {
             .any(|name| std::env::var_os(name).is_some())
     }
 
-    fn count(&self, sends: &[(usize, &[f64])], start: Instant) {
+    fn count(&self, sends: &[(usize, &[f64])], start: Instant, working: Duration) {
         let mut s = self.stats.get();
         s.messages += sends.len() as u64;
         s.bytes += sends
             .iter()
             .map(|(_, d)| std::mem::size_of_val(*d) as u64)
             .sum::<u64>();
-        s.time += start.elapsed();
+        s.time += start.elapsed().saturating_sub(working);
         self.stats.set(s);
     }
 
-    fn send_receive(&self, sends: &[(usize, &[f64])], sources: &[usize]) -> Vec<Vec<f64>> {
+    /// Posts the sends, runs `work`, then receives from `sources` and waits for the sends.
+    /// `work`'s time is left out of the communication time.
+    fn send_receive(
+        &self,
+        sends: &[(usize, &[f64])],
+        sources: &[usize],
+        work: &mut dyn FnMut(),
+    ) -> Vec<Vec<f64>> {
         let start = Instant::now();
+        let mut working = Duration::ZERO;
         let received = mpi::request::scope(|scope| {
             let _guards: Vec<WaitGuard<[f64], _>> = sends
                 .iter()
@@ -69,12 +77,15 @@ impl MpiCommunicator {
                     )
                 })
                 .collect();
+            let work_start = Instant::now();
+            work();
+            working = work_start.elapsed();
             sources
                 .iter()
                 .map(|&s| self.world.process_at_rank(s as i32).receive_vec::<f64>().0)
                 .collect()
         });
-        self.count(sends, start);
+        self.count(sends, start, working);
         received
     }
 }
@@ -97,7 +108,9 @@ impl Communicator for MpiCommunicator {
         let others: Vec<usize> = (0..self.size()).filter(|&r| r != me).collect();
         let outgoing: Vec<(usize, &[f64])> =
             others.iter().map(|&r| (r, sends[r].as_slice())).collect();
-        let mut received = self.send_receive(&outgoing, &others).into_iter();
+        let mut received = self
+            .send_receive(&outgoing, &others, &mut || {})
+            .into_iter();
         (0..self.size())
             .map(|r| {
                 if r == me {
@@ -110,9 +123,18 @@ impl Communicator for MpiCommunicator {
     }
 
     fn exchange(&self, sends: &[(usize, Vec<f64>)], sources: &[usize]) -> Vec<Vec<f64>> {
+        self.exchange_overlapped(sends, sources, &mut || {})
+    }
+
+    fn exchange_overlapped(
+        &self,
+        sends: &[(usize, Vec<f64>)],
+        sources: &[usize],
+        work: &mut dyn FnMut(),
+    ) -> Vec<Vec<f64>> {
         let outgoing: Vec<(usize, &[f64])> =
             sends.iter().map(|(r, d)| (*r, d.as_slice())).collect();
-        self.send_receive(&outgoing, sources)
+        self.send_receive(&outgoing, sources, work)
     }
 
     /// One `MPI_Allgather` (a logarithmic-depth collective) instead of `size - 1` messages;

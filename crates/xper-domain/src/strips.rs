@@ -22,16 +22,31 @@ pub fn exchange_with_neighbours<C: Communicator + ?Sized>(
     to_below: Option<Vec<f64>>,
     to_above: Option<Vec<f64>>,
 ) -> [Option<Vec<f64>>; 2] {
+    exchange_with_neighbours_overlapped(comm, neighbours, to_below, to_above, &mut || {})
+}
+
+/// [`exchange_with_neighbours`], running `work` while the rows travel
+/// ([`Communicator::exchange_overlapped`]).
+pub fn exchange_with_neighbours_overlapped<C: Communicator + ?Sized>(
+    comm: &C,
+    neighbours: [Option<usize>; 2],
+    to_below: Option<Vec<f64>>,
+    to_above: Option<Vec<f64>>,
+    work: &mut dyn FnMut(),
+) -> [Option<Vec<f64>>; 2] {
     let me = comm.rank();
     match neighbours {
-        [Some(below), Some(above)] if below == me && above == me => [to_above, to_below],
+        [Some(below), Some(above)] if below == me && above == me => {
+            work();
+            [to_above, to_below]
+        }
         [Some(below), Some(above)] if below == above => {
             let first = to_below.unwrap_or_default();
             let mut message = Vec::with_capacity(first.len() + 1);
             message.push(first.len() as f64);
             message.extend(first);
             message.extend(to_above.unwrap_or_default());
-            let mut received = comm.exchange(&[(below, message)], &[below]);
+            let mut received = comm.exchange_overlapped(&[(below, message)], &[below], work);
             let mut message = received.pop().unwrap_or_default();
             let split = message
                 .first()
@@ -50,7 +65,7 @@ pub fn exchange_with_neighbours<C: Communicator + ?Sized>(
                     sources.push(rank);
                 }
             }
-            let mut received = comm.exchange(&sends, &sources).into_iter();
+            let mut received = comm.exchange_overlapped(&sends, &sources, work).into_iter();
             [
                 below.and_then(|_| received.next()),
                 above.and_then(|_| received.next()),
@@ -78,6 +93,21 @@ impl<C: Communicator + ?Sized> RowLinks for StripComm<'_, C> {
             self.neighbours,
             to_below.map(<[f64]>::to_vec),
             to_above.map(<[f64]>::to_vec),
+        )
+    }
+
+    fn exchange_rows_overlapped(
+        &mut self,
+        to_below: Option<&[f64]>,
+        to_above: Option<&[f64]>,
+        work: &mut dyn FnMut(),
+    ) -> [Option<Vec<f64>>; 2] {
+        exchange_with_neighbours_overlapped(
+            self.comm,
+            self.neighbours,
+            to_below.map(<[f64]>::to_vec),
+            to_above.map(<[f64]>::to_vec),
+            work,
         )
     }
 

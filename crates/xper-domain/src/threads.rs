@@ -132,12 +132,22 @@ impl Communicator for ThreadCommunicator {
     }
 
     fn exchange(&self, sends: &[(usize, Vec<f64>)], sources: &[usize]) -> Vec<Vec<f64>> {
+        self.exchange_overlapped(sends, sources, &mut || {})
+    }
+
+    fn exchange_overlapped(
+        &self,
+        sends: &[(usize, Vec<f64>)],
+        sources: &[usize],
+        work: &mut dyn FnMut(),
+    ) -> Vec<Vec<f64>> {
         self.timed(|| {
             for (dst, data) in sends {
                 self.send(*dst, data.clone());
             }
-            sources.iter().map(|&src| self.receive(src)).collect()
-        })
+        });
+        work();
+        self.timed(|| sources.iter().map(|&src| self.receive(src)).collect())
     }
 
     fn stats(&self) -> CommStats {

@@ -18,7 +18,8 @@ use xper_laws::LawTable;
 use xper_math::Vector;
 use xper_nscd::{StepParams, World};
 use xper_poisson::{
-    Boundary, GridShape, Multigrid, MultigridParams, SideCondition, StripLayout, StripMultigrid,
+    Boundary, GridShape, Multigrid, MultigridParams, SideCondition, SolveError, SolveInfo,
+    StripLayout, StripMultigrid,
 };
 
 const STEPS: usize = 400;
@@ -28,6 +29,44 @@ fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
     a.iter()
         .zip(b)
         .fold(0.0, |m: f64, (x, y)| m.max((x - y).abs()))
+}
+
+/// A square-celled `nx x ny` grid of width 1.
+fn unit_width_grid(nx: usize, ny: usize) -> GridShape {
+    GridShape {
+        nx,
+        ny,
+        hx: 1.0 / nx as f64,
+        hy: 1.0 / nx as f64,
+    }
+}
+
+/// `rhs` solved by the strip multigrid on `ranks` thread processes, balanced strips: the
+/// gathered solution and each process's outcome.
+fn solve_in_strips(
+    shape: GridShape,
+    boundary: Boundary,
+    params: MultigridParams,
+    rhs: &[f64],
+    ranks: usize,
+) -> (Vec<f64>, Vec<Result<SolveInfo, SolveError>>) {
+    let nx = shape.nx;
+    let pieces = run_on_threads(ranks, |comm| {
+        let layout = StripLayout::balanced(nx, shape.ny, ranks).unwrap();
+        let rows = layout.rows(comm.rank());
+        let mut solver = StripMultigrid::new(shape, boundary, params, layout, comm.rank()).unwrap();
+        let periodic = boundary.bottom == SideCondition::Periodic;
+        let mut links = xper_domain::strips::StripComm {
+            comm,
+            neighbours: xper_domain::strips::strip_neighbours(comm.rank(), ranks, periodic),
+        };
+        let local = &rhs[rows.start * nx..rows.end * nx];
+        let mut phi = vec![0.0; local.len()];
+        let outcome = solver.solve(&mut links, local, &mut phi);
+        (phi, outcome)
+    });
+    let outcomes = pieces.iter().map(|p| p.1).collect();
+    (pieces.into_iter().flat_map(|p| p.0).collect(), outcomes)
 }
 
 /// Strips on 1 to 4 thread processes solve the serial multigrid's discrete problem: both at
@@ -44,25 +83,12 @@ fn the_strip_multigrid_on_several_processes_agrees_with_the_serial_multigrid() {
         },
     ];
     let (nx, ny) = (64, 256);
-    let shape = GridShape {
-        nx,
-        ny,
-        hx: 1.0 / nx as f64,
-        hy: 1.0 / nx as f64,
-    };
+    let shape = unit_width_grid(nx, ny);
     let params = MultigridParams {
         relative_tolerance: 1e-12,
         ..MultigridParams::default()
     };
-    let mut seed = 12345u64;
-    let rhs: Vec<f64> = (0..nx * ny)
-        .map(|_| {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        })
-        .collect();
+    let rhs = xper_poisson::bench::random_values(nx * ny, 12345);
     for boundary in boundaries {
         let mut expected = vec![0.0; nx * ny];
         Multigrid::new(shape, boundary, params)
@@ -71,25 +97,10 @@ fn the_strip_multigrid_on_several_processes_agrees_with_the_serial_multigrid() {
             .unwrap();
         let size = expected.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for ranks in 1..=4 {
-            let pieces = run_on_threads(ranks, |comm| {
-                use xper_domain::Communicator;
-                let layout = StripLayout::balanced(nx, ny, ranks).unwrap();
-                let rows = layout.rows(comm.rank());
-                let mut solver =
-                    StripMultigrid::new(shape, boundary, params, layout, comm.rank()).unwrap();
-                let periodic = boundary.bottom == Periodic;
-                let mut links = xper_domain::strips::StripComm {
-                    comm,
-                    neighbours: xper_domain::strips::strip_neighbours(comm.rank(), ranks, periodic),
-                };
-                let local = &rhs[rows.start * nx..rows.end * nx];
-                let mut phi = vec![0.0; local.len()];
-                let info = solver.solve(&mut links, local, &mut phi).unwrap();
-                (phi, info)
-            });
-            let cycles = pieces[0].1.cycles;
-            assert!(pieces.iter().all(|p| p.1.cycles == cycles));
-            let phi: Vec<f64> = pieces.into_iter().flat_map(|p| p.0).collect();
+            let (phi, outcomes) = solve_in_strips(shape, boundary, params, &rhs, ranks);
+            let infos: Vec<SolveInfo> = outcomes.into_iter().map(Result::unwrap).collect();
+            let cycles = infos[0].cycles;
+            assert!(infos.iter().all(|info| info.cycles == cycles));
             let difference = largest_difference(&phi, &expected);
             assert!(
                 difference <= 1e-8 * size,
@@ -120,52 +131,21 @@ fn a_non_singular_strip_solve_gives_the_same_bits_on_1_to_4_processes() {
         },
     ];
     for (nx, ny) in [(64, 256), (128, 128)] {
-        let shape = GridShape {
-            nx,
-            ny,
-            hx: 1.0 / nx as f64,
-            hy: 1.0 / nx as f64,
-        };
+        let shape = unit_width_grid(nx, ny);
         // Four cycles whatever the residual, so every run does the same work.
         let params = MultigridParams {
             relative_tolerance: 1e-30,
             max_cycles: 4,
             ..MultigridParams::default()
         };
-        let mut seed = 99u64;
-        let rhs: Vec<f64> = (0..nx * ny)
-            .map(|_| {
-                seed = seed
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-            })
-            .collect();
+        let rhs = xper_poisson::bench::random_values(nx * ny, 99);
         for boundary in boundaries {
-            let solve_on = |ranks: usize| -> Vec<f64> {
-                run_on_threads(ranks, |comm| {
-                    let layout = StripLayout::balanced(nx, ny, ranks).unwrap();
-                    let rows = layout.rows(comm.rank());
-                    let mut solver =
-                        StripMultigrid::new(shape, boundary, params, layout, comm.rank()).unwrap();
-                    let mut links = xper_domain::strips::StripComm {
-                        comm,
-                        neighbours: xper_domain::strips::strip_neighbours(
-                            comm.rank(),
-                            ranks,
-                            boundary.bottom == Periodic,
-                        ),
-                    };
-                    let local = &rhs[rows.start * nx..rows.end * nx];
-                    let mut phi = vec![0.0; local.len()];
-                    let outcome = solver.solve(&mut links, local, &mut phi);
-                    assert!(matches!(
-                        outcome,
-                        Err(xper_poisson::SolveError::NotConverged { .. })
-                    ));
-                    phi
-                })
-                .concat()
+            let solve_on = |ranks| {
+                let (phi, outcomes) = solve_in_strips(shape, boundary, params, &rhs, ranks);
+                assert!(outcomes
+                    .iter()
+                    .all(|o| matches!(o, Err(SolveError::NotConverged { .. }))));
+                phi
             };
             let one = solve_on(1);
             for ranks in 2..=4 {

@@ -5,47 +5,13 @@
 
 use std::time::Instant;
 use xper_poisson::{
-    Boundary, GridShape, Multigrid, MultigridParams, OneStrip, RowLinks, SideCondition,
-    StripLayout, StripMultigrid,
+    Boundary, CountingLinks, GridShape, Multigrid, MultigridParams, SideCondition, StripLayout,
+    StripMultigrid,
 };
 
-/// [`OneStrip`] counting the calls a distributed run would turn into messages.
-#[derive(Default)]
-struct Counting {
-    exchanges: usize,
-    sums: usize,
-    gathers: usize,
-}
-
-impl RowLinks for Counting {
-    fn exchange_rows(
-        &mut self,
-        to_below: Option<&[f64]>,
-        to_above: Option<&[f64]>,
-    ) -> [Option<Vec<f64>>; 2] {
-        self.exchanges += 1;
-        OneStrip.exchange_rows(to_below, to_above)
-    }
-    fn sum(&mut self, values: &mut [f64]) {
-        self.sums += 1;
-        OneStrip.sum(values)
-    }
-    fn gather(&mut self, values: &[f64]) -> Vec<f64> {
-        self.gathers += 1;
-        OneStrip.gather(values)
-    }
-}
-
+/// A random rhs with its mean removed (a solvable Neumann problem).
 fn random_rhs(n: usize) -> Vec<f64> {
-    let mut state = 11u64;
-    let mut values: Vec<f64> = (0..n)
-        .map(|_| {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        })
-        .collect();
+    let mut values = xper_poisson::bench::random_values(n, 11);
     let mean = values.iter().sum::<f64>() / n as f64;
     values.iter_mut().for_each(|v| *v -= mean);
     values
@@ -114,11 +80,11 @@ fn main() {
             let layout = StripLayout::balanced(nx, ny, 1).expect("layout");
             let mut strip =
                 StripMultigrid::new(shape, boundary, params, layout, 0).expect("strip solver");
-            let mut counting = Counting::default();
+            let mut counting = CountingLinks::default();
             let mut strip_cycles = 0;
             let strip_time = best_of(5, || {
                 phi.fill(0.0);
-                counting = Counting::default();
+                counting = CountingLinks::default();
                 strip_cycles = strip
                     .solve(&mut counting, &rhs, &mut phi)
                     .expect("strip solve")

@@ -35,6 +35,13 @@ pub struct BenchFigures {
     pub solve_cells_per_second: f64,
 }
 
+/// `n` reproducible uniform random numbers in `[-1, 1)` from `seed` (a right-hand side for
+/// tests and benchmarks).
+pub fn random_values(n: usize, seed: u64) -> Vec<f64> {
+    let mut state = seed;
+    (0..n).map(|_| random(&mut state)).collect()
+}
+
 /// A reproducible uniform random number in `[-1, 1)` (splitmix64).
 pub(crate) fn random(state: &mut u64) -> f64 {
     *state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);

@@ -28,8 +28,16 @@
 //! of geometric multigrid for emerging multi- and manycore processors", SC 2012, section V;
 //! the redundant computation of Douglas et al., ETNA 10, 2000.)
 //!
+//! **Overlap.** The exchange runs while the strip relaxes the cells that do not need the
+//! rows on their way (half-sweep `h` of the rows at least `h` from a linked edge,
+//! [`RowLinks::exchange_rows_overlapped`]); the rows near the edges and the ghost rows are
+//! relaxed once they arrive. A process slightly behind its neighbour then delays it only when
+//! the lag exceeds that inner work, instead of at every exchange.
+//!
 //! Every strip makes the same calls in the same order: whether an exchange is needed is
 //! decided from the counts of current ghost rows, which evolve alike on every strip.
+
+mod smoothing;
 
 use crate::strips::RowLinks;
 use crate::{Boundary, MultigridParams, SideCondition};
@@ -190,47 +198,44 @@ impl StripLevel {
         }
     }
 
-    /// Exchanges `u_depth` rows of `u` and `f_depth` rows of `f` (whole padded rows, so the
-    /// corners follow) with the neighbouring strips, into the ghost rows next to the cells. On
-    /// a side that is the domain's boundary the ghost row of `u` next to the cells is zeroed.
-    fn exchange(&mut self, links: &mut dyn RowLinks, u_depth: usize, f_depth: usize) {
+    /// The messages to the neighbouring strips, `[to_below, to_above]` (`None` where the
+    /// side is the domain's boundary): `u_depth` edge rows of `u`, then `f_depth` of `f`, whole
+    /// padded rows so the corners follow.
+    fn messages(&self, u_depth: usize, f_depth: usize) -> [Option<Vec<f64>>; 2] {
         let (w, rows) = (self.width(), self.rows as isize);
-        let depths = [(u_depth, true), (f_depth, false)];
-        let message = |side: usize| {
-            let mut values = Vec::with_capacity((u_depth + f_depth) * w);
-            for (depth, of_u) in depths {
-                let first = if side == 0 { 0 } else { rows - depth as isize };
-                let start = self.index(-1, first);
-                let field = if of_u { &self.u } else { &self.f };
-                values.extend_from_slice(&field[start..start + depth * w]);
-            }
-            values
-        };
-        let sent = [0, 1].map(|side| self.linked[side].then(|| message(side)));
-        let received = links.exchange_rows(sent[0].as_deref(), sent[1].as_deref());
+        [0, 1].map(|side| {
+            self.linked[side].then(|| {
+                let mut values = Vec::with_capacity((u_depth + f_depth) * w);
+                for (depth, field) in [(u_depth, &self.u), (f_depth, &self.f)] {
+                    let first = if side == 0 { 0 } else { rows - depth as isize };
+                    let start = self.index(-1, first);
+                    values.extend_from_slice(&field[start..start + depth * w]);
+                }
+                values
+            })
+        })
+    }
+
+    /// Stores what the neighbours sent (their [`StripLevel::messages`]) in the ghost rows next
+    /// to the cells, which are then current.
+    fn store(&mut self, received: [Option<Vec<f64>>; 2], u_depth: usize, f_depth: usize) {
+        let (w, rows) = (self.width(), self.rows as isize);
         for (side, values) in received.into_iter().enumerate() {
-            match values {
-                Some(values) => {
-                    assert_eq!(
-                        values.len(),
-                        (u_depth + f_depth) * w,
-                        "strip rows from the neighbour {}: not the rows asked for",
-                        ["below", "above"][side]
-                    );
-                    let mut offset = 0;
-                    for (depth, of_u) in depths {
-                        let first = if side == 0 { -(depth as isize) } else { rows };
-                        let start = self.index(-1, first);
-                        let field = if of_u { &mut self.u } else { &mut self.f };
-                        field[start..start + depth * w]
-                            .copy_from_slice(&values[offset..offset + depth * w]);
-                        offset += depth * w;
-                    }
-                }
-                None => {
-                    let start = self.index(-1, if side == 0 { -1 } else { rows });
-                    self.u[start..start + w].fill(0.0);
-                }
+            let Some(values) = values else { continue };
+            assert_eq!(
+                values.len(),
+                (u_depth + f_depth) * w,
+                "strip rows from the neighbour {}: not the rows asked for",
+                ["below", "above"][side]
+            );
+            let mut offset = 0;
+            for (depth, of_u) in [(u_depth, true), (f_depth, false)] {
+                let first = if side == 0 { -(depth as isize) } else { rows };
+                let start = self.index(-1, first);
+                let field = if of_u { &mut self.u } else { &mut self.f };
+                field[start..start + depth * w]
+                    .copy_from_slice(&values[offset..offset + depth * w]);
+                offset += depth * w;
             }
         }
         if u_depth > 0 {
@@ -241,21 +246,32 @@ impl StripLevel {
         }
     }
 
-    /// Makes the ghost rows current for `sweeps` sweeps and the residual after them: `2 sweeps
-    /// + 1` rows of `u` and `2 sweeps` of `f`, exchanged in one message per neighbour when
-    ///   they are not current already.
-    pub fn prepare(&mut self, links: &mut dyn RowLinks, sweeps: usize) {
-        let (need_u, need_f) = (2 * sweeps + 1, 2 * sweeps);
-        debug_assert!(
-            need_u <= self.ghosts,
-            "{sweeps} sweeps need {need_u} ghost rows"
-        );
-        self.fill_ghost_columns(false, 0..self.rows as isize);
-        let u_depth = if self.u_current >= need_u { 0 } else { need_u };
-        let f_depth = if self.f_current >= need_f { 0 } else { need_f };
-        if u_depth + f_depth > 0 {
-            self.exchange(links, u_depth, f_depth);
+    /// Zeroes the ghost row of `u` next to the cells on each side that is the domain's
+    /// boundary (the folded diagonal holds the boundary rule).
+    fn zero_boundary_ghost_rows(&mut self) {
+        let (w, rows) = (self.width(), self.rows as isize);
+        for (side, j) in [(0, -1), (1, rows)] {
+            if !self.linked[side] {
+                let start = self.index(-1, j);
+                self.u[start..start + w].fill(0.0);
+            }
         }
+    }
+
+    /// The exchange of `u_depth` rows of `u` and `f_depth` of `f` with the neighbours.
+    fn exchange(&mut self, links: &mut dyn RowLinks, u_depth: usize, f_depth: usize) {
+        let [to_below, to_above] = self.messages(u_depth, f_depth);
+        let received = links.exchange_rows(to_below.as_deref(), to_above.as_deref());
+        self.zero_boundary_ghost_rows();
+        self.store(received, u_depth, f_depth);
+    }
+
+    /// How deep in the linked ghost rows the first red half-sweep can relax: it needs `u` one
+    /// row deeper and `f` on the row.
+    fn relaxable_depth(&self) -> isize {
+        (self.u_current as isize - 1)
+            .min(self.f_current as isize)
+            .max(0)
     }
 
     /// Relaxes the cells of `colour` (`i + j` even or odd, global `j`) of local row `j`, then
@@ -331,83 +347,13 @@ impl StripLevel {
         partial.iter().sum::<f64>() + tail
     }
 
-    /// One red-black SOR sweep (all cells of colour 0, `i + j` even with global `j`, then
-    /// those of colour 1) with no exchange, after [`StripLevel::prepare`]: with `d` ghost rows
-    /// of `u` current, the red cells of `d - 1` linked ghost rows and the black ones of `d - 2`
-    /// are relaxed too (red on row `s` pipelined with black on row `s - 1`), and `d - 2` ghost
-    /// rows are current after. The result is that of a sweep over the whole grid.
-    ///
-    /// With `residual`, also writes `r` on the cells (each row as soon as its neighbours are
-    /// final) and returns `sum r^2` over the strip; else returns 0. With `coarse` as well, each
-    /// pair of residual rows is restricted into it as soon as written, while in cache (as the
-    /// serial solver's sweep does).
-    pub fn sweep(
-        &mut self,
-        omega: f64,
-        residual: bool,
-        mut coarse: Option<&mut StripLevel>,
-    ) -> f64 {
-        let rows = self.rows as isize;
-        let red = self.u_current.saturating_sub(1).min(self.f_current) as isize;
-        let black = (red - 1).max(0);
-        debug_assert!(
-            !self.linked.contains(&true) || black >= residual as isize,
-            "a sweep with {} ghost rows of u and {} of f current",
-            self.u_current,
-            self.f_current
-        );
-        let reach = |depth: isize| {
-            let low = if self.linked[0] { -depth } else { 0 };
-            let high = if self.linked[1] {
-                rows - 1 + depth
-            } else {
-                rows - 1
-            };
-            (low, high)
-        };
-        let ((red_low, red_high), (black_low, black_high)) = (reach(red), reach(black));
-        let mut squares = 0.0;
-        let mut next_residual = 0;
-        for s in red_low..=red_high + 1 {
-            if s <= red_high {
-                self.relax_row(s, 0, omega);
-            }
-            if (black_low..=black_high).contains(&(s - 1)) {
-                self.relax_row(s - 1, 1, omega);
-            }
-            while residual && next_residual < rows && next_residual + 2 <= s {
-                squares += self.residual_and_restriction(next_residual, coarse.as_deref_mut());
-                next_residual += 1;
-            }
-        }
-        while residual && next_residual < rows {
-            squares += self.residual_and_restriction(next_residual, coarse.as_deref_mut());
-            next_residual += 1;
-        }
-        if let Some(coarse) = coarse {
-            coarse.rhs_changed();
-        }
-        self.u_current = black as usize;
-        squares
-    }
-
-    /// [`StripLevel::residual_row`], then with `coarse` and an odd row `j`, the restriction of
-    /// rows `j - 1` and `j` into it.
-    #[inline]
-    fn residual_and_restriction(&mut self, j: isize, coarse: Option<&mut StripLevel>) -> f64 {
-        let squares = self.residual_row(j);
-        if let Some(coarse) = coarse {
-            if j % 2 == 1 {
-                self.restrict_row_pair((j / 2) as usize, coarse);
-            }
-        }
-        squares
-    }
-
     /// `r = f - Lap u` on every cell (one ghost row exchanged first if needed); returns
     /// `sum r^2`.
     pub fn residual(&mut self, links: &mut dyn RowLinks) -> f64 {
-        self.prepare(links, 0);
+        self.fill_ghost_columns(false, 0..self.rows as isize);
+        if self.u_current == 0 {
+            self.exchange(links, 1, 0);
+        }
         (0..self.rows as isize).map(|j| self.residual_row(j)).sum()
     }
 

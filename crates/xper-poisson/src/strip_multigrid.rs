@@ -5,7 +5,8 @@
 //! The strip levels coarsen by two in both directions while the strips stay whole numbers of
 //! at least as many coarse rows as a level has ghost rows ([`StripLayout::balanced`] cuts them
 //! so for the default cycle); a level exchanges deep ghost rows with each neighbouring strip
-//! once before its pre-smoothing and once before its post-smoothing and relaxes its
+//! once before its pre-smoothing and once before its post-smoothing, overlapping each
+//! exchange with the sweeps of its inner rows, and relaxes its
 //! neighbours' edge rows itself (the private module `strip_level`); the residual is
 //! restricted by four-cell averages within the last pre-smoothing sweep and the correction
 //! prolongated bilinearly, as in the serial solver. A V(2,1) cycle thus exchanges rows twice
@@ -232,12 +233,10 @@ impl StripMultigrid {
         let (upper, lower) = self.levels.split_at_mut(l + 1);
         let (fine, coarse) = (&mut upper[l], &mut lower[0]);
         coarse.zero_solution();
-        fine.prepare(links, p.pre_smoothing as usize);
-        for k in 0..p.pre_smoothing {
-            let last = k + 1 == p.pre_smoothing;
-            fine.sweep(p.omega, last, last.then_some(&mut *coarse));
-        }
-        if p.pre_smoothing == 0 {
+        if p.pre_smoothing > 0 {
+            let sweeps = p.pre_smoothing as usize;
+            fine.smooth(links, p.omega, sweeps, true, Some(&mut *coarse));
+        } else {
             fine.residual(links);
             fine.restrict(coarse);
         }
@@ -246,13 +245,11 @@ impl StripMultigrid {
         let (upper, lower) = self.levels.split_at_mut(l + 1);
         let (fine, coarse) = (&mut upper[l], &mut lower[0]);
         fine.prolong(coarse, links);
-        fine.prepare(links, p.post_smoothing as usize);
-        let mut squares = None;
-        for k in 0..p.post_smoothing {
-            let last = l == 0 && k + 1 == p.post_smoothing;
-            let sum = fine.sweep(p.omega, last, None);
-            squares = last.then_some(sum);
-        }
+        let squares = (p.post_smoothing > 0).then(|| {
+            let sweeps = p.post_smoothing as usize;
+            fine.smooth(links, p.omega, sweeps, l == 0, None)
+        });
+        let squares = squares.filter(|_| l == 0);
         (work + scale * (0.5 + p.post_smoothing as f64), squares)
     }
 
@@ -300,10 +297,8 @@ mod tests {
     use crate::strips::OneStrip;
     use crate::SideCondition::{Dirichlet, Neumann, Periodic};
 
-    fn random_rhs(n: usize, seed: u64) -> Vec<f64> {
-        let mut state = seed;
-        (0..n).map(|_| crate::bench::random(&mut state)).collect()
-    }
+    use crate::bench::random_values as random_rhs;
+    use crate::strips::CountingLinks;
 
     /// One strip holding the whole grid solves the same discrete problem as the serial
     /// multigrid: both at a relative residual of 1e-12 agree to 1e-8 of the solution's size
@@ -360,29 +355,6 @@ mod tests {
                     info.cycles
                 );
             }
-        }
-    }
-
-    /// [`OneStrip`] counting the exchanges a distributed run would turn into messages.
-    #[derive(Default)]
-    struct CountingLinks {
-        exchanges: usize,
-    }
-
-    impl RowLinks for CountingLinks {
-        fn exchange_rows(
-            &mut self,
-            to_below: Option<&[f64]>,
-            to_above: Option<&[f64]>,
-        ) -> [Option<Vec<f64>>; 2] {
-            self.exchanges += 1;
-            OneStrip.exchange_rows(to_below, to_above)
-        }
-        fn sum(&mut self, values: &mut [f64]) {
-            OneStrip.sum(values)
-        }
-        fn gather(&mut self, values: &[f64]) -> Vec<f64> {
-            OneStrip.gather(values)
         }
     }
 

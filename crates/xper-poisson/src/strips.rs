@@ -16,6 +16,17 @@ pub trait RowLinks {
         to_below: Option<&[f64]>,
         to_above: Option<&[f64]>,
     ) -> [Option<Vec<f64>>; 2];
+    /// [`RowLinks::exchange_rows`], running `work` (which must not need what arrives) while
+    /// the rows travel. The default runs it before the exchange.
+    fn exchange_rows_overlapped(
+        &mut self,
+        to_below: Option<&[f64]>,
+        to_above: Option<&[f64]>,
+        work: &mut dyn FnMut(),
+    ) -> [Option<Vec<f64>>; 2] {
+        work();
+        self.exchange_rows(to_below, to_above)
+    }
     /// Replaces each value by its sum over the strips (the same bits on every strip).
     fn sum(&mut self, values: &mut [f64]);
     /// Every strip's `values` concatenated in strip order, on every strip. Every strip passes
@@ -38,6 +49,37 @@ impl RowLinks for OneStrip {
     fn sum(&mut self, _values: &mut [f64]) {}
     fn gather(&mut self, values: &[f64]) -> Vec<f64> {
         values.to_vec()
+    }
+}
+
+/// [`OneStrip`] counting the calls a distributed run would turn into messages (tests and
+/// `strip_bench`).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct CountingLinks {
+    /// Row exchanges.
+    pub exchanges: usize,
+    /// Sums over the strips.
+    pub sums: usize,
+    /// Gathers of the coarse grid.
+    pub gathers: usize,
+}
+
+impl RowLinks for CountingLinks {
+    fn exchange_rows(
+        &mut self,
+        to_below: Option<&[f64]>,
+        to_above: Option<&[f64]>,
+    ) -> [Option<Vec<f64>>; 2] {
+        self.exchanges += 1;
+        OneStrip.exchange_rows(to_below, to_above)
+    }
+    fn sum(&mut self, values: &mut [f64]) {
+        self.sums += 1;
+        OneStrip.sum(values)
+    }
+    fn gather(&mut self, values: &[f64]) -> Vec<f64> {
+        self.gathers += 1;
+        OneStrip.gather(values)
     }
 }
 
