@@ -40,10 +40,11 @@ pub trait Communicator {
     /// Neighbour exchange: sends each `(rank, data)` of `sends` and receives one message from
     /// each rank of `sources`, returned in the order of `sources`.
     fn exchange(&self, sends: &[(usize, Vec<f64>)], sources: &[usize]) -> Vec<Vec<f64>>;
-    /// [`Communicator::exchange`], running `work` (which must not need what arrives) after
-    /// the sends are posted and before the receives wait, so it overlaps the transfer and
-    /// absorbs a neighbour's small lag. Its time is not counted as communication. The default
-    /// runs it first.
+    /// [`Communicator::exchange`], running `work` exactly once (it must not need what
+    /// arrives) after the sends are posted and before the receives wait, so a neighbour's
+    /// small lag is absorbed by it (a message above the transport's eager size may still
+    /// move only once received: MPI makes no progress without a call). Its time is not
+    /// counted as communication. The default runs it first.
     fn exchange_overlapped(
         &self,
         sends: &[(usize, Vec<f64>)],

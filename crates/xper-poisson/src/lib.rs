@@ -312,7 +312,8 @@ pub enum SetupError {
         /// Its value.
         value: f64,
     },
-    /// The strip layout does not cut the rows into non-empty strips, or names no such strip.
+    /// The strip layout does not cut the rows into strips of at least `min_rows` rows, or
+    /// names no such strip.
     BadStrips {
         /// The row cuts.
         starts: Vec<usize>,

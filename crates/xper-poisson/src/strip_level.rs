@@ -16,8 +16,8 @@
 //! this diagonal relaxes boundary cells exactly, as the serial [`crate::Multigrid`] does.
 //!
 //! **Deep ghost rows.** The ghost rows towards another strip (or across a periodic bottom and
-//! top) are filled by [`RowLinks::exchange_rows`], `2 s + 1` rows of `u` and `2 s` of `f` at
-//! once before `s` sweeps. The strip then relaxes its neighbours' edge rows itself, one row
+//! top) are filled by [`RowLinks::exchange_rows_overlapped`], `2 s + 1` rows of `u` and `2 s`
+//! of `f` at once before `s` sweeps. The strip then relaxes its neighbours' edge rows itself, one row
 //! fewer per half-sweep, so the `s` sweeps and the residual after them need no other
 //! exchange: a V(2, 1) cycle exchanges twice per level (before the pre- and before the
 //! post-smoothing) instead of once per sweep, once for the residual and once for the
@@ -161,6 +161,11 @@ impl StripLevel {
 
     pub fn cells(&self) -> usize {
         self.nx * self.rows
+    }
+
+    /// The most sweeps one exchange of the ghost rows allows (at least 1).
+    pub fn sweeps_per_exchange(&self) -> usize {
+        (self.ghosts.saturating_sub(1) / 2).max(1)
     }
 
     /// Records that `f` changed in the cells (its ghost rows are stale).

@@ -3,24 +3,29 @@
 //! rows of its strip ([`StripLayout`]).
 //!
 //! The strip levels coarsen by two in both directions while the strips stay whole numbers of
-//! at least as many coarse rows as a level has ghost rows ([`StripLayout::balanced`] cuts them
-//! so for the default cycle); a level exchanges deep ghost rows with each neighbouring strip
+//! at least [`MIN_STRIP_ROWS`] coarse rows ([`StripLayout::balanced`] cuts them so); a level
+//! exchanges deep ghost rows (`2 s + 1` for `s` sweeps, fewer on strips thinner than that,
+//! whose sweeps are then exchanged for in groups) with each neighbouring strip
 //! once before its pre-smoothing and once before its post-smoothing, overlapping each
 //! exchange with the sweeps of its inner rows, and relaxes its
 //! neighbours' edge rows itself (the private module `strip_level`); the residual is
 //! restricted by four-cell averages within the last pre-smoothing sweep and the correction
 //! prolongated bilinearly, as in the serial solver. A V(2,1) cycle thus exchanges rows twice
 //! per strip level, and the residual that ends it is computed within its last sweep.
-//! The coarsest strip level (at most [`crate::strips::GATHERED_CELLS`] cells in all) is
-//! gathered on every process and relaxed whole by one V-cycle of the serial
-//! [`crate::Multigrid`], so a strip cycle is the serial solver's cycle; every
+//! The coarsest strip level (at most [`crate::strips::GATHERED_CELLS`] cells in all when the
+//! layout's cuts allow the strips to coarsen that far) is gathered on every process and
+//! relaxed whole by one V-cycle of the serial [`crate::Multigrid`], so that, when the serial
+//! solver coarsens the same way, a strip cycle is the serial solver's cycle to round-off (the
+//! strip cycle is a V-cycle whatever [`MultigridParams::cycle`] says); every
 //! process gets the same bits, so no broadcast is needed (the agglomeration of Trottenberg et
 //! al., "Multigrid", section 6.3). Convergence is judged on the global residual norm (one sum
 //! per cycle), so every process stops at the same cycle.
 
 use crate::strip_level::{ghost_rows, StripLevel};
-use crate::strips::{RowLinks, StripLayout};
-use crate::{Boundary, GridShape, Multigrid, MultigridParams, SetupError, SolveError, SolveInfo};
+use crate::strips::{RowLinks, StripLayout, MIN_STRIP_ROWS};
+use crate::{
+    Boundary, CycleType, GridShape, Multigrid, MultigridParams, SetupError, SolveError, SolveInfo,
+};
 
 /// A multigrid solver for the rows of one strip of the grid.
 pub struct StripMultigrid {
@@ -47,19 +52,27 @@ impl StripMultigrid {
         strip: usize,
     ) -> Result<Self, SetupError> {
         crate::multigrid::validate(&shape, &boundary, &params)?;
-        let ghosts = ghost_rows(&params);
         if layout.starts.first() != Some(&0)
             || layout.starts.last() != Some(&shape.ny)
-            || layout.starts.windows(2).any(|w| w[0] + ghosts > w[1])
+            || layout
+                .starts
+                .windows(2)
+                .any(|w| w[0] + MIN_STRIP_ROWS > w[1])
             || strip >= layout.strips()
         {
             return Err(SetupError::BadStrips {
                 starts: layout.starts.clone(),
                 ny: shape.ny,
                 strip,
-                min_rows: ghosts,
+                min_rows: MIN_STRIP_ROWS,
             });
         }
+        // Each level's ghost rows: those of the cycle, or fewer where the strips are thinner
+        // (the sweeps are then exchanged for in smaller groups); the same on every strip.
+        let ghosts_for = |starts: &[usize]| {
+            let thinnest = starts.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(0);
+            ghost_rows(&params).min(thinnest)
+        };
         let (mut nx, mut ny, mut hx, mut hy) = (shape.nx, shape.ny, shape.hx, shape.hy);
         let mut starts = layout.starts.clone();
         let mut levels = vec![StripLevel::new(
@@ -68,12 +81,12 @@ impl StripMultigrid {
             layout.rows(strip),
             [hx, hy],
             boundary,
-            ghosts,
+            ghosts_for(&starts),
         )];
         while nx % 2 == 0
             && nx >= 4
             && starts.iter().all(|s| s % 2 == 0)
-            && starts.windows(2).all(|w| w[1] - w[0] >= 2 * ghosts)
+            && starts.windows(2).all(|w| w[1] - w[0] >= 2 * MIN_STRIP_ROWS)
             && nx * ny > crate::strips::GATHERED_CELLS
         {
             for s in &mut starts {
@@ -81,6 +94,7 @@ impl StripMultigrid {
             }
             (nx, ny, hx, hy) = (nx / 2, ny / 2, 2.0 * hx, 2.0 * hy);
             let rows = starts[strip]..starts[strip + 1];
+            let ghosts = ghosts_for(&starts);
             levels.push(StripLevel::new(nx, ny, rows, [hx, hy], boundary, ghosts));
         }
         // One V-cycle of the serial solver on the gathered grid, as the serial cycle would
@@ -91,6 +105,7 @@ impl StripMultigrid {
         let coarse_params = MultigridParams {
             relative_tolerance: 0.0,
             max_cycles: 1,
+            cycle: CycleType::V,
             ..params
         };
         let coarse = Multigrid::new(GridShape { nx, ny, hx, hy }, boundary, coarse_params)?;
@@ -233,10 +248,15 @@ impl StripMultigrid {
         let (upper, lower) = self.levels.split_at_mut(l + 1);
         let (fine, coarse) = (&mut upper[l], &mut lower[0]);
         coarse.zero_solution();
-        if p.pre_smoothing > 0 {
-            let sweeps = p.pre_smoothing as usize;
-            fine.smooth(links, p.omega, sweeps, true, Some(&mut *coarse));
-        } else {
+        let group = fine.sweeps_per_exchange();
+        let mut left = p.pre_smoothing as usize;
+        while left > 0 {
+            let sweeps = left.min(group);
+            left -= sweeps;
+            let last = left == 0;
+            fine.smooth(links, p.omega, sweeps, last, last.then_some(&mut *coarse));
+        }
+        if p.pre_smoothing == 0 {
             fine.residual(links);
             fine.restrict(coarse);
         }
@@ -245,11 +265,15 @@ impl StripMultigrid {
         let (upper, lower) = self.levels.split_at_mut(l + 1);
         let (fine, coarse) = (&mut upper[l], &mut lower[0]);
         fine.prolong(coarse, links);
-        let squares = (p.post_smoothing > 0).then(|| {
-            let sweeps = p.post_smoothing as usize;
-            fine.smooth(links, p.omega, sweeps, l == 0, None)
-        });
-        let squares = squares.filter(|_| l == 0);
+        let group = fine.sweeps_per_exchange();
+        let (mut left, mut squares) = (p.post_smoothing as usize, None);
+        while left > 0 {
+            let sweeps = left.min(group);
+            left -= sweeps;
+            let last = l == 0 && left == 0;
+            let sum = fine.smooth(links, p.omega, sweeps, last, None);
+            squares = last.then_some(sum);
+        }
         (work + scale * (0.5 + p.post_smoothing as f64), squares)
     }
 
@@ -422,12 +446,12 @@ mod tests {
         let layout = StripLayout::weighted(64, 640, 2, &heavy).unwrap();
         // Cuts are multiples of 8 rows here (80 blocks).
         assert_eq!(layout.starts, vec![0, 480, 640]);
-        // All the weight in the top rows: every strip still keeps its minimum of blocks, five
-        // blocks of 8 rows (the deep ghost rows of the coarsest strip level).
+        // All the weight in the top rows: every strip still keeps its minimum of blocks, three
+        // blocks of 8 rows.
         let mut top = vec![0.0; 640];
         top[639] = 1.0;
         let layout = StripLayout::weighted(64, 640, 3, &top).unwrap();
-        assert_eq!(layout.starts, vec![0, 560, 600, 640]);
+        assert_eq!(layout.starts, vec![0, 592, 616, 640]);
         assert_eq!(
             StripLayout::weighted(64, 640, 3, &[0.0; 640]).unwrap(),
             StripLayout::balanced(64, 640, 3).unwrap()

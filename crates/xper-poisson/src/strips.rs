@@ -10,14 +10,14 @@
 pub trait RowLinks {
     /// Sends `to_below` to the strip below and `to_above` to the strip above (`None` where
     /// this side is the domain's boundary) and returns what they sent here: `[from_below,
-    /// from_above]`, the row the strip below sent up and the row the strip above sent down.
+    /// from_above]`, the rows the strip below sent up and the rows the strip above sent down.
     fn exchange_rows(
         &mut self,
         to_below: Option<&[f64]>,
         to_above: Option<&[f64]>,
     ) -> [Option<Vec<f64>>; 2];
-    /// [`RowLinks::exchange_rows`], running `work` (which must not need what arrives) while
-    /// the rows travel. The default runs it before the exchange.
+    /// [`RowLinks::exchange_rows`], running `work` exactly once (it must not need what
+    /// arrives) while the rows travel. The default runs it before the exchange.
     fn exchange_rows_overlapped(
         &mut self,
         to_below: Option<&[f64]>,
@@ -181,7 +181,8 @@ impl StripLayout {
     }
 }
 
-/// Strips at least this many rows high on every strip level: the ghost rows of the default
-/// V(2, 1) cycle (`2 s + 1` for `s` sweeps between exchanges), so that they all come from the
-/// neighbouring strip alone.
-pub const MIN_STRIP_ROWS: usize = 5;
+/// Strips at least this many rows high on every strip level: a level smoothed between two
+/// exchanges needs `2 s + 1` ghost rows for `s` sweeps, all from the neighbouring strip, so a
+/// smoothed level (whose strips coarsen to this many rows) holds the 5 of the default V(2,1)
+/// and at least the 3 of one sweep.
+pub const MIN_STRIP_ROWS: usize = 3;

@@ -7,9 +7,9 @@ use crate::strips::RowLinks;
 
 impl StripLevel {
     /// `sweeps` red-black SOR sweeps (all cells of colour 0, `i + j` even with global `j`, then
-    /// those of colour 1), `sweeps >= 1`, after which the ghost rows `2 sweeps + 1 - d` deep
-    /// are current, `d` the depth of the first half-sweep below. The result is that of sweeps
-    /// over the whole grid.
+    /// those of colour 1), `1 <= sweeps <= (ghosts - 1) / 2`, after which the ghost rows
+    /// `d + 1 - 2 sweeps` deep are current, `d` the depth of the first half-sweep below. The
+    /// result is that of sweeps over the whole grid.
     ///
     /// When the ghost rows are not current for them (`2 sweeps + 1` rows of `u` and
     /// `2 sweeps` of `f`), those rows are exchanged in one message per neighbour, and the
