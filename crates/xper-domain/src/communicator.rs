@@ -37,22 +37,21 @@ pub trait Communicator {
     /// Sends `sends[r]` to each rank `r` (empty vectors allowed, `sends[rank]` is kept) and
     /// returns what each rank sent here, indexed by rank.
     fn all_to_all(&self, sends: &[Vec<f64>]) -> Vec<Vec<f64>>;
-    /// Neighbour exchange: sends each `(rank, data)` of `sends` and receives one message from
-    /// each rank of `sources`, returned in the order of `sources`.
-    fn exchange(&self, sends: &[(usize, Vec<f64>)], sources: &[usize]) -> Vec<Vec<f64>>;
-    /// [`Communicator::exchange`], running `work` exactly once (it must not need what
-    /// arrives) after the sends are posted and before the receives wait, so a neighbour's
-    /// small lag is absorbed by it (a message above the transport's eager size may still
-    /// move only once received: MPI makes no progress without a call). Its time is not
-    /// counted as communication. The default runs it first.
+    /// Neighbour exchange: sends each `(rank, data)` of `sends`, runs `work` exactly once (it
+    /// must not need what arrives) after the sends are posted and before the receives wait,
+    /// so a neighbour's small lag is absorbed by it (a message above the transport's eager
+    /// size may still move only once received: MPI makes no progress without a call), and
+    /// receives one message from each rank of `sources`, returned in the order of `sources`.
+    /// `work`'s time is not counted as communication.
     fn exchange_overlapped(
         &self,
         sends: &[(usize, Vec<f64>)],
         sources: &[usize],
         work: &mut dyn FnMut(),
-    ) -> Vec<Vec<f64>> {
-        work();
-        self.exchange(sends, sources)
+    ) -> Vec<Vec<f64>>;
+    /// [`Communicator::exchange_overlapped`] with nothing to overlap.
+    fn exchange(&self, sends: &[(usize, Vec<f64>)], sources: &[usize]) -> Vec<Vec<f64>> {
+        self.exchange_overlapped(sends, sources, &mut || {})
     }
     /// Replaces each value by its sum over the ranks.
     fn all_reduce_sum(&self, values: &mut [f64]) {
@@ -126,7 +125,13 @@ impl Communicator for SingleProcess {
     fn all_to_all(&self, sends: &[Vec<f64>]) -> Vec<Vec<f64>> {
         sends.to_vec()
     }
-    fn exchange(&self, sends: &[(usize, Vec<f64>)], sources: &[usize]) -> Vec<Vec<f64>> {
+    fn exchange_overlapped(
+        &self,
+        sends: &[(usize, Vec<f64>)],
+        sources: &[usize],
+        work: &mut dyn FnMut(),
+    ) -> Vec<Vec<f64>> {
+        work();
         sources
             .iter()
             .map(|&s| {

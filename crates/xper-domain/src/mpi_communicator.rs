@@ -122,10 +122,6 @@ impl Communicator for MpiCommunicator {
             .collect()
     }
 
-    fn exchange(&self, sends: &[(usize, Vec<f64>)], sources: &[usize]) -> Vec<Vec<f64>> {
-        self.exchange_overlapped(sends, sources, &mut || {})
-    }
-
     fn exchange_overlapped(
         &self,
         sends: &[(usize, Vec<f64>)],

@@ -83,19 +83,6 @@ pub struct StripComm<'c, C: Communicator + ?Sized> {
 }
 
 impl<C: Communicator + ?Sized> RowLinks for StripComm<'_, C> {
-    fn exchange_rows(
-        &mut self,
-        to_below: Option<&[f64]>,
-        to_above: Option<&[f64]>,
-    ) -> [Option<Vec<f64>>; 2] {
-        exchange_with_neighbours(
-            self.comm,
-            self.neighbours,
-            to_below.map(<[f64]>::to_vec),
-            to_above.map(<[f64]>::to_vec),
-        )
-    }
-
     fn exchange_rows_overlapped(
         &mut self,
         to_below: Option<&[f64]>,

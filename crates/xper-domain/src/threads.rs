@@ -131,10 +131,6 @@ impl Communicator for ThreadCommunicator {
         })
     }
 
-    fn exchange(&self, sends: &[(usize, Vec<f64>)], sources: &[usize]) -> Vec<Vec<f64>> {
-        self.exchange_overlapped(sends, sources, &mut || {})
-    }
-
     fn exchange_overlapped(
         &self,
         sends: &[(usize, Vec<f64>)],

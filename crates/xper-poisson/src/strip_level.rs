@@ -263,12 +263,14 @@ impl StripLevel {
         }
     }
 
-    /// The exchange of `u_depth` rows of `u` and `f_depth` of `f` with the neighbours.
-    fn exchange(&mut self, links: &mut dyn RowLinks, u_depth: usize, f_depth: usize) {
-        let [to_below, to_above] = self.messages(u_depth, f_depth);
-        let received = links.exchange_rows(to_below.as_deref(), to_above.as_deref());
-        self.zero_boundary_ghost_rows();
-        self.store(received, u_depth, f_depth);
+    /// Makes the ghost row of `u` next to the cells current, by an exchange if it is not.
+    fn refresh_next_ghost_row(&mut self, links: &mut dyn RowLinks) {
+        if self.u_current == 0 {
+            let [to_below, to_above] = self.messages(1, 0);
+            let received = links.exchange_rows(to_below.as_deref(), to_above.as_deref());
+            self.zero_boundary_ghost_rows();
+            self.store(received, 1, 0);
+        }
     }
 
     /// How deep in the linked ghost rows the first red half-sweep can relax: it needs `u` one
@@ -356,9 +358,7 @@ impl StripLevel {
     /// `sum r^2`.
     pub fn residual(&mut self, links: &mut dyn RowLinks) -> f64 {
         self.fill_ghost_columns(false, 0..self.rows as isize);
-        if self.u_current == 0 {
-            self.exchange(links, 1, 0);
-        }
+        self.refresh_next_ghost_row(links);
         (0..self.rows as isize).map(|j| self.residual_row(j)).sum()
     }
 
@@ -387,9 +387,7 @@ impl StripLevel {
     /// linked rows current (exchanged if they are not), the rows beyond the domain's
     /// boundary and the ghost columns by the boundary rule (`+-` the interior).
     fn fill_ghosts_reflected(&mut self, links: &mut dyn RowLinks) {
-        if self.u_current == 0 {
-            self.exchange(links, 1, 0);
-        }
+        self.refresh_next_ghost_row(links);
         let (w, rows) = (self.width(), self.rows as isize);
         for (side, edge, ghost, condition) in [
             (0, 0, -1, self.boundary.bottom),

@@ -236,8 +236,8 @@ impl StripMultigrid {
     }
 
     /// One V-cycle from level `l` (its `u` the guess, `f` the rhs); returns its work in
-    /// finest-grid sweeps of this strip and, on the finest level when the cycle ends with a
-    /// sweep, this strip's `sum r^2` after the cycle (computed within the last sweep).
+    /// finest-grid sweeps of this strip and, on the finest level when it is not the gathered
+    /// one, this strip's `sum r^2` after the cycle (computed within the last sweep).
     fn cycle(&mut self, l: usize, links: &mut dyn RowLinks) -> (f64, Option<f64>) {
         let p = self.params;
         let scale = self.levels[l].cells() as f64 / self.levels[0].cells() as f64;
@@ -248,32 +248,14 @@ impl StripMultigrid {
         let (upper, lower) = self.levels.split_at_mut(l + 1);
         let (fine, coarse) = (&mut upper[l], &mut lower[0]);
         coarse.zero_solution();
-        let group = fine.sweeps_per_exchange();
-        let mut left = p.pre_smoothing as usize;
-        while left > 0 {
-            let sweeps = left.min(group);
-            left -= sweeps;
-            let last = left == 0;
-            fine.smooth(links, p.omega, sweeps, last, last.then_some(&mut *coarse));
-        }
-        if p.pre_smoothing == 0 {
-            fine.residual(links);
-            fine.restrict(coarse);
-        }
+        fine.smooth(links, p.omega, p.pre_smoothing as usize, true, Some(coarse));
         let mut work = scale * (p.pre_smoothing as f64 + 1.5);
         work += self.cycle(l + 1, links).0;
         let (upper, lower) = self.levels.split_at_mut(l + 1);
         let (fine, coarse) = (&mut upper[l], &mut lower[0]);
         fine.prolong(coarse, links);
-        let group = fine.sweeps_per_exchange();
-        let (mut left, mut squares) = (p.post_smoothing as usize, None);
-        while left > 0 {
-            let sweeps = left.min(group);
-            left -= sweeps;
-            let last = l == 0 && left == 0;
-            let sum = fine.smooth(links, p.omega, sweeps, last, None);
-            squares = last.then_some(sum);
-        }
+        let sum = fine.smooth(links, p.omega, p.post_smoothing as usize, l == 0, None);
+        let squares = (l == 0).then_some(sum);
         (work + scale * (0.5 + p.post_smoothing as f64), squares)
     }
 

@@ -9,23 +9,22 @@
 /// periodic). Every strip makes the same calls in the same order.
 pub trait RowLinks {
     /// Sends `to_below` to the strip below and `to_above` to the strip above (`None` where
-    /// this side is the domain's boundary) and returns what they sent here: `[from_below,
+    /// this side is the domain's boundary), runs `work` exactly once while the rows travel (it
+    /// must not need what arrives), and returns what the neighbours sent here: `[from_below,
     /// from_above]`, the rows the strip below sent up and the rows the strip above sent down.
-    fn exchange_rows(
-        &mut self,
-        to_below: Option<&[f64]>,
-        to_above: Option<&[f64]>,
-    ) -> [Option<Vec<f64>>; 2];
-    /// [`RowLinks::exchange_rows`], running `work` exactly once (it must not need what
-    /// arrives) while the rows travel. The default runs it before the exchange.
     fn exchange_rows_overlapped(
         &mut self,
         to_below: Option<&[f64]>,
         to_above: Option<&[f64]>,
         work: &mut dyn FnMut(),
+    ) -> [Option<Vec<f64>>; 2];
+    /// [`RowLinks::exchange_rows_overlapped`] with nothing to overlap.
+    fn exchange_rows(
+        &mut self,
+        to_below: Option<&[f64]>,
+        to_above: Option<&[f64]>,
     ) -> [Option<Vec<f64>>; 2] {
-        work();
-        self.exchange_rows(to_below, to_above)
+        self.exchange_rows_overlapped(to_below, to_above, &mut || {})
     }
     /// Replaces each value by its sum over the strips (the same bits on every strip).
     fn sum(&mut self, values: &mut [f64]);
@@ -39,11 +38,13 @@ pub trait RowLinks {
 pub struct OneStrip;
 
 impl RowLinks for OneStrip {
-    fn exchange_rows(
+    fn exchange_rows_overlapped(
         &mut self,
         to_below: Option<&[f64]>,
         to_above: Option<&[f64]>,
+        work: &mut dyn FnMut(),
     ) -> [Option<Vec<f64>>; 2] {
+        work();
         [to_above.map(<[f64]>::to_vec), to_below.map(<[f64]>::to_vec)]
     }
     fn sum(&mut self, _values: &mut [f64]) {}
@@ -65,13 +66,14 @@ pub struct CountingLinks {
 }
 
 impl RowLinks for CountingLinks {
-    fn exchange_rows(
+    fn exchange_rows_overlapped(
         &mut self,
         to_below: Option<&[f64]>,
         to_above: Option<&[f64]>,
+        work: &mut dyn FnMut(),
     ) -> [Option<Vec<f64>>; 2] {
         self.exchanges += 1;
-        OneStrip.exchange_rows(to_below, to_above)
+        OneStrip.exchange_rows_overlapped(to_below, to_above, work)
     }
     fn sum(&mut self, values: &mut [f64]) {
         self.sums += 1;

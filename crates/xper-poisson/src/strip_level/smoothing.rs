@@ -7,23 +7,56 @@ use crate::strips::RowLinks;
 
 impl StripLevel {
     /// `sweeps` red-black SOR sweeps (all cells of colour 0, `i + j` even with global `j`, then
-    /// those of colour 1), `1 <= sweeps <= (ghosts - 1) / 2`, after which the ghost rows
-    /// `d + 1 - 2 sweeps` deep are current, `d` the depth of the first half-sweep below. The
-    /// result is that of sweeps over the whole grid.
-    ///
-    /// When the ghost rows are not current for them (`2 sweeps + 1` rows of `u` and
-    /// `2 sweeps` of `f`), those rows are exchanged in one message per neighbour, and the
-    /// exchange overlaps the work that does not need it: half-sweep `h` (from 1) of the cells
-    /// at least `h` rows from a linked edge, as a wavefront (half-sweep `h` on row `t - h + 1`
-    /// at step `t`). Once the rows are in, half-sweep `h` is completed on the rows near the
-    /// edges and on the neighbours' rows `d - h + 1` deep, `d` the depth the ghost rows allow
-    /// ([`StripLevel::relaxable_depth`]). A process a little behind its neighbour thus delays
-    /// it only when the lag exceeds that inner work.
+    /// those of colour 1), in groups of at most [`StripLevel::sweeps_per_exchange`], each
+    /// after one exchange of the ghost rows it needs; the ghost row next to the cells is
+    /// current after. The result is that of sweeps over the whole grid.
     ///
     /// With `residual`, also writes `r` on the cells (each row as soon as its neighbours are
-    /// final) and returns `sum r^2` over the strip; else returns 0. With `coarse` as well, each
-    /// pair of residual rows is restricted into it as soon as written, while in cache.
+    /// final; with no sweep, after one exchange) and returns `sum r^2` over the strip; else
+    /// returns 0. With `coarse` as well, each pair of residual rows is restricted into it as
+    /// soon as written, while in cache.
     pub fn smooth(
+        &mut self,
+        links: &mut dyn RowLinks,
+        omega: f64,
+        sweeps: usize,
+        residual: bool,
+        mut coarse: Option<&mut StripLevel>,
+    ) -> f64 {
+        if sweeps == 0 {
+            if !residual {
+                return 0.0;
+            }
+            let squares = self.residual(links);
+            if let Some(coarse) = coarse {
+                self.restrict(coarse);
+            }
+            return squares;
+        }
+        let group = self.sweeps_per_exchange();
+        let (mut left, mut squares) = (sweeps, 0.0);
+        while left > 0 {
+            let now = left.min(group);
+            left -= now;
+            let last = left == 0;
+            let into = if last { coarse.take() } else { None };
+            squares = self.smooth_group(links, omega, now, residual && last, into);
+        }
+        squares
+    }
+
+    /// `sweeps` sweeps after one exchange, `1 <= sweeps <= (ghosts - 1) / 2`, after which the
+    /// ghost rows `d + 1 - 2 sweeps` deep are current, `d` the depth the ghost rows allow the
+    /// first half-sweep ([`StripLevel::relaxable_depth`]).
+    ///
+    /// The rows the sweeps need (`2 sweeps + 1` of `u` and `2 sweeps` of `f`, those not
+    /// current already) are exchanged in one message per neighbour, and the exchange overlaps
+    /// the work that does not need them: half-sweep `h` (from 1) of the cells at least `h`
+    /// rows from a linked edge, as a wavefront (half-sweep `h` on row `t - h + 1` at step `t`).
+    /// Once the rows are in, half-sweep `h` is completed on the rows near the edges and on the
+    /// neighbours' rows `d - h + 1` deep. A process a little behind its neighbour thus delays
+    /// it only when the lag exceeds that inner work.
+    fn smooth_group(
         &mut self,
         links: &mut dyn RowLinks,
         omega: f64,
@@ -34,20 +67,19 @@ impl StripLevel {
         debug_assert!(sweeps >= 1 && 2 * sweeps < self.ghosts + 1);
         let rows = self.rows as isize;
         let halves = 2 * sweeps;
-        let (need_u, need_f) = (2 * sweeps + 1, 2 * sweeps);
         self.fill_ghost_columns(false, 0..rows);
         self.zero_boundary_ghost_rows();
-        let u_depth = if self.u_current >= need_u { 0 } else { need_u };
-        let f_depth = if self.f_current >= need_f { 0 } else { need_f };
-        let exchanging = u_depth + f_depth > 0;
-        // Rows of half-sweep `h` (index h - 1): with the ghosts `depth` deep current, or with
-        // no ghost row at all (`depth` None).
+        let u_depth = if self.u_current > halves {
+            0
+        } else {
+            halves + 1
+        };
+        let f_depth = if self.f_current >= halves { 0 } else { halves };
         let linked = self.linked;
+        // The rows of half-sweep `h` before the exchange (at least `h` from a linked edge)
+        // and, with the ghost rows `d` deep current, after it.
         let range = move |h: usize, depth: Option<isize>| {
-            let reach = match depth {
-                Some(d) => d - h as isize + 1,
-                None => -(h as isize),
-            };
+            let reach = depth.map_or(-(h as isize), |d| d - h as isize + 1);
             let low = if linked[0] { -reach } else { 0 };
             let high = if linked[1] {
                 rows - 1 + reach
@@ -56,11 +88,10 @@ impl StripLevel {
             };
             (low, high)
         };
-        let depth_now = (!exchanging).then(|| self.relaxable_depth());
-        let first: Vec<(isize, isize)> = (1..=halves).map(|h| range(h, depth_now)).collect();
-        // The residual rows the first phase can finish: their neighbours relaxed by every
+        let inner: Vec<(isize, isize)> = (1..=halves).map(|h| range(h, None)).collect();
+        // The residual rows the inner work can finish: their neighbours relaxed by every
         // half-sweep; with a restriction, whole pairs of rows.
-        let (last_low, last_high) = first[halves - 1];
+        let (last_low, last_high) = inner[halves - 1];
         let mut low = if linked[0] { (last_low + 1).max(0) } else { 0 };
         let mut high = if linked[1] {
             (last_high - 1).min(rows - 1)
@@ -71,31 +102,14 @@ impl StripLevel {
             low += low.rem_euclid(2);
             high -= (high + 1).rem_euclid(2);
         }
-        let residual_rows = (low, high);
         let mut squares = 0.0;
-        let [to_below, to_above] = if exchanging {
-            self.messages(u_depth, f_depth)
-        } else {
-            [None, None]
-        };
-        let mut phase = |level: &mut Self| {
-            squares += level.wavefront(
-                omega,
-                &first,
-                residual.then_some(residual_rows),
-                &mut coarse,
-            )
-        };
-        if exchanging {
-            let received = links.exchange_rows_overlapped(
-                to_below.as_deref(),
-                to_above.as_deref(),
-                &mut || phase(self),
-            );
-            self.store(received, u_depth, f_depth);
-        } else {
-            phase(self);
-        }
+        let [to_below, to_above] = self.messages(u_depth, f_depth);
+        let received =
+            links.exchange_rows_overlapped(to_below.as_deref(), to_above.as_deref(), &mut || {
+                let rows = residual.then_some((low, high));
+                squares += self.wavefront(omega, &inner, rows, &mut coarse);
+            });
+        self.store(received, u_depth, f_depth);
         let depth = self.relaxable_depth();
         debug_assert!(
             !linked.contains(&true) || depth >= halves as isize - 1 + residual as isize,
@@ -103,26 +117,24 @@ impl StripLevel {
             self.u_current,
             self.f_current
         );
-        if exchanging {
-            for (k, &(inner_low, inner_high)) in first.iter().enumerate() {
-                let (full_low, full_high) = range(k + 1, Some(depth));
-                let colour = k % 2;
-                if inner_low > inner_high {
-                    (full_low..=full_high).for_each(|j| self.relax_row(j, colour, omega));
-                } else {
-                    (full_low..inner_low).for_each(|j| self.relax_row(j, colour, omega));
-                    (inner_high + 1..=full_high).for_each(|j| self.relax_row(j, colour, omega));
-                }
+        for (k, &(inner_low, inner_high)) in inner.iter().enumerate() {
+            let (full_low, full_high) = range(k + 1, Some(depth));
+            let colour = k % 2;
+            if inner_low > inner_high {
+                (full_low..=full_high).for_each(|j| self.relax_row(j, colour, omega));
+            } else {
+                (full_low..inner_low).for_each(|j| self.relax_row(j, colour, omega));
+                (inner_high + 1..=full_high).for_each(|j| self.relax_row(j, colour, omega));
             }
-            if residual {
-                let rest = if low > high {
-                    [0..rows, 0..0]
-                } else {
-                    [0..low, high + 1..rows]
-                };
-                for j in rest.into_iter().flatten() {
-                    squares += self.residual_and_restriction(j, coarse.as_deref_mut());
-                }
+        }
+        if residual {
+            let rest = if low > high {
+                [0..rows, 0..0]
+            } else {
+                [0..low, high + 1..rows]
+            };
+            for j in rest.into_iter().flatten() {
+                squares += self.residual_and_restriction(j, coarse.as_deref_mut());
             }
         }
         if let Some(coarse) = coarse {
