@@ -55,18 +55,27 @@ pub trait Communicator {
     }
     /// Replaces each value by its sum over the ranks.
     fn all_reduce_sum(&self, values: &mut [f64]) {
-        let gathered = self.all_gather(values);
-        for (k, v) in values.iter_mut().enumerate() {
-            *v = gathered.iter().map(|g| g[k]).sum();
-        }
+        self.all_reduce_sum_max(values, &mut []);
     }
     /// Replaces each value by its maximum over the ranks.
     fn all_reduce_max(&self, values: &mut [f64]) {
-        let gathered = self.all_gather(values);
-        for (k, v) in values.iter_mut().enumerate() {
+        self.all_reduce_sum_max(&mut [], values);
+    }
+    /// [`Communicator::all_reduce_sum`] of `sums` and [`Communicator::all_reduce_max`] of
+    /// `maxima` from one gather.
+    fn all_reduce_sum_max(&self, sums: &mut [f64], maxima: &mut [f64]) {
+        let mut values = Vec::with_capacity(sums.len() + maxima.len());
+        values.extend_from_slice(sums);
+        values.extend_from_slice(maxima);
+        let gathered = self.all_gather(&values);
+        for (k, v) in sums.iter_mut().enumerate() {
+            *v = gathered.iter().map(|g| g[k]).sum();
+        }
+        let n = sums.len();
+        for (k, v) in maxima.iter_mut().enumerate() {
             *v = gathered
                 .iter()
-                .map(|g| g[k])
+                .map(|g| g[n + k])
                 .fold(f64::NEG_INFINITY, f64::max);
         }
     }

@@ -19,7 +19,8 @@
 //!    [`BlockLinks`] for what crosses blocks: the halo rows (one below, two above) after every
 //!    change of the velocity, pressure or pressure correction; the forcing and the fluid
 //!    momentum inside each grain summed over blocks (each face is forced by one block, so a
-//!    grain across a cut is counted once); norms and the largest speed (the time step) reduced;
+//!    grain across a cut is counted once), with the norms, the energy and the largest speed
+//!    (the next step's time step) in one reduction at the end of the step;
 //!    the pressure solved by [`StripMultigrid`], deep ghost rows exchanged twice per level
 //!    and cycle.
 //! 3. **Gather** (outputs, checkpoints): rank 0 receives every block's rows and holds the whole
@@ -82,6 +83,10 @@ impl<C: Communicator + ?Sized> BlockLinks for BlockComm<'_, C> {
 
     fn max(&mut self, values: &mut [Real]) {
         self.rows.comm.all_reduce_max(values);
+    }
+
+    fn sum_and_max(&mut self, sums: &mut [Real], maxima: &mut [Real]) {
+        self.rows.comm.all_reduce_sum_max(sums, maxima);
     }
 
     fn solve_pressure(&mut self, rhs: &[Real], phi: &mut [Real]) -> Result<SolveInfo, SolveError> {

@@ -32,6 +32,12 @@ pub trait BlockLinks {
     fn sum(&mut self, values: &mut [Real]);
     /// Replaces each value by its maximum over the blocks.
     fn max(&mut self, values: &mut [Real]);
+    /// [`BlockLinks::sum`] of `sums` and [`BlockLinks::max`] of `maxima` in one reduction,
+    /// where the links can (one synchronisation of the processes instead of two).
+    fn sum_and_max(&mut self, sums: &mut [Real], maxima: &mut [Real]) {
+        self.sum(sums);
+        self.max(maxima);
+    }
     /// Solves the pressure-correction equation of the whole grid; `rhs` and `phi` hold this
     /// block's cells (row-major, unpadded), `phi` the initial guess on entry.
     fn solve_pressure(&mut self, rhs: &[Real], phi: &mut [Real]) -> Result<SolveInfo, SolveError>;

@@ -90,6 +90,9 @@ pub struct CoupledStepper {
     disks: Vec<ImmersedDisk>,
     forces: Vec<[Real; DOFS]>,
     largest_dt: Real,
+    /// The whole grid's largest fluid speed (m/s) after the last step, with the step count of
+    /// the fluid state it was measured on: the next step's time step needs no reduction.
+    fluid_speed: Option<(u64, Real)>,
 }
 
 impl CoupledStepper {
@@ -131,6 +134,7 @@ impl CoupledStepper {
             disks: Vec::new(),
             forces: Vec::new(),
             largest_dt: params.dt_max,
+            fluid_speed: None,
         }
     }
 
@@ -148,9 +152,19 @@ impl CoupledStepper {
         self.step_by_stages(params, state, None)
     }
 
+    /// Makes the next step measure the fluid's largest speed and exchange its halos afresh
+    /// (after the caller changed the fluid of the state the last step left; see
+    /// [`FluidSolver::fields_changed`]).
+    pub fn fields_changed(&mut self) {
+        self.fluid_speed = None;
+        self.fluid.fields_changed();
+    }
+
     /// One coupled step of a block of a split grid (see [`FluidSolver::step_with`]): the
     /// fluid's halos, sums and pressure solve go through `links`; the hydrodynamic forces are
-    /// the whole grid's, so every block moves the grains identically.
+    /// the whole grid's, so every block moves the grains identically. A step starts from what
+    /// the last one left of the same state (its halos, its largest speed): a caller that
+    /// changes the fluid between steps calls [`CoupledStepper::fields_changed`].
     pub fn step_with(
         &mut self,
         params: &FluidParams,
@@ -203,14 +217,22 @@ impl CoupledStepper {
             }
         }
 
-        // Stage: time step, from the largest speed of the whole grid.
-        let mut speed = [state.fluid.max_speed().max(grain_speed)];
-        if let Some(links) = links.as_deref_mut() {
-            links.max(&mut speed);
-        }
+        // Stage: time step, from the largest speed of the whole grid: the fluid's as the last
+        // step reduced it when this is the state it left (every process holds every grain, so
+        // their speed needs no reduction).
+        let fluid_speed = match self.fluid_speed.take() {
+            Some((step, speed)) if step == state.fluid.step => speed,
+            _ => {
+                let mut speed = [state.fluid.max_speed()];
+                if let Some(links) = links.as_deref_mut() {
+                    links.max(&mut speed);
+                }
+                speed[0]
+            }
+        };
         let dt = self
             .fluid
-            .stable_dt_for(params, speed[0])
+            .stable_dt_for(params, fluid_speed.max(grain_speed))
             .min(self.largest_dt);
 
         // Stage: fluid.
@@ -221,6 +243,7 @@ impl CoupledStepper {
             None => self.fluid.step(params, &mut state.fluid, dt, &self.disks),
         }
         .map_err(CoupledError::Fluid)?;
+        self.fluid_speed = Some((state.fluid.step, fluid.max_speed));
 
         // Stage: grains under hydrodynamic forces and buoyancy.
         let world = &mut state.world;

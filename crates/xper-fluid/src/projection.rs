@@ -50,10 +50,10 @@ pub struct Projection {
 pub struct ProjectionInfo {
     /// The pressure solve.
     pub solve: SolveInfo,
-    /// Norm of the divergence before the correction (1/s).
-    pub divergence_before: Real,
-    /// Norm of the divergence after the correction (1/s).
-    pub divergence_after: Real,
+    /// This block's sums of the squared divergence before and after the correction (1/s^2;
+    /// the grid's norms are the roots of their sums over the blocks, which the caller reduces
+    /// together with its other sums).
+    pub divergence_squares: [Real; 2],
 }
 
 impl Projection {
@@ -111,11 +111,9 @@ impl Projection {
         boundary.fill_pressure(grid, p);
         exchange_velocity_and_pressure(links, grid, u, p);
         squares[1] = divergence(grid, u, &mut self.rhs);
-        links.sum(&mut squares);
         Ok(ProjectionInfo {
             solve,
-            divergence_before: squares[0].sqrt(),
-            divergence_after: squares[1].sqrt(),
+            divergence_squares: squares,
         })
     }
 

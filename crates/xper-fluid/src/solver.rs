@@ -277,6 +277,9 @@ pub struct FluidSolver {
     forcing: ImmersedForcing,
     predicted: [Vec<Real>; DIM],
     inner: Vec<InnerMomentum>,
+    /// The step count of the state this solver's last step left, its halos exchanged after
+    /// its last change: the next step of that state needs no exchange before it starts.
+    halos_current_at: Option<u64>,
 }
 
 impl FluidSolver {
@@ -307,6 +310,7 @@ impl FluidSolver {
             forcing: ImmersedForcing::new(&grid),
             predicted: grid.zero_velocity(),
             inner: Vec::new(),
+            halos_current_at: None,
         })
     }
 
@@ -348,9 +352,19 @@ impl FluidSolver {
         report
     }
 
+    /// Makes the next [`FluidSolver::step_with`] exchange the halos before it starts (after
+    /// the caller changed the fields of the state that the last step left).
+    pub fn fields_changed(&mut self) {
+        self.halos_current_at = None;
+    }
+
     /// [`FluidSolver::step`] on a block of a split grid, or on the whole grid with
     /// [`WholeGrid`]: the halos, sums and pressure solve go through `links`. The forces and
     /// the fluid momentum inside the grains (`state.inner`) are the whole grid's.
+    ///
+    /// A step ends with the halos of the velocity and pressure exchanged; the next step of the
+    /// state it left (the same step count) starts from them without exchanging again. A caller
+    /// that changes a block's fields between steps calls [`FluidSolver::fields_changed`].
     pub fn step_with(
         &mut self,
         params: &FluidParams,
@@ -370,7 +384,9 @@ impl FluidSolver {
         // Stage: boundary values and the grains' footprint.
         boundary.fill_velocity(&grid, &mut state.velocity);
         boundary.fill_pressure(&grid, &mut state.pressure);
-        exchange_velocity_and_pressure(links, &grid, &mut state.velocity, &mut state.pressure);
+        if self.halos_current_at.take() != Some(state.step) {
+            exchange_velocity_and_pressure(links, &grid, &mut state.velocity, &mut state.pressure);
+        }
         self.forcing.mark(&grid, boundary, disks, params.indicator);
         if state.inner.len() != disks.len() {
             self.forcing.inner_momentum(
@@ -444,8 +460,17 @@ impl FluidSolver {
             &state.velocity,
             &mut self.inner,
         );
+
+        // Stage: the sums over the blocks (divergence norms, forces and inner momenta, kinetic
+        // energy) and the largest speed, in one reduction.
         let mut sums = pack(&report.forces, &self.inner);
-        links.sum(&mut sums);
+        sums.extend_from_slice(&info.divergence_squares);
+        sums.push(state.kinetic_energy(params.density));
+        let mut figures = [state.max_speed()];
+        links.sum_and_max(&mut sums, &mut figures);
+        let [divergence_before, divergence_after, kinetic_energy] = sums[sums.len() - 3..] else {
+            unreachable!("three sums appended")
+        };
         unpack(&sums, &mut report.forces, &mut self.inner);
         for ((force, new), old) in report.forces.iter_mut().zip(&self.inner).zip(&state.inner) {
             force.force += (new.linear - old.linear) / dt;
@@ -455,15 +480,12 @@ impl FluidSolver {
 
         state.time += dt;
         state.step += 1;
+        self.halos_current_at = Some(state.step);
         report.time = state.time;
         report.pressure = info.solve;
-        report.divergence = [info.divergence_before, info.divergence_after];
-        let mut figures = [state.max_speed()];
-        links.max(&mut figures);
+        report.divergence = [divergence_before.sqrt(), divergence_after.sqrt()];
         report.max_speed = figures[0];
-        let mut energy = [state.kinetic_energy(params.density)];
-        links.sum(&mut energy);
-        report.kinetic_energy = energy[0];
+        report.kinetic_energy = kinetic_energy;
         if !report.max_speed.is_finite() {
             return Err(FluidError::NonFinite { step: state.step });
         }

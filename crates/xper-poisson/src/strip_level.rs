@@ -362,6 +362,51 @@ impl StripLevel {
         (0..self.rows as isize).map(|j| self.residual_row(j)).sum()
     }
 
+    /// The start of a solve (`u` the guess, `f` the rhs as given, both changed): exchanges
+    /// the ghost rows that the residual and the first `sweeps` smoothing sweeps need, in the
+    /// one message the sweeps would send (so they do not exchange again), writes
+    /// `r = f - Lap u` and returns this strip's `[sum f, sum f^2, sum r, sum r^2]`, from which
+    /// one sum over the strips gives the mean, the rhs norm and the residual norm.
+    pub fn open_solve(&mut self, links: &mut dyn RowLinks, sweeps: usize) -> [f64; 4] {
+        let halves = 2 * sweeps.min(self.sweeps_per_exchange());
+        self.fill_ghost_columns(false, 0..self.rows as isize);
+        let [to_below, to_above] = self.messages(halves + 1, halves);
+        let received = links.exchange_rows(to_below.as_deref(), to_above.as_deref());
+        self.zero_boundary_ghost_rows();
+        self.store(received, halves + 1, halves);
+        let mut sums = [0.0; 4];
+        for j in 0..self.rows as isize {
+            sums[3] += self.residual_row(j);
+            let k = self.index(0, j);
+            for (f, r) in self.f[k..k + self.nx].iter().zip(&self.r[k..k + self.nx]) {
+                sums[0] += f;
+                sums[1] += f * f;
+                sums[2] += r;
+            }
+        }
+        sums
+    }
+
+    /// Subtracts `mean` from `f` everywhere, its current ghost rows included (every strip
+    /// subtracts the same value, so they stay current).
+    pub fn remove_mean(&mut self, mean: f64) {
+        if mean != 0.0 {
+            self.f.iter_mut().for_each(|f| *f -= mean);
+        }
+    }
+
+    /// This strip's `[sum f^2, sum r^2]` with `r = f - Lap u` (written), its ghost rows
+    /// current.
+    pub fn squares(&mut self) -> [f64; 2] {
+        let mut sums = [0.0; 2];
+        for j in 0..self.rows as isize {
+            sums[1] += self.residual_row(j);
+            let k = self.index(0, j);
+            sums[0] += self.f[k..k + self.nx].iter().map(|f| f * f).sum::<f64>();
+        }
+        sums
+    }
+
     /// The coarse rhs: the average of `r` over the four fine cells of each coarse cell.
     pub fn restrict(&self, coarse: &mut StripLevel) {
         for jc in 0..coarse.rows {

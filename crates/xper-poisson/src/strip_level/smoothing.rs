@@ -103,13 +103,19 @@ impl StripLevel {
             high -= (high + 1).rem_euclid(2);
         }
         let mut squares = 0.0;
-        let [to_below, to_above] = self.messages(u_depth, f_depth);
-        let received =
-            links.exchange_rows_overlapped(to_below.as_deref(), to_above.as_deref(), &mut || {
-                let rows = residual.then_some((low, high));
-                squares += self.wavefront(omega, &inner, rows, &mut coarse);
-            });
-        self.store(received, u_depth, f_depth);
+        let rows_done = residual.then_some((low, high));
+        if u_depth == 0 && f_depth == 0 {
+            // Every row needed is current (the solve's opening exchange sent them).
+            squares += self.wavefront(omega, &inner, rows_done, &mut coarse);
+        } else {
+            let [to_below, to_above] = self.messages(u_depth, f_depth);
+            let received = links.exchange_rows_overlapped(
+                to_below.as_deref(),
+                to_above.as_deref(),
+                &mut || squares += self.wavefront(omega, &inner, rows_done, &mut coarse),
+            );
+            self.store(received, u_depth, f_depth);
+        }
         let depth = self.relaxable_depth();
         debug_assert!(
             !linked.contains(&true) || depth >= halves as isize - 1 + residual as isize,
