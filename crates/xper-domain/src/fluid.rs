@@ -470,3 +470,93 @@ fn unpack_rows(
         fluid.increment[at..at + increment.len() * nx].copy_from_slice(&data[3 * span..]);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::run_on_threads;
+    use xper_bodies::{Body, BodySet};
+    use xper_fluid::{FluidBoundary, FluidState};
+    use xper_laws::LawTable;
+    use xper_nscd::StepParams;
+
+    /// A grain falling across the cut of a 16 x 64 box on 2 blocks.
+    fn falling_grain() -> (FluidParams, CoupledState) {
+        let mut params = FluidParams::new(1000.0, 4e-3, FluidBoundary::closed_box());
+        params.dt_max = 1e-4;
+        let h = 1e-4;
+        let grid = MacGrid {
+            nx: 16,
+            ny: 64,
+            h,
+            origin: Vector::zeros(),
+        };
+        let mut bodies = BodySet::new();
+        bodies.insert(Body::disk(4.0 * h, 1200.0, Vector::new(8.0 * h, 32.0 * h)));
+        let world_params = StepParams {
+            dt: 1e-4,
+            theta: 0.5,
+            gravity: Vector::new(0.0, -9.81),
+            alert_distance: 1e-6,
+            nlgs: Default::default(),
+            solver: xper_nscd::VelocitySolver::Nlgs,
+            projection_tolerance: None,
+        };
+        let state = CoupledState {
+            fluid: FluidState::at_rest(grid, &params.boundary),
+            world: World::new(bodies, LawTable::new(1), world_params),
+        };
+        (params, state)
+    }
+
+    /// Zeroes the halo rows of the block's velocity and pressure on its linked sides.
+    fn spoil_halos<C: Communicator + ?Sized>(run: &mut DistributedFluid<'_, C>) {
+        let fluid = &mut run.state.fluid;
+        let (w, ny) = (fluid.grid.width(), fluid.grid.ny);
+        let [below, above] = run.links.rows.neighbours;
+        let [u0, u1] = &mut fluid.velocity;
+        for field in [u0, u1, &mut fluid.pressure] {
+            if below.is_some() {
+                field[..HALO_BELOW * w].fill(0.0);
+            }
+            if above.is_some() {
+                field[(ny + HALO_BELOW) * w..(ny + HALO_BELOW + HALO_ABOVE) * w].fill(0.0);
+            }
+        }
+    }
+
+    /// A step starts from the halos the last one exchanged, unless the stepper is told that
+    /// the fields changed: then it exchanges them again and gives the bits of a run whose
+    /// halos were never touched; untold, stale halos change the step.
+    #[test]
+    fn a_step_after_fields_changed_exchanges_the_halos_again() {
+        let (params, start) = falling_grain();
+        let velocities = run_on_threads(2, |comm| {
+            let mut outcomes = Vec::new();
+            for (spoil, tell) in [(false, false), (true, true), (true, false)] {
+                let mut run = DistributedFluid::new(comm, &params, &start).unwrap();
+                for step in 0..3 {
+                    if step == 2 && spoil {
+                        spoil_halos(&mut run);
+                        if tell {
+                            run.stepper.fields_changed();
+                        }
+                    }
+                    run.step().unwrap();
+                }
+                outcomes.push(run.state.fluid.velocity.clone());
+            }
+            outcomes
+        });
+        for (rank, outcomes) in velocities.iter().enumerate() {
+            assert!(
+                outcomes[0] == outcomes[1],
+                "rank {rank}: told, the step differs"
+            );
+            assert!(
+                outcomes[0] != outcomes[2],
+                "rank {rank}: untold, stale halos unseen"
+            );
+        }
+    }
+}
