@@ -19,7 +19,9 @@
 //! strip cycle is a V-cycle whatever [`MultigridParams::cycle`] says); every
 //! process gets the same bits, so no broadcast is needed (the agglomeration of Trottenberg et
 //! al., "Multigrid", section 6.3). Convergence is judged on the global residual norm (one sum
-//! per cycle), so every process stops at the same cycle.
+//! per cycle), so every process stops at the same cycle. A solve opens with one exchange (the
+//! rows of the first pre-smoothing, which then needs none) and one sum (the mean, the rhs
+//! norm and the first residual norm together).
 
 use crate::strip_level::{ghost_rows, StripLevel};
 use crate::strips::{RowLinks, StripLayout, MIN_STRIP_ROWS};
