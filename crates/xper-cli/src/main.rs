@@ -104,7 +104,7 @@ fn main() -> ExitCode {
             quiet,
             compare_serial,
         } => {
-            let quiet = quiet || !std::io::stderr().is_terminal();
+            let quiet = quiet || !interactive();
             let fracture = is_fracture(&scene);
             let opts = run::RunOptions {
                 scene,
@@ -177,6 +177,17 @@ fn run_maybe_distributed(
     run_on: RunOn,
 ) -> Result<(), CliError> {
     run_on(opts, quiet, None)
+}
+
+/// Whether progress can be shown: stderr is a terminal or, for a process an MPI launcher
+/// started (which hands its processes the terminal on stdout only, stderr through a pipe),
+/// stdout is.
+fn interactive() -> bool {
+    #[cfg(feature = "mpi")]
+    let launched = xper_domain::MpiCommunicator::launched();
+    #[cfg(not(feature = "mpi"))]
+    let launched = false;
+    std::io::stderr().is_terminal() || (launched && std::io::stdout().is_terminal())
 }
 
 /// Whether the file is a fracture scene (a readable TOML file with a `[mesh]` section);

@@ -8,6 +8,7 @@ use crate::world_from_scene::world_from_scene;
 use crate::CliError;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use xper_io::{
@@ -463,10 +464,13 @@ pub(crate) fn write_problem(
 
 /// The progress bar of a run: steps/s, ETA and a message; hidden when `quiet`.
 pub(crate) fn progress_bar(quiet: bool, steps: u64, position: u64) -> ProgressBar {
+    // Under an MPI launcher only stdout may be the terminal (see `interactive` in main.rs).
     let target = if quiet {
         ProgressDrawTarget::hidden()
-    } else {
+    } else if std::io::stderr().is_terminal() {
         ProgressDrawTarget::stderr()
+    } else {
+        ProgressDrawTarget::stdout()
     };
     let bar = ProgressBar::with_draw_target(Some(steps), target);
     let style =

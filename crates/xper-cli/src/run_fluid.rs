@@ -147,6 +147,10 @@ struct Summary {
     xper_version: &'static str,
     processes: usize,
     ranks: Vec<RankSummary>,
+    /// Cells of the pressure solve's coarse grid that every process relaxes whole (runs on
+    /// several processes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pressure_gathered_cells: Option<usize>,
     #[serde(skip_serializing_if = "Option::is_none")]
     serial_comparison: Option<SerialComparison>,
 }
@@ -363,6 +367,18 @@ pub fn run(
         None => Box::new(SerialFluid::new(&params, &state).map_err(setup)?),
     };
     let immersed = runner.immersed().to_vec();
+    let gathered = runner.pressure_gathered_cells();
+    let share = state.fluid.grid.num_cells() / runner.processes();
+    if let Some(cells) = gathered.filter(|&cells| root && !quiet && 10 * cells > share) {
+        eprintln!(
+            "xper: note: the pressure multigrid's coarse grid of {cells} cells is relaxed whole by \
+             every process, {:.0} % of a process's {share} cells: on {} processes the blocks are \
+             too thin to coarsen further, and the pressure solve repeats that work on every \
+             process (fewer processes, or more rows, avoid it; see BENCHMARKS.md)",
+            100.0 * cells as f64 / share as f64,
+            runner.processes()
+        );
+    }
     if !opts.resume && root {
         out.write_frame(&state, &params, &immersed)?;
     }
@@ -453,6 +469,7 @@ pub fn run(
         &opts.scene,
     );
     (summary.processes, summary.ranks, summary.serial_comparison) = (processes, ranks, comparison);
+    summary.pressure_gathered_cells = gathered;
     write_json_atomic(&out.dir.join("summary.json"), &summary).map_err(io_err)?;
     write_plots(&out, &opts.out, &scene.name)?;
     if !quiet {
@@ -506,6 +523,7 @@ fn summary(
         xper_version: env!("CARGO_PKG_VERSION"),
         processes: 1,
         ranks: Vec::new(),
+        pressure_gathered_cells: None,
         serial_comparison: None,
     }
 }

@@ -30,6 +30,11 @@ pub trait FluidRun {
     /// Each process's load and communication over a run of `wall` seconds (collective; empty
     /// on one process).
     fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary>;
+    /// Cells of the pressure solve's coarse grid that every process relaxes whole (`None` on
+    /// one process).
+    fn pressure_gathered_cells(&self) -> Option<usize> {
+        None
+    }
 }
 
 /// A run on this process.
@@ -119,6 +124,9 @@ impl FluidRun for DistributedFluidRun<'_> {
     }
     fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary> {
         crate::run_distributed::rank_summaries(self.comm, self.run.load(), &self.setup, wall)
+    }
+    fn pressure_gathered_cells(&self) -> Option<usize> {
+        Some(self.run.pressure_gathered_cells())
     }
 }
 

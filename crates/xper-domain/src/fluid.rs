@@ -356,6 +356,12 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
         self.stepper.immersed()
     }
 
+    /// Cells of the pressure multigrid's coarse grid, gathered and relaxed whole by every
+    /// process in each cycle ([`StripMultigrid::gathered_cells`]).
+    pub fn pressure_gathered_cells(&self) -> usize {
+        self.links.multigrid.gathered_cells()
+    }
+
     /// This process's share: the cells of its block; every process holds every grain.
     pub fn load(&self) -> RankLoad {
         RankLoad {

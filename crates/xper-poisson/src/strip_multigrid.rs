@@ -130,6 +130,14 @@ impl StripMultigrid {
         self.levels.len()
     }
 
+    /// Cells of the coarse grid that every process gathers and relaxes whole in each cycle:
+    /// work repeated by every process, not divided. Strips stop coarsening once one is
+    /// thinner than `2 MIN_STRIP_ROWS` rows, so with many processes this grid can exceed a
+    /// process's share of the fine grid (1024 x 1024 cells on 48 processes gathers 65,536).
+    pub fn gathered_cells(&self) -> usize {
+        self.coarse_rhs.len()
+    }
+
     /// The rows of this strip.
     pub fn rows(&self) -> std::ops::Range<usize> {
         self.layout.rows(self.strip)
@@ -438,6 +446,40 @@ mod tests {
                 .zip(&expected)
                 .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
             assert!(difference <= 1e-6 * size, "V({pre},{post}): {difference:e}");
+        }
+    }
+
+    /// The coarse grid gathered on every process: a few hundred cells on 2 processes, but on
+    /// 48 the strips of a 1024 x 1024 grid (20 to 24 rows) stop coarsening at 5 to 6 rows and
+    /// a 256 x 256 grid is relaxed by every process, three times a process's share of the
+    /// fine grid (the limit the notes' model of 48 processes describes).
+    #[test]
+    fn thin_strips_gather_a_large_coarse_grid() {
+        for (nx, ny, strips, gathered) in [
+            (160, 640, 2, 400),
+            (512, 1024, 2, 512),
+            (1024, 1024, 48, 65536),
+        ] {
+            let shape = GridShape {
+                nx,
+                ny,
+                hx: 1.0,
+                hy: 1.0,
+            };
+            let layout = StripLayout::balanced(nx, ny, strips).unwrap();
+            let multigrid = StripMultigrid::new(
+                shape,
+                Boundary::all(Neumann),
+                MultigridParams::default(),
+                layout,
+                0,
+            )
+            .unwrap();
+            assert_eq!(
+                multigrid.gathered_cells(),
+                gathered,
+                "{nx} x {ny} on {strips}"
+            );
         }
     }
 
