@@ -169,6 +169,39 @@ fn what_a_distributed_run_cannot_do_is_refused_on_every_process() {
     );
 }
 
+/// Regression: under `mpirun` a process's stdout is the terminal and its stderr a pipe, and
+/// the progress bar and final message, shown only when stderr was a terminal, never appeared.
+/// `script` gives mpirun a terminal; rank 0 must then draw the bar and say it completed.
+#[test]
+fn the_progress_bar_shows_on_rank_0_when_mpirun_has_a_terminal() {
+    let dir = temp_dir("mpi_progress");
+    let scene = dir.join("deposit.toml");
+    std::fs::write(&scene, deposit_scene(50, 20)).unwrap();
+    let (out, typescript) = (dir.join("out"), dir.join("typescript"));
+    let command = format!(
+        "timeout 300 mpirun -np 2 {} run {} --out {}",
+        env!("CARGO_BIN_EXE_xper"),
+        scene.display(),
+        out.display()
+    );
+    let status = Command::new("script")
+        .args(["-qec", &command])
+        .arg(&typescript)
+        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+        .env("OMPI_MCA_rmaps_base_oversubscribe", "1")
+        .env("OMPI_MCA_mpi_yield_when_idle", "1")
+        .output()
+        .expect("script (util-linux) runs");
+    assert_success(&status);
+    let text = String::from_utf8_lossy(&std::fs::read(&typescript).unwrap()).into_owned();
+    assert!(text.contains("20/20 steps"), "no progress bar in:\n{text}");
+    assert!(
+        text.contains("completed: 20 of 20 steps"),
+        "no final message in:\n{text}"
+    );
+}
+
 /// The coarse Nooru-Mohamed scene cut to 400 steps (cracks start from both notches), with
 /// the tolerance `tolerance`.
 fn fracture_scene(dir: &Path, name: &str, tolerance: &str) -> std::path::PathBuf {
