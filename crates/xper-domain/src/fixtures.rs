@@ -1,7 +1,8 @@
 //! A disk deposit and its velocity problem, shared by the tests and the MPI check binary: the
-//! distributed solve is compared with the undivided one on it.
+//! distributed solve is compared with the undivided one on it; and grains in a fluid box.
 
 use xper_bodies::{Body, BodySet};
+use xper_fluid::{CoupledState, FluidBoundary, FluidParams, FluidState, MacGrid};
 use xper_laws::{InteractionLaw, LawTable, SignoriniCoulomb};
 use xper_math::{Real, Vector};
 use xper_nscd::{MoreauJean, RigidContactOperator, RigidProblem, StepParams, World};
@@ -162,4 +163,35 @@ pub fn serial_spread(problem: &RigidProblem, tolerance: Real, serial: &[[Real; 3
         .collect();
     assert!(!spreads.is_empty(), "no other sweep order converges");
     spreads.into_iter().fold(0.0, Real::max)
+}
+
+/// Grains of 1200 kg/m^3, disks of the given `(radius, centre)` (m), at rest in water-like
+/// fluid at rest (1000 kg/m^3, 4e-3 Pa s) filling the closed box `grid`, under gravity;
+/// steps of at most 0.1 ms, the pressure solved to `pressure_tolerance`.
+pub fn grains_in_a_box(
+    grid: MacGrid,
+    disks: &[(Real, Vector)],
+    pressure_tolerance: Real,
+) -> (FluidParams, CoupledState) {
+    let mut params = FluidParams::new(1000.0, 4e-3, FluidBoundary::closed_box());
+    params.dt_max = 1e-4;
+    params.pressure_tolerance = pressure_tolerance;
+    let mut bodies = BodySet::new();
+    for &(radius, centre) in disks {
+        bodies.insert(Body::disk(radius, 1200.0, centre));
+    }
+    let world_params = StepParams {
+        dt: 1e-4,
+        theta: 0.5,
+        gravity: Vector::new(0.0, -9.81),
+        alert_distance: 1e-5,
+        nlgs: Default::default(),
+        solver: xper_nscd::VelocitySolver::Nlgs,
+        projection_tolerance: None,
+    };
+    let state = CoupledState {
+        fluid: FluidState::at_rest(grid, &params.boundary),
+        world: World::new(bodies, LawTable::new(1), world_params),
+    };
+    (params, state)
 }

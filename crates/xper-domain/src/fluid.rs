@@ -481,15 +481,9 @@ fn unpack_rows(
 mod tests {
     use super::*;
     use crate::run_on_threads;
-    use xper_bodies::{Body, BodySet};
-    use xper_fluid::{FluidBoundary, FluidState};
-    use xper_laws::LawTable;
-    use xper_nscd::StepParams;
 
     /// A grain falling across the cut of a 16 x 64 box on 2 blocks.
     fn falling_grain() -> (FluidParams, CoupledState) {
-        let mut params = FluidParams::new(1000.0, 4e-3, FluidBoundary::closed_box());
-        params.dt_max = 1e-4;
         let h = 1e-4;
         let grid = MacGrid {
             nx: 16,
@@ -497,22 +491,8 @@ mod tests {
             h,
             origin: Vector::zeros(),
         };
-        let mut bodies = BodySet::new();
-        bodies.insert(Body::disk(4.0 * h, 1200.0, Vector::new(8.0 * h, 32.0 * h)));
-        let world_params = StepParams {
-            dt: 1e-4,
-            theta: 0.5,
-            gravity: Vector::new(0.0, -9.81),
-            alert_distance: 1e-6,
-            nlgs: Default::default(),
-            solver: xper_nscd::VelocitySolver::Nlgs,
-            projection_tolerance: None,
-        };
-        let state = CoupledState {
-            fluid: FluidState::at_rest(grid, &params.boundary),
-            world: World::new(bodies, LawTable::new(1), world_params),
-        };
-        (params, state)
+        let grain = (4.0 * h, Vector::new(8.0 * h, 32.0 * h));
+        crate::fixtures::grains_in_a_box(grid, &[grain], 1e-8)
     }
 
     /// Zeroes the halo rows of the block's velocity and pressure on its linked sides.

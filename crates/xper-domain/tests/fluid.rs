@@ -196,36 +196,18 @@ fn a_non_singular_strip_solve_gives_the_same_bits_on_1_to_8_processes() {
 /// one across the cut between two blocks (row 160 of 320), the upper one near the cut of the
 /// top pair of four blocks.
 fn two_grains(tolerance: f64) -> (FluidParams, CoupledState) {
-    let mut params = FluidParams::new(1000.0, 4e-3, FluidBoundary::closed_box());
-    params.dt_max = 1e-4;
-    params.pressure_tolerance = tolerance;
     let grid = MacGrid {
         nx: 32,
         ny: 320,
         h: DIAMETER / 8.0,
         origin: Vector::zeros(),
     };
-    let mut bodies = BodySet::new();
-    for centre in [
+    let centres = [
         Vector::new(2.0 * DIAMETER, 20.0 * DIAMETER),
         Vector::new(2.005 * DIAMETER, 22.0 * DIAMETER),
-    ] {
-        bodies.insert(Body::disk(DIAMETER / 2.0, 1200.0, centre));
-    }
-    let world_params = StepParams {
-        dt: 1e-4,
-        theta: 0.5,
-        gravity: Vector::new(0.0, -9.81),
-        alert_distance: 1e-5,
-        nlgs: Default::default(),
-        solver: xper_nscd::VelocitySolver::Nlgs,
-        projection_tolerance: None,
-    };
-    let state = CoupledState {
-        fluid: FluidState::at_rest(grid, &params.boundary),
-        world: World::new(bodies, LawTable::new(1), world_params),
-    };
-    (params, state)
+    ];
+    let disks = centres.map(|centre| (DIAMETER / 2.0, centre));
+    xper_domain::fixtures::grains_in_a_box(grid, &disks, tolerance)
 }
 
 fn serial(params: &FluidParams, mut state: CoupledState, steps: usize) -> CoupledState {
