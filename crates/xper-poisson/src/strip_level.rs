@@ -374,17 +374,7 @@ impl StripLevel {
         let received = links.exchange_rows(to_below.as_deref(), to_above.as_deref());
         self.zero_boundary_ghost_rows();
         self.store(received, halves + 1, halves);
-        let mut sums = [0.0; 4];
-        for j in 0..self.rows as isize {
-            sums[3] += self.residual_row(j);
-            let k = self.index(0, j);
-            for (f, r) in self.f[k..k + self.nx].iter().zip(&self.r[k..k + self.nx]) {
-                sums[0] += f;
-                sums[1] += f * f;
-                sums[2] += r;
-            }
-        }
-        sums
+        self.residual_sums()
     }
 
     /// Subtracts `mean` from `f` everywhere, its current ghost rows included (every strip
@@ -395,14 +385,18 @@ impl StripLevel {
         }
     }
 
-    /// This strip's `[sum f^2, sum r^2]` with `r = f - Lap u` (written), its ghost rows
-    /// current.
-    pub fn squares(&mut self) -> [f64; 2] {
-        let mut sums = [0.0; 2];
+    /// Writes `r = f - Lap u` (the ghost rows current) and returns this strip's
+    /// `[sum f, sum f^2, sum r, sum r^2]`.
+    pub fn residual_sums(&mut self) -> [f64; 4] {
+        let mut sums = [0.0; 4];
         for j in 0..self.rows as isize {
-            sums[1] += self.residual_row(j);
+            sums[3] += self.residual_row(j);
             let k = self.index(0, j);
-            sums[0] += self.f[k..k + self.nx].iter().map(|f| f * f).sum::<f64>();
+            for (f, r) in self.f[k..k + self.nx].iter().zip(&self.r[k..k + self.nx]) {
+                sums[0] += f;
+                sums[1] += f * f;
+                sums[2] += r;
+            }
         }
         sums
     }

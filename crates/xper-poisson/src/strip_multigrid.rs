@@ -182,9 +182,9 @@ impl StripMultigrid {
         );
         if shift > 1e-6 * sums[1] {
             // The mean is not negligible: the differences would lose digits; sum again.
-            let mut exact = fine.squares();
+            let mut exact = fine.residual_sums();
             links.sum(&mut exact);
-            [rhs_squares, residual_squares] = exact;
+            [rhs_squares, residual_squares] = [exact[1], exact[3]];
         }
         // A root that keeps NaN (a difference of sums may round below zero).
         let root = |x: f64| if x < 0.0 { 0.0 } else { x.sqrt() };
