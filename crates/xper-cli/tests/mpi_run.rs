@@ -14,17 +14,24 @@ use std::path::Path;
 use std::process::{Command, Output};
 use xper_nscd::World;
 
-fn mpirun(ranks: usize, args: &[&str]) -> Output {
-    Command::new("timeout")
-        .args(["300", "mpirun", "-np", &ranks.to_string()])
-        .arg(env!("CARGO_BIN_EXE_xper"))
-        .args(args)
+/// Open MPI's settings for these runs: as root, more processes than cores, yielding when idle.
+fn with_mpi_env(command: &mut Command) -> &mut Command {
+    command
         .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
         .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
         .env("OMPI_MCA_rmaps_base_oversubscribe", "1")
         .env("OMPI_MCA_mpi_yield_when_idle", "1")
-        .output()
-        .expect("mpirun could not be started (is openmpi-bin installed?)")
+}
+
+fn mpirun(ranks: usize, args: &[&str]) -> Output {
+    with_mpi_env(
+        Command::new("timeout")
+            .args(["300", "mpirun", "-np", &ranks.to_string()])
+            .arg(env!("CARGO_BIN_EXE_xper"))
+            .args(args),
+    )
+    .output()
+    .expect("mpirun could not be started (is openmpi-bin installed?)")
 }
 
 fn checkpoint(dir: &Path) -> World {
@@ -184,15 +191,13 @@ fn the_progress_bar_shows_on_rank_0_when_mpirun_has_a_terminal() {
         scene.display(),
         out.display()
     );
-    let status = Command::new("script")
-        .args(["-qec", &command])
-        .arg(&typescript)
-        .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
-        .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
-        .env("OMPI_MCA_rmaps_base_oversubscribe", "1")
-        .env("OMPI_MCA_mpi_yield_when_idle", "1")
-        .output()
-        .expect("script (util-linux) runs");
+    let status = with_mpi_env(
+        Command::new("script")
+            .args(["-qec", &command])
+            .arg(&typescript),
+    )
+    .output()
+    .expect("script (util-linux) runs");
     assert_success(&status);
     let text = String::from_utf8_lossy(&std::fs::read(&typescript).unwrap()).into_owned();
     assert!(text.contains("20/20 steps"), "no progress bar in:\n{text}");
