@@ -468,9 +468,9 @@ impl FluidSolver {
         sums.push(state.kinetic_energy(params.density));
         let mut figures = [state.max_speed()];
         links.sum_and_max(&mut sums, &mut figures);
-        let [divergence_before, divergence_after, kinetic_energy] = sums[sums.len() - 3..] else {
-            unreachable!("three sums appended")
-        };
+        let n = sums.len();
+        let (divergence_before, divergence_after, kinetic_energy) =
+            (sums[n - 3], sums[n - 2], sums[n - 1]);
         unpack(&sums, &mut report.forces, &mut self.inner);
         for ((force, new), old) in report.forces.iter_mut().zip(&self.inner).zip(&state.inner) {
             force.force += (new.linear - old.linear) / dt;
