@@ -125,7 +125,7 @@ impl StripMultigrid {
         })
     }
 
-    /// Number of strip levels (the gathered coarse grid excluded).
+    /// Number of strip levels, the coarsest (the one gathered whole) included.
     pub fn strip_levels(&self) -> usize {
         self.levels.len()
     }
