@@ -98,6 +98,26 @@ impl<C: Communicator + ?Sized> RowLinks for StripComm<'_, C> {
         )
     }
 
+    fn exchange_rows_among(
+        &mut self,
+        neighbours: [Option<usize>; 2],
+        to_below: Option<&[f64]>,
+        to_above: Option<&[f64]>,
+        work: &mut dyn FnMut(),
+    ) -> [Option<Vec<f64>>; 2] {
+        exchange_with_neighbours_overlapped(
+            self.comm,
+            neighbours,
+            to_below.map(<[f64]>::to_vec),
+            to_above.map(<[f64]>::to_vec),
+            work,
+        )
+    }
+
+    fn send_receive(&mut self, sends: Vec<(usize, Vec<f64>)>, sources: &[usize]) -> Vec<Vec<f64>> {
+        self.comm.exchange(&sends, sources)
+    }
+
     fn sum(&mut self, values: &mut [f64]) {
         self.comm.all_reduce_sum(values);
     }

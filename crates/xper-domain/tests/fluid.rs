@@ -161,6 +161,16 @@ fn a_non_singular_strip_solve_gives_the_same_bits_on_1_to_8_processes() {
         ),
         ((64, 256), vec![periodic_y], cycle(1, 3), 2..=4),
         ((64, 128), vec![open_top, periodic_y], cycle(4, 1), 8..=8),
+        // Agglomerated: 8 strips 4 rows high on 128 x 32 re-cut into 4 of 8 rows on
+        // processes 0, 2, 4, 6; 5 strips 4 rows high on 64 x 20 re-cut into 6, 6 and 8 rows
+        // (each taking parts of two old strips) on processes 0, 1 and 3.
+        (
+            (256, 64),
+            vec![open_top, periodic_x, periodic_y],
+            cycle(2, 1),
+            8..=8,
+        ),
+        ((256, 80), vec![open_top, periodic_y], cycle(2, 1), 5..=5),
     ];
     for ((nx, ny), boundaries, params, processes) in cases {
         let shape = unit_width_grid(nx, ny);

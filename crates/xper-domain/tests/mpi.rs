@@ -50,6 +50,16 @@ fn anderson_accelerated_solves_on_two_and_four_processes_agree_with_the_undivide
     }
 }
 
+/// The agglomerated pressure multigrid over MPI (4 processes, its strips re-cut into 2 and
+/// gathered by ranks 0 and 2) gives the one-strip solve's bits on every rank.
+#[test]
+fn the_agglomerated_pressure_multigrid_over_mpi_gives_the_one_strip_bits() {
+    let (code, text, _) = mpirun(4, &["--pressure"]);
+    assert_eq!(code, Some(0), "{text}");
+    assert_eq!(text.matches(": ok").count(), 4, "{text}");
+    assert_eq!(text.matches("gathered grid 512 cells").count(), 2, "{text}");
+}
+
 #[test]
 fn a_failure_on_one_rank_ends_the_job_promptly() {
     let (code, text, elapsed) = mpirun(2, &["--tolerance", "1e-5", "--fail-on-rank", "1"]);

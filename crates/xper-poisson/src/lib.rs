@@ -85,6 +85,7 @@ mod coarse;
 mod level;
 mod multigrid;
 mod operator;
+mod strip_hierarchy;
 mod strip_level;
 pub mod strip_multigrid;
 pub mod strips;

@@ -63,6 +63,15 @@ fn fold(condition: SideCondition) -> f64 {
     }
 }
 
+/// Which array of a level.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Field {
+    /// The correction `u`.
+    Solution,
+    /// The residual `r`.
+    Residual,
+}
+
 /// One level of one strip (see the module documentation).
 pub(crate) struct StripLevel {
     pub nx: usize,
@@ -166,6 +175,39 @@ impl StripLevel {
     /// The most sweeps one exchange of the ghost rows allows (at least 1).
     pub fn sweeps_per_exchange(&self) -> usize {
         (self.ghosts.saturating_sub(1) / 2).max(1)
+    }
+
+    /// The cells of the global rows `rows` (within this strip) of `field`, row after row.
+    pub fn copy_rows(&self, field: Field, rows: std::ops::Range<usize>) -> Vec<f64> {
+        let values = match field {
+            Field::Solution => &self.u,
+            Field::Residual => &self.r,
+        };
+        let mut cells = Vec::with_capacity(self.nx * rows.len());
+        for global in rows {
+            let k = self.index(0, (global - self.first_row) as isize);
+            cells.extend_from_slice(&values[k..k + self.nx]);
+        }
+        cells
+    }
+
+    /// Writes `cells` (whole rows, the first of them global row `first`, within this strip)
+    /// into `field`, or adds them to it with `add`.
+    pub fn write_rows(&mut self, field: Field, first: usize, cells: &[f64], add: bool) {
+        let nx = self.nx;
+        for (j, row) in cells.chunks_exact(nx).enumerate() {
+            let k = self.index(0, (first + j - self.first_row) as isize);
+            let values = match field {
+                Field::Solution => &mut self.u,
+                Field::Residual => &mut self.r,
+            };
+            let target = &mut values[k..k + nx];
+            if add {
+                target.iter_mut().zip(row).for_each(|(v, c)| *v += c);
+            } else {
+                target.copy_from_slice(row);
+            }
+        }
     }
 
     /// Records that `f` changed in the cells (its ghost rows are stale).

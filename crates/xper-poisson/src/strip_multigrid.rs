@@ -12,8 +12,12 @@
 //! restricted by four-cell averages within the last pre-smoothing sweep and the correction
 //! prolongated bilinearly, as in the serial solver. A V(2,1) cycle thus exchanges rows twice
 //! per strip level, and the residual that ends it is computed within its last sweep.
-//! The coarsest strip level (at most [`crate::strips::GATHERED_CELLS`] cells in all when the
-//! layout's cuts allow the strips to coarsen that far) is gathered on every process and
+//! When the strips get too thin to coarsen while the grid is still large, the level is
+//! agglomerated: its residual is re-cut into half as many strips on half the processes, which
+//! go on while the others wait for their rows of the correction (the private module
+//! `strip_hierarchy`).
+//! The coarsest strip level (at most [`crate::strips::GATHERED_CELLS`] cells when the grid
+//! halves that far) is gathered on every process holding one of its strips and
 //! relaxed whole by one V-cycle of the serial [`crate::Multigrid`], so that, when the serial
 //! solver coarsens the same way, a strip cycle is the serial solver's cycle to round-off (the
 //! strip cycle is a V-cycle whatever [`MultigridParams::cycle`] says); every
@@ -23,25 +27,47 @@
 //! rows of the first pre-smoothing, which then needs none) and one sum (the mean, the rhs
 //! norm and the first residual norm together).
 
-use crate::strip_level::{ghost_rows, StripLevel};
-use crate::strips::{RowLinks, StripLayout, MIN_STRIP_ROWS};
+use crate::strip_hierarchy::{move_rows, plan_levels, Below, Cut, LevelPlan};
+use crate::strip_level::{ghost_rows, Field, StripLevel};
+use crate::strips::{Among, RowLinks, StripLayout, MIN_STRIP_ROWS};
 use crate::{
     Boundary, CycleType, GridShape, Multigrid, MultigridParams, SetupError, SolveError, SolveInfo,
 };
+
+/// This process's part of an agglomeration below one of its levels.
+struct Agglomeration {
+    /// The strips of the level.
+    starts: Vec<usize>,
+    ranks: Vec<usize>,
+    /// The strips the level's residual is re-cut into.
+    cut_starts: Vec<usize>,
+    cut_ranks: Vec<usize>,
+    /// This process's strip of the re-cut level, if it holds one: the residual restricted
+    /// from it, the correction prolongated into it.
+    staging: Option<StripLevel>,
+}
 
 /// A multigrid solver for the rows of one strip of the grid.
 pub struct StripMultigrid {
     shape: GridShape,
     params: MultigridParams,
     singular: bool,
+    /// The levels this process holds a strip of: a first part of the hierarchy, the whole of
+    /// it unless an agglomeration leaves this process out.
     levels: Vec<StripLevel>,
+    /// Per level: the processes of the strips below and above, when the level's strips are
+    /// not every process's (`None`: the links' own neighbours).
+    neighbours: Vec<Option<[Option<usize>; 2]>>,
+    /// Per level: the agglomeration below it, if any.
+    agglomerations: Vec<Option<Agglomeration>>,
     layout: StripLayout,
     strip: usize,
     coarse: Multigrid,
     coarse_rhs: Vec<f64>,
     coarse_solution: Vec<f64>,
-    /// The row cuts of the coarsest strip level.
+    /// The row cuts of the coarsest strip level and the processes of its strips.
     coarse_starts: Vec<usize>,
+    coarse_ranks: Vec<usize>,
 }
 
 impl StripMultigrid {
@@ -69,36 +95,37 @@ impl StripMultigrid {
                 min_rows: MIN_STRIP_ROWS,
             });
         }
-        // Each level's ghost rows: those of the cycle, or fewer where the strips are thinner
-        // (the sweeps are then exchanged for in smaller groups); the same on every strip.
-        let ghosts_for = |starts: &[usize]| {
-            let thinnest = starts.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(0);
-            ghost_rows(&params).min(thinnest)
-        };
-        let (mut nx, mut ny, mut hx, mut hy) = (shape.nx, shape.ny, shape.hx, shape.hy);
-        let mut starts = layout.starts.clone();
-        let mut levels = vec![StripLevel::new(
-            nx,
-            ny,
-            layout.rows(strip),
-            [hx, hy],
-            boundary,
-            ghosts_for(&starts),
-        )];
-        while nx % 2 == 0
-            && nx >= 4
-            && starts.iter().all(|s| s % 2 == 0)
-            && starts.windows(2).all(|w| w[1] - w[0] >= 2 * MIN_STRIP_ROWS)
-            && nx * ny > crate::strips::GATHERED_CELLS
-        {
-            for s in &mut starts {
-                *s /= 2;
-            }
-            (nx, ny, hx, hy) = (nx / 2, ny / 2, 2.0 * hx, 2.0 * hy);
-            let rows = starts[strip]..starts[strip + 1];
-            let ghosts = ghosts_for(&starts);
-            levels.push(StripLevel::new(nx, ny, rows, [hx, hy], boundary, ghosts));
+        let plans = plan_levels(shape, &layout);
+        let periodic = boundary.bottom == crate::SideCondition::Periodic;
+        let mut levels = Vec::new();
+        let mut neighbours = Vec::new();
+        let mut agglomerations = Vec::new();
+        for plan in &plans {
+            let Some(at) = plan.strip_of(strip) else {
+                break;
+            };
+            levels.push(Self::level(plan, at, boundary, &params));
+            let whole = plan.ranks.len() == layout.strips();
+            neighbours.push((!whole).then(|| plan.neighbours(at, periodic)));
+            agglomerations.push(match &plan.below {
+                Below::Agglomerated { starts, ranks } => {
+                    let staging = ranks.binary_search(&strip).ok().map(|t| {
+                        let rows = starts[t]..starts[t + 1];
+                        let h = [plan.shape.hx, plan.shape.hy];
+                        StripLevel::new(plan.shape.nx, plan.shape.ny, rows, h, boundary, 1)
+                    });
+                    Some(Agglomeration {
+                        starts: plan.starts.clone(),
+                        ranks: plan.ranks.clone(),
+                        cut_starts: starts.clone(),
+                        cut_ranks: ranks.clone(),
+                        staging,
+                    })
+                }
+                Below::Coarser | Below::Gathered => None,
+            });
         }
+        let bottom = plans.last().expect("at least one level");
         // One V-cycle of the serial solver on the gathered grid, as the serial cycle would
         // continue below this level: the strip cycle is then the serial iteration, and every
         // process does no more coarse work than the serial solver. (Solving the gathered grid
@@ -110,32 +137,58 @@ impl StripMultigrid {
             cycle: CycleType::V,
             ..params
         };
-        let coarse = Multigrid::new(GridShape { nx, ny, hx, hy }, boundary, coarse_params)?;
+        let cells = bottom.shape.cells();
         Ok(StripMultigrid {
             shape,
             params,
             singular: boundary.is_singular(),
             levels,
+            neighbours,
+            agglomerations,
             layout,
             strip,
-            coarse,
-            coarse_rhs: vec![0.0; nx * ny],
-            coarse_solution: vec![0.0; nx * ny],
-            coarse_starts: starts,
+            coarse: Multigrid::new(bottom.shape, boundary, coarse_params)?,
+            coarse_rhs: vec![0.0; cells],
+            coarse_solution: vec![0.0; cells],
+            coarse_starts: bottom.starts.clone(),
+            coarse_ranks: bottom.ranks.clone(),
         })
     }
 
-    /// Number of strip levels, the coarsest (the one gathered whole) included.
+    /// The level of strip `at` of `plan`, with the ghost rows of the cycle, or fewer where the
+    /// strips are thinner (the sweeps are then exchanged for in smaller groups); the same on
+    /// every strip of the level.
+    fn level(
+        plan: &LevelPlan,
+        at: usize,
+        boundary: Boundary,
+        params: &MultigridParams,
+    ) -> StripLevel {
+        let starts = &plan.starts;
+        let thinnest = starts.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(0);
+        let GridShape { nx, ny, hx, hy } = plan.shape;
+        let rows = starts[at]..starts[at + 1];
+        let ghosts = ghost_rows(params).min(thinnest);
+        StripLevel::new(nx, ny, rows, [hx, hy], boundary, ghosts)
+    }
+
+    /// Number of strip levels this process holds a strip of, the coarsest (the one gathered
+    /// whole) included when it holds one of its strips.
     pub fn strip_levels(&self) -> usize {
         self.levels.len()
     }
 
-    /// Cells of the coarse grid that every process gathers and relaxes whole in each cycle:
-    /// work repeated by every process, not divided. Strips stop coarsening once one is
-    /// thinner than `2 MIN_STRIP_ROWS` rows, so with many processes this grid can exceed a
-    /// process's share of the fine grid (1024 x 1024 cells on 48 processes gathers 65,536).
+    /// Cells of the coarse grid that this process gathers and relaxes whole in each cycle
+    /// (0 when an agglomeration leaves it out before): work repeated by every process that
+    /// holds a strip of it, not divided. Strips stop coarsening once one is thinner than
+    /// `2 MIN_STRIP_ROWS` rows; the levels are then agglomerated on fewer processes until
+    /// the grid has at most [`crate::strips::GATHERED_CELLS`] cells or does not halve.
     pub fn gathered_cells(&self) -> usize {
-        self.coarse_rhs.len()
+        if self.coarse_ranks.binary_search(&self.strip).is_ok() {
+            self.coarse_rhs.len()
+        } else {
+            0
+        }
     }
 
     /// The rows of this strip.
@@ -255,49 +308,150 @@ impl StripMultigrid {
     /// finest-grid sweeps of this strip and, on the finest level when it is not the gathered
     /// one, this strip's `sum r^2` after the cycle (computed within the last sweep).
     fn cycle(&mut self, l: usize, links: &mut dyn RowLinks) -> (f64, Option<f64>) {
-        let p = self.params;
         let scale = self.levels[l].cells() as f64 / self.levels[0].cells() as f64;
+        if self.agglomerations[l].is_some() {
+            return self.agglomerated_cycle(l, links);
+        }
         if l + 1 == self.levels.len() {
             self.solve_gathered(links, l > 0);
             return (scale, None);
         }
+        let p = self.params;
         let (upper, lower) = self.levels.split_at_mut(l + 1);
         let (fine, coarse) = (&mut upper[l], &mut lower[0]);
         coarse.zero_solution();
-        fine.smooth(links, p.omega, p.pre_smoothing as usize, true, Some(coarse));
+        with_links(self.neighbours[l], links, |links| {
+            fine.smooth(links, p.omega, p.pre_smoothing as usize, true, Some(coarse))
+        });
         let mut work = scale * (p.pre_smoothing as f64 + 1.5);
         work += self.cycle(l + 1, links).0;
         let (upper, lower) = self.levels.split_at_mut(l + 1);
         let (fine, coarse) = (&mut upper[l], &mut lower[0]);
-        fine.prolong(coarse, links);
-        let sum = fine.smooth(links, p.omega, p.post_smoothing as usize, l == 0, None);
+        let sum = with_links(self.neighbours[l], links, |links| {
+            fine.prolong(coarse, links);
+            fine.smooth(links, p.omega, p.post_smoothing as usize, l == 0, None)
+        });
+        let squares = (l == 0).then_some(sum);
+        (work + scale * (0.5 + p.post_smoothing as f64), squares)
+    }
+
+    /// [`StripMultigrid::cycle`] on a level agglomerated below: pre-smoothing with the
+    /// residual on every cell, the residual re-cut onto the processes of the next stage, which
+    /// restrict it, cycle below and prolongate the correction into the re-cut strips, the
+    /// correction's rows sent back, post-smoothing.
+    fn agglomerated_cycle(&mut self, l: usize, links: &mut dyn RowLinks) -> (f64, Option<f64>) {
+        let p = self.params;
+        let me = self.strip;
+        let scale = self.levels[l].cells() as f64 / self.levels[0].cells() as f64;
+        let mut work = scale * (p.pre_smoothing as f64 + 1.0);
+        // Taken out while the levels below cycle (they do not use it).
+        let mut stage = self.agglomerations[l]
+            .take()
+            .expect("an agglomerated level");
+        let level_cut = Cut {
+            starts: &stage.starts,
+            ranks: &stage.ranks,
+        };
+        let new_cut = Cut {
+            starts: &stage.cut_starts,
+            ranks: &stage.cut_ranks,
+        };
+        let fine = &mut self.levels[l];
+        with_links(self.neighbours[l], links, |links| {
+            fine.smooth(links, p.omega, p.pre_smoothing as usize, true, None)
+        });
+        let staging = stage.staging.as_mut();
+        move_rows(
+            links,
+            me,
+            level_cut,
+            Some(fine),
+            new_cut,
+            staging,
+            Field::Residual,
+            false,
+        );
+        if let Some(staging) = stage.staging.as_mut() {
+            let coarse = &mut self.levels[l + 1];
+            staging.restrict(coarse);
+            coarse.zero_solution();
+            work += scale * 0.5 + self.cycle(l + 1, links).0;
+            let coarse = &mut self.levels[l + 1];
+            staging.zero_solution();
+            with_links(self.neighbours[l + 1], links, |links| {
+                staging.prolong(coarse, links)
+            });
+        }
+        let fine = &mut self.levels[l];
+        let staging = stage.staging.as_ref();
+        move_rows(
+            links,
+            me,
+            new_cut,
+            staging,
+            level_cut,
+            Some(&mut *fine),
+            Field::Solution,
+            true,
+        );
+        fine.solution_changed();
+        let sum = with_links(self.neighbours[l], links, |links| {
+            fine.smooth(links, p.omega, p.post_smoothing as usize, l == 0, None)
+        });
+        self.agglomerations[l] = Some(stage);
         let squares = (l == 0).then_some(sum);
         (work + scale * (0.5 + p.post_smoothing as f64), squares)
     }
 
     /// Corrects the coarsest strip level by a whole solve: its residual gathered from every
-    /// strip, the serial multigrid run on every process, each adding its rows. With
-    /// `zero_guess` (a coarse level, its `u` zero on entry) the residual is the rhs itself.
+    /// strip of it, the serial multigrid run on each of their processes, each adding its rows.
+    /// With `zero_guess` (a coarse level, its `u` zero on entry) the residual is the rhs
+    /// itself.
     fn solve_gathered(&mut self, links: &mut dyn RowLinks, zero_guess: bool) {
         let level = self.levels.last_mut().expect("at least one level");
         let nx = level.nx;
         if !zero_guess {
-            level.residual(links);
+            with_links(*self.neighbours.last().expect("a level"), links, |links| {
+                level.residual(links)
+            });
         }
-        let source = if zero_guess { &level.f } else { &level.r };
-        // Every strip sends as many rows as the highest one (zeros after its own).
+        let field = if zero_guess { &level.f } else { &level.r };
         let starts = &self.coarse_starts;
-        let highest = starts.windows(2).map(|w| w[1] - w[0]).max().unwrap_or(0);
-        let mut local = vec![0.0; highest * nx];
+        let own = level.first_row..level.first_row + level.rows;
+        let mut cells = Vec::with_capacity(nx * own.len());
         for j in 0..level.rows {
             let k = level.index(0, j as isize);
-            local[nx * j..nx * (j + 1)].copy_from_slice(&source[k..k + nx]);
+            cells.extend_from_slice(&field[k..k + nx]);
         }
-        let whole = links.gather(&local);
-        for (s, rows) in starts.windows(2).enumerate() {
-            let cells = nx * (rows[1] - rows[0]);
-            let from = s * highest * nx;
-            self.coarse_rhs[nx * rows[0]..nx * rows[1]].copy_from_slice(&whole[from..from + cells]);
+        self.coarse_rhs[nx * own.start..nx * own.end].copy_from_slice(&cells);
+        if self.coarse_ranks.len() == self.layout.strips() {
+            // Every process holds a strip: one collective, every strip sending as many rows
+            // as the highest one (zeros after its own).
+            let highest = starts.windows(2).map(|w| w[1] - w[0]).max().unwrap_or(0);
+            cells.resize(highest * nx, 0.0);
+            let whole = links.gather(&cells);
+            for (s, rows) in starts.windows(2).enumerate() {
+                let count = nx * (rows[1] - rows[0]);
+                let from = s * highest * nx;
+                self.coarse_rhs[nx * rows[0]..nx * rows[1]]
+                    .copy_from_slice(&whole[from..from + count]);
+            }
+        } else {
+            // Some processes: each sends its rows to the others.
+            let others: Vec<usize> = (self.coarse_ranks.iter())
+                .copied()
+                .filter(|&r| r != self.strip)
+                .collect();
+            let sends = others.iter().map(|&r| (r, cells.clone())).collect();
+            let received = links.send_receive(sends, &others);
+            let held = self.coarse_ranks.iter().zip(starts.windows(2));
+            for (rows, values) in (held.filter(|(&r, _)| r != self.strip))
+                .map(|(_, rows)| rows)
+                .zip(received)
+            {
+                assert_eq!(values.len(), nx * (rows[1] - rows[0]), "gathered rows");
+                self.coarse_rhs[nx * rows[0]..nx * rows[1]].copy_from_slice(&values);
+            }
         }
         self.coarse_solution.fill(0.0);
         // The one cycle ends short of the zero tolerance and returns its iterate, a valid
@@ -305,11 +459,20 @@ impl StripMultigrid {
         let _ = self
             .coarse
             .solve(&self.coarse_rhs, &mut self.coarse_solution);
-        level.add_whole_correction(
-            &self.coarse_solution,
-            self.coarse_starts[self.layout.strips()],
-            zero_guess,
-        );
+        let ny = *starts.last().expect("row cuts");
+        level.add_whole_correction(&self.coarse_solution, ny, zero_guess);
+    }
+}
+
+/// Runs `f` with `links`, or with the links of an agglomerated level's strips `neighbours`.
+fn with_links<R>(
+    neighbours: Option<[Option<usize>; 2]>,
+    links: &mut dyn RowLinks,
+    f: impl FnOnce(&mut dyn RowLinks) -> R,
+) -> R {
+    match neighbours {
+        None => f(links),
+        Some(neighbours) => f(&mut Among { links, neighbours }),
     }
 }
 
@@ -449,16 +612,18 @@ mod tests {
         }
     }
 
-    /// The coarse grid gathered on every process: a few hundred cells on 2 processes, but on
-    /// 48 the strips of a 1024 x 1024 grid (20 to 24 rows) stop coarsening at 5 to 6 rows and
-    /// a 256 x 256 grid is relaxed by every process, three times a process's share of the
-    /// fine grid (the limit the notes' model of 48 processes describes).
+    /// The coarse grid a process relaxes whole: what the strips leave when they stop
+    /// coarsening (400 and 512 cells on 2 processes, as before agglomeration), and on 48
+    /// processes of a 1024 x 1024 grid, whose 20-row strips stop coarsening at 256 x 256
+    /// (65,536 cells, three times a process's share, before agglomeration), 1,024 cells on
+    /// the few processes the agglomeration leaves, none on the others; every process holds
+    /// the finest level, and those left out of an agglomeration fewer levels.
     #[test]
-    fn thin_strips_gather_a_large_coarse_grid() {
-        for (nx, ny, strips, gathered) in [
-            (160, 640, 2, 400),
-            (512, 1024, 2, 512),
-            (1024, 1024, 48, 65536),
+    fn agglomeration_keeps_the_gathered_grid_small() {
+        for (nx, ny, strips, gathered, holding) in [
+            (160, 640, 2, 400, 2),
+            (512, 1024, 2, 512, 2),
+            (1024, 1024, 48, 1024, 6),
         ] {
             let shape = GridShape {
                 nx,
@@ -467,19 +632,20 @@ mod tests {
                 hy: 1.0,
             };
             let layout = StripLayout::balanced(nx, ny, strips).unwrap();
-            let multigrid = StripMultigrid::new(
-                shape,
-                Boundary::all(Neumann),
-                MultigridParams::default(),
-                layout,
-                0,
-            )
-            .unwrap();
-            assert_eq!(
-                multigrid.gathered_cells(),
-                gathered,
-                "{nx} x {ny} on {strips}"
-            );
+            let solvers: Vec<StripMultigrid> = (0..strips)
+                .map(|s| {
+                    let params = MultigridParams::default();
+                    let boundary = Boundary::all(Neumann);
+                    StripMultigrid::new(shape, boundary, params, layout.clone(), s).unwrap()
+                })
+                .collect();
+            let cells: Vec<usize> = solvers.iter().map(|s| s.gathered_cells()).collect();
+            let relaxing = cells.iter().filter(|&&c| c > 0).count();
+            assert_eq!(relaxing, holding, "{nx} x {ny} on {strips}: {cells:?}");
+            assert!(cells.iter().all(|&c| c == 0 || c == gathered), "{cells:?}");
+            let deepest = solvers.iter().map(|s| s.strip_levels()).max().unwrap();
+            assert!(solvers.iter().all(|s| s.strip_levels() >= 1));
+            assert_eq!(solvers[0].strip_levels(), deepest);
         }
     }
 

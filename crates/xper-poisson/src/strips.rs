@@ -26,6 +26,22 @@ pub trait RowLinks {
     ) -> [Option<Vec<f64>>; 2] {
         self.exchange_rows_overlapped(to_below, to_above, &mut || {})
     }
+    /// [`RowLinks::exchange_rows_overlapped`] with the strips `neighbours` (`[below, above]`,
+    /// `None` on a boundary side) instead of this strip's own: the links of an agglomerated
+    /// level, whose strips are held by some of the processes only. Only the strips of that
+    /// level make the call.
+    fn exchange_rows_among(
+        &mut self,
+        neighbours: [Option<usize>; 2],
+        to_below: Option<&[f64]>,
+        to_above: Option<&[f64]>,
+        work: &mut dyn FnMut(),
+    ) -> [Option<Vec<f64>>; 2];
+    /// Sends each `(strip, values)` of `sends` to that strip (never this one) and returns one
+    /// message from each strip of `sources` (never this one), in their order: the rows that
+    /// move between the processes of two agglomeration stages. Only the strips concerned
+    /// make the call.
+    fn send_receive(&mut self, sends: Vec<(usize, Vec<f64>)>, sources: &[usize]) -> Vec<Vec<f64>>;
     /// Replaces each value by its sum over the strips (the same bits on every strip).
     fn sum(&mut self, values: &mut [f64]);
     /// Every strip's `values` concatenated in strip order, on every strip. Every strip passes
@@ -47,6 +63,22 @@ impl RowLinks for OneStrip {
         work();
         [to_above.map(<[f64]>::to_vec), to_below.map(<[f64]>::to_vec)]
     }
+    fn exchange_rows_among(
+        &mut self,
+        _neighbours: [Option<usize>; 2],
+        to_below: Option<&[f64]>,
+        to_above: Option<&[f64]>,
+        work: &mut dyn FnMut(),
+    ) -> [Option<Vec<f64>>; 2] {
+        self.exchange_rows_overlapped(to_below, to_above, work)
+    }
+    fn send_receive(&mut self, sends: Vec<(usize, Vec<f64>)>, sources: &[usize]) -> Vec<Vec<f64>> {
+        assert!(
+            sends.is_empty() && sources.is_empty(),
+            "a grid held by one strip has no other strip to send rows to"
+        );
+        Vec::new()
+    }
     fn sum(&mut self, _values: &mut [f64]) {}
     fn gather(&mut self, values: &[f64]) -> Vec<f64> {
         values.to_vec()
@@ -63,6 +95,8 @@ pub struct CountingLinks {
     pub sums: usize,
     /// Gathers of the coarse grid.
     pub gathers: usize,
+    /// Point-to-point transfers between agglomeration stages.
+    pub transfers: usize,
 }
 
 impl RowLinks for CountingLinks {
@@ -75,6 +109,20 @@ impl RowLinks for CountingLinks {
         self.exchanges += 1;
         OneStrip.exchange_rows_overlapped(to_below, to_above, work)
     }
+    fn exchange_rows_among(
+        &mut self,
+        neighbours: [Option<usize>; 2],
+        to_below: Option<&[f64]>,
+        to_above: Option<&[f64]>,
+        work: &mut dyn FnMut(),
+    ) -> [Option<Vec<f64>>; 2] {
+        self.exchanges += 1;
+        OneStrip.exchange_rows_among(neighbours, to_below, to_above, work)
+    }
+    fn send_receive(&mut self, sends: Vec<(usize, Vec<f64>)>, sources: &[usize]) -> Vec<Vec<f64>> {
+        self.transfers += 1;
+        OneStrip.send_receive(sends, sources)
+    }
     fn sum(&mut self, values: &mut [f64]) {
         self.sums += 1;
         OneStrip.sum(values)
@@ -82,6 +130,42 @@ impl RowLinks for CountingLinks {
     fn gather(&mut self, values: &[f64]) -> Vec<f64> {
         self.gathers += 1;
         OneStrip.gather(values)
+    }
+}
+
+/// The links of an agglomerated level: row exchanges with the strips `neighbours` of that
+/// level ([`RowLinks::exchange_rows_among`]); everything else as `links`.
+pub(crate) struct Among<'a> {
+    pub links: &'a mut dyn RowLinks,
+    pub neighbours: [Option<usize>; 2],
+}
+
+impl RowLinks for Among<'_> {
+    fn exchange_rows_overlapped(
+        &mut self,
+        to_below: Option<&[f64]>,
+        to_above: Option<&[f64]>,
+        work: &mut dyn FnMut(),
+    ) -> [Option<Vec<f64>>; 2] {
+        (self.links).exchange_rows_among(self.neighbours, to_below, to_above, work)
+    }
+    fn exchange_rows_among(
+        &mut self,
+        neighbours: [Option<usize>; 2],
+        to_below: Option<&[f64]>,
+        to_above: Option<&[f64]>,
+        work: &mut dyn FnMut(),
+    ) -> [Option<Vec<f64>>; 2] {
+        (self.links).exchange_rows_among(neighbours, to_below, to_above, work)
+    }
+    fn send_receive(&mut self, sends: Vec<(usize, Vec<f64>)>, sources: &[usize]) -> Vec<Vec<f64>> {
+        self.links.send_receive(sends, sources)
+    }
+    fn sum(&mut self, values: &mut [f64]) {
+        self.links.sum(values)
+    }
+    fn gather(&mut self, values: &[f64]) -> Vec<f64> {
+        self.links.gather(values)
     }
 }
 

@@ -1,10 +1,13 @@
-//! `mpirun -np N xper-domain-mpi-check [--tolerance T] [--anderson] [--fail-on-rank R]`: the
-//! distributed contact solve of the deposit fixture over MPI (with `--anderson`, its sweeps
+//! `mpirun -np N xper-domain-mpi-check [--tolerance T] [--anderson] [--fail-on-rank R]
+//! [--pressure]`: the distributed contact solve of the deposit fixture over MPI (with `--anderson`, its sweeps
 //! Anderson-accelerated), compared on every rank with the undivided plain solve. Prints one
 //! line per rank and exits 0 when every body's velocity is within `SPREAD_MARGIN` times the
 //! spread of the solver (undivided solves with other sweep orders, see `serial_spread`); 1
 //! otherwise. With `--fail-on-rank R`,
 //! rank R panics before the solve, which must end the whole job (the panic hook's MPI_Abort).
+//! With `--pressure`, instead, the strip multigrid of a 512 x 64 grid (agglomerated on 4
+//! processes: its 4-row strips of 128 x 16 re-cut into 2) against the same solve on one
+//! strip: every rank's rows must be the same bits.
 
 use xper_domain::fixtures::{
     deposit, serial_spread, serial_velocities, solver_params, SPREAD_MARGIN,
@@ -17,11 +20,15 @@ fn main() {
         eprintln!("xper-domain-mpi-check: MPI was already initialised");
         std::process::exit(2);
     };
-    let (mut tolerance, mut fail_on, mut anderson) = (1e-7, None, false);
+    let (mut tolerance, mut fail_on, mut anderson, mut pressure) = (1e-7, None, false, false);
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
         if arg == "--anderson" {
             anderson = true;
+            continue;
+        }
+        if arg == "--pressure" {
+            pressure = true;
             continue;
         }
         let value = args.next();
@@ -45,11 +52,17 @@ fn main() {
             }
             _ => comm.abort(
                 &format!(
-                    "unknown argument {arg:?} (known: --tolerance T, --anderson, --fail-on-rank R)"
+                    "unknown argument {arg:?} (known: --tolerance T, --anderson, --fail-on-rank R, --pressure)"
                 ),
                 2,
             ),
         }
+    }
+    if pressure {
+        if pressure_matches_one_strip(&comm) {
+            return;
+        }
+        std::process::exit(1);
     }
     let (rank, size) = (comm.rank(), comm.size());
     let (world, problem) = deposit();
@@ -120,4 +133,57 @@ fn main() {
     if failures[0] > 0.0 {
         std::process::exit(1);
     }
+}
+
+/// The `--pressure` check: whether every rank's rows of four V(2,1) cycles over MPI are the
+/// bits of the one-strip solve (the same answer on every rank).
+fn pressure_matches_one_strip(comm: &MpiCommunicator) -> bool {
+    use xper_poisson::SideCondition::{Dirichlet, Neumann};
+    use xper_poisson::{Boundary, GridShape, MultigridParams, OneStrip, StripLayout};
+    let (rank, size) = (comm.rank(), comm.size());
+    let (nx, ny) = (512, 64);
+    let shape = GridShape {
+        nx,
+        ny,
+        hx: 1.0 / nx as f64,
+        hy: 1.0 / nx as f64,
+    };
+    let boundary = Boundary {
+        top: Dirichlet,
+        ..Boundary::all(Neumann)
+    };
+    let params = MultigridParams {
+        relative_tolerance: 1e-30,
+        max_cycles: 4,
+        ..MultigridParams::default()
+    };
+    let rhs = xper_poisson::bench::random_values(nx * ny, 7);
+    let solve = |layout: StripLayout, strip: usize, links: &mut dyn xper_poisson::RowLinks| {
+        let rows = layout.rows(strip);
+        let mut solver = xper_poisson::StripMultigrid::new(shape, boundary, params, layout, strip)
+            .unwrap_or_else(|e| comm.abort(&format!("strip multigrid: {e}"), 1));
+        let mut phi = vec![0.0; nx * rows.len()];
+        let _ = solver.solve(links, &rhs[nx * rows.start..nx * rows.end], &mut phi);
+        (phi, solver.gathered_cells(), rows)
+    };
+    let (whole, _, _) = solve(StripLayout::balanced(nx, ny, 1).unwrap(), 0, &mut OneStrip);
+    let layout = StripLayout::balanced(nx, ny, size)
+        .unwrap_or_else(|e| comm.abort(&format!("strips: {e}"), 2));
+    let mut links = xper_domain::strips::StripComm {
+        comm,
+        neighbours: xper_domain::strips::strip_neighbours(rank, size, false),
+    };
+    let (mine, gathered, rows) = solve(layout, rank, &mut links);
+    let differing = (mine.iter().zip(&whole[nx * rows.start..nx * rows.end]))
+        .filter(|(a, b)| a.to_bits() != b.to_bits())
+        .count();
+    let ok = differing == 0;
+    println!(
+        "rank {rank} of {size}: pressure rows {rows:?}, gathered grid {gathered} cells, \
+         {differing} values differ from one strip: {}",
+        if ok { "ok" } else { "MISMATCH" }
+    );
+    let mut failures = [if ok { 0.0 } else { 1.0 }];
+    comm.all_reduce_sum(&mut failures);
+    failures[0] == 0.0
 }
