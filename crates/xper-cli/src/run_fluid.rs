@@ -147,8 +147,8 @@ struct Summary {
     xper_version: &'static str,
     processes: usize,
     ranks: Vec<RankSummary>,
-    /// Cells of the pressure solve's coarse grid that every process relaxes whole (runs on
-    /// several processes).
+    /// Cells of the pressure solve's coarsest grid that rank 0, as each process holding it,
+    /// relaxes whole (runs on several processes).
     #[serde(skip_serializing_if = "Option::is_none")]
     pressure_gathered_cells: Option<usize>,
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -371,10 +371,10 @@ pub fn run(
     let share = state.fluid.grid.num_cells() / runner.processes();
     if let Some(cells) = gathered.filter(|&cells| root && !quiet && 10 * cells > share) {
         eprintln!(
-            "xper: note: the pressure multigrid's coarse grid of {cells} cells is relaxed whole by \
-             every process, {:.0} % of a process's {share} cells: on {} processes the blocks are \
-             too thin to coarsen further, and the pressure solve repeats that work on every \
-             process (fewer processes, or more rows, avoid it; see BENCHMARKS.md)",
+            "xper: note: the pressure multigrid's coarsest grid of {cells} cells is relaxed whole \
+             by each process holding it, {:.0} % of a process's {share} cells: on {} processes \
+             the blocks are so small that the coarse work, repeated instead of divided, is a \
+             large part of the pressure solve (fewer processes avoid it; see BENCHMARKS.md)",
             100.0 * cells as f64 / share as f64,
             runner.processes()
         );

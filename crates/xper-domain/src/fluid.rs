@@ -356,8 +356,9 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
         self.stepper.immersed()
     }
 
-    /// Cells of the pressure multigrid's coarse grid, gathered and relaxed whole by every
-    /// process in each cycle ([`StripMultigrid::gathered_cells`]).
+    /// Cells of the pressure multigrid's coarsest grid that this process gathers and relaxes
+    /// whole in each cycle, 0 when an agglomeration leaves it out before
+    /// ([`StripMultigrid::gathered_cells`]).
     pub fn pressure_gathered_cells(&self) -> usize {
         self.links.multigrid.gathered_cells()
     }
