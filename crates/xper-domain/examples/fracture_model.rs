@@ -1,0 +1,194 @@
+//! The distributed fracture solve on many processes, from the partition it would use and the
+//! measured cost of a point update: for each process count `P`, the elements' centroids are
+//! bisected as `DistributedFracture::new` does (an interface belongs to the owner of its first
+//! element, an element is held by its owner and by the owners of its interfaces), and each
+//! process's interface points, neighbours and shared elements are counted. Per NLGS sweep
+//! (Visseq et al., Comput. Mech. 49 (2012) 709: local sweeps, the shared elements' velocities
+//! exchanged with the neighbours after each, a global check every 5 sweeps):
+//!
+//! ```text
+//! T_P = max_p (points_p t_u) + max_p (neighbours_p) alpha + max_p (bytes_p) / beta
+//!     + log2(P) alpha / 5
+//! efficiency = points t_u / (P T_P)
+//! ```
+//!
+//! `t_u` the measured ns per point update of the scene's whole serial run
+//! (`bench-results/fracture-<scene>.json`, `xper bench --fracture`), `bytes_p` the 6 nodal
+//! velocities (8 B each) of every element shared with each neighbour, `alpha` = 2 us, `beta`
+//! = 5 GB/s (InfiniBand, as the rigid model). More sweeps with more interfaces (the
+//! decomposition's Jacobi coupling) are not in the model: 3 % on box10k at 2 processes.
+//!
+//! `cargo run -p xper-domain --release --example fracture_model [-- SCENE_DIR ...] [--json FILE]`
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use xper_domain::Bisection;
+use xper_fracture::FractureModel;
+use xper_math::Vector;
+
+const ALPHA: f64 = 2e-6;
+const BETA: f64 = 5e9;
+const PROCESSES: [usize; 4] = [2, 48, 256, 1024];
+
+fn model_of(scene: &Path) -> Result<FractureModel, String> {
+    let file = scene.join("scene.toml");
+    let parsed = xper_scene::load_any_scene(&file).map_err(|e| e.to_string())?;
+    let xper_scene::AnyScene::Fracture(fracture) = parsed else {
+        return Err(format!("{}: not a fracture scene", file.display()));
+    };
+    let setup = fracture.build().map_err(|e| e.to_string())?;
+    FractureModel::new(setup.mesh, setup.spec).map_err(|e| format!("{}: {e}", file.display()))
+}
+
+/// The measured ns per point update of the scene's benchmark run.
+fn point_update_seconds(scene: &Path, results: &Path) -> Result<f64, String> {
+    let name = scene
+        .file_name()
+        .and_then(|n| n.to_str())
+        .ok_or_else(|| format!("{}: no scene name", scene.display()))?;
+    let file = results.join(format!("fracture-{name}.json"));
+    let text = std::fs::read_to_string(&file).map_err(|e| format!("{}: {e}", file.display()))?;
+    let figures: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", file.display()))?;
+    (figures["ns_per_point_update"].as_f64())
+        .map(|ns| ns * 1e-9)
+        .ok_or_else(|| format!("{}: no ns_per_point_update", file.display()))
+}
+
+/// Per process: interface points, neighbours, shared-element values sent per sweep.
+fn loads(model: &FractureModel, processes: usize) -> Vec<(usize, usize, usize)> {
+    let centroids: Vec<Vector> = (model.elements.iter())
+        .map(|e| {
+            let p = e.mesh_nodes.map(|n| model.mesh.nodes[n as usize]);
+            Vector::new(
+                (p[0][0] + p[1][0] + p[2][0]) / 3.0,
+                (p[0][1] + p[1][1] + p[2][1]) / 3.0,
+            )
+        })
+        .collect();
+    let owners = Bisection::new(&centroids, processes).assign(&centroids);
+    let mut holders: Vec<Vec<u32>> = owners.iter().map(|&o| vec![o]).collect();
+    let mut points = vec![0; processes];
+    for interface in &model.interfaces {
+        let owner = owners[interface.elements[0] as usize];
+        points[owner as usize] += 2;
+        for e in interface.elements {
+            let held = &mut holders[e as usize];
+            if !held.contains(&owner) {
+                held.push(owner);
+            }
+        }
+    }
+    // Elements each pair of processes both hold.
+    let mut pairs: BTreeMap<(u32, u32), usize> = BTreeMap::new();
+    for held in holders.iter().filter(|h| h.len() > 1) {
+        for &a in held {
+            for &b in held.iter().filter(|&&b| b != a) {
+                *pairs.entry((a, b)).or_default() += 1;
+            }
+        }
+    }
+    let mut neighbours = vec![0; processes];
+    let mut values = vec![0; processes];
+    for (&(a, _), &shared) in &pairs {
+        neighbours[a as usize] += 1;
+        values[a as usize] += 6 * shared;
+    }
+    (0..processes)
+        .map(|p| (points[p], neighbours[p], values[p]))
+        .collect()
+}
+
+fn main() {
+    let mut scenes = Vec::new();
+    let mut json = None;
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        if arg == "--json" {
+            json = Some(args.next().unwrap_or_else(|| {
+                eprintln!("fracture_model: --json needs a file name");
+                std::process::exit(2)
+            }));
+        } else {
+            scenes.push(PathBuf::from(arg));
+        }
+    }
+    if scenes.is_empty() {
+        scenes = vec![
+            "scenes/nooru_mohamed".into(),
+            "scenes/nooru_mohamed_100k".into(),
+        ];
+    }
+    let fail = |e: String| -> ! {
+        eprintln!("fracture_model: {e}");
+        std::process::exit(1)
+    };
+    println!(
+        "{:<24} {:>5} {:>9} {:>12} {:>10} {:>11} {:>10} {:>12} {:>14} {:>10}",
+        "scene",
+        "P",
+        "points",
+        "points / P",
+        "busiest",
+        "neighbours",
+        "kB sent",
+        "compute (us)",
+        "exchange (us)",
+        "efficiency"
+    );
+    let mut figures = Vec::new();
+    for scene in scenes {
+        let model = model_of(&scene).unwrap_or_else(|e| fail(e));
+        let t_u =
+            point_update_seconds(&scene, Path::new("bench-results")).unwrap_or_else(|e| fail(e));
+        let name = scene.display().to_string();
+        for processes in PROCESSES {
+            let per_process = loads(&model, processes);
+            let total: usize = per_process.iter().map(|l| l.0).sum();
+            let busiest = per_process.iter().map(|l| l.0).max().unwrap_or(0);
+            let neighbours = per_process.iter().map(|l| l.1).max().unwrap_or(0);
+            let values = per_process.iter().map(|l| l.2).max().unwrap_or(0);
+            let compute = busiest as f64 * t_u;
+            let exchange = neighbours as f64 * ALPHA
+                + 8.0 * values as f64 / BETA
+                + (processes as f64).log2().ceil() * ALPHA / 5.0;
+            let efficiency = total as f64 * t_u / (processes as f64 * (compute + exchange));
+            println!(
+                "{:<24} {:>5} {:>9} {:>12.0} {:>10} {:>11} {:>10.1} {:>12.1} {:>14.1} {:>10.2}",
+                name,
+                processes,
+                total,
+                total as f64 / processes as f64,
+                busiest,
+                neighbours,
+                8.0 * values as f64 / 1e3,
+                1e6 * compute,
+                1e6 * exchange,
+                efficiency
+            );
+            figures.push(serde_json::json!({
+                "scene": name,
+                "processes": processes,
+                "points": total,
+                "busiest_process_points": busiest,
+                "most_neighbours": neighbours,
+                "most_bytes_per_sweep": 8 * values,
+                "ns_per_point_update": 1e9 * t_u,
+                "compute_us_per_sweep": 1e6 * compute,
+                "exchange_us_per_sweep": 1e6 * exchange,
+                "alpha_s": ALPHA,
+                "beta_bytes_per_s": BETA,
+                "modelled_efficiency": efficiency,
+            }));
+        }
+    }
+    if let Some(path) = json {
+        let text = serde_json::to_string_pretty(&figures).expect("plain numbers");
+        let temporary = format!("{path}.tmp");
+        let written =
+            std::fs::write(&temporary, text).and_then(|_| std::fs::rename(&temporary, &path));
+        if let Err(e) = written {
+            fail(format!("{path}: {e}"))
+        }
+    }
+}
