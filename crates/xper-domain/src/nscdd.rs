@@ -11,7 +11,11 @@
 //!    neighbour processes only);
 //! ```
 //!
-//! so after step 2 each copy holds `v_free + M^-1 sum_a H_a R_a` over all contacts of all
+//! The sweep visits the contacts touching a shared body first and sweeps the others while
+//! step 2's messages travel (they touch no shared body), so the exchange's latency hides
+//! behind the inner contacts' work.
+//!
+//! After step 2 each copy holds `v_free + M^-1 sum_a H_a R_a` over all contacts of all
 //! processes: the fixed point is the solution of the undivided problem. Every `check_every`
 //! sweeps convergence is judged on all contacts, as the serial solver judges it: LMGC90's
 //! norms from the sums of the check sweep's updates (added over processes, maxima taken as
@@ -43,6 +47,10 @@ pub trait BodyVelocities: ContactOperator {
     fn body_velocity(&self, b: usize) -> &[f64];
     /// Velocity of body `b`, to overwrite.
     fn body_velocity_mut(&mut self, b: usize) -> &mut [f64];
+    /// The two bodies of row `a`.
+    fn row_bodies(&self, a: usize) -> [u32; 2];
+    /// Reorders the rows: row `k` becomes the former row `order[k]` (a permutation).
+    fn permute_rows(&mut self, order: &[u32]);
 }
 
 /// An operator whose bodies can carry a share of their mass, for the interface bodies of
@@ -57,8 +65,6 @@ pub trait SplitMasses: BodyVelocities {
     fn set_inverse_mass(&mut self, b: usize, inverse_mass: Self::InverseMass);
     /// Multiplies the inverse mass of body `b` by `factor`.
     fn scale_inverse_mass(&mut self, b: usize, factor: f64);
-    /// The two bodies of row `a`.
-    fn row_bodies(&self, a: usize) -> [u32; 2];
     /// Sets the Delassus block of row `a`.
     fn set_block(&mut self, a: usize, block: Block2);
     /// Recomputes the Delassus block of row `a` from the current inverse masses.
@@ -76,6 +82,12 @@ impl BodyVelocities for RigidContactOperator {
     fn body_velocity_mut(&mut self, b: usize) -> &mut [f64] {
         &mut self.bodies[b].velocity
     }
+    fn row_bodies(&self, a: usize) -> [u32; 2] {
+        self.rows[a].bodies
+    }
+    fn permute_rows(&mut self, order: &[u32]) {
+        self.rows = order.iter().map(|&a| self.rows[a as usize]).collect();
+    }
 }
 
 impl SplitMasses for RigidContactOperator {
@@ -90,9 +102,6 @@ impl SplitMasses for RigidContactOperator {
         for w in &mut self.bodies[b].inv_mass {
             *w *= factor;
         }
-    }
-    fn row_bodies(&self, a: usize) -> [u32; 2] {
-        self.rows[a].bodies
     }
     fn set_block(&mut self, a: usize, block: Block2) {
         self.rows[a].set_full_block(block);
@@ -115,9 +124,6 @@ impl SplitMasses for xper_fracture::ElementContactOperator {
             *x *= factor;
         }
     }
-    fn row_bodies(&self, a: usize) -> [u32; 2] {
-        self.rows[a].elements
-    }
     fn set_block(&mut self, a: usize, block: Block2) {
         self.rows[a].block = block;
     }
@@ -138,6 +144,12 @@ impl BodyVelocities for xper_fracture::ElementContactOperator {
     fn body_velocity_mut(&mut self, b: usize) -> &mut [f64] {
         &mut self.bodies[b].velocity
     }
+    fn row_bodies(&self, a: usize) -> [u32; 2] {
+        self.rows[a].elements
+    }
+    fn permute_rows(&mut self, order: &[u32]) {
+        self.rows = order.iter().map(|&a| self.rows[a as usize]).collect();
+    }
 }
 
 /// Solves the contacts of `op` (this process's rows, its bodies with split masses at their
@@ -146,6 +158,11 @@ impl BodyVelocities for xper_fracture::ElementContactOperator {
 /// [`xper_solver::nlgs_with_cohesion`]. `impulses` holds the warm start on entry and the
 /// solution on exit. The outcome (sweeps, residual of `params.norm`, convergence, LMGC90
 /// norms of all contacts) is the same on every rank.
+///
+/// A sweep visits the rows touching a shared body first, sends those bodies' velocities,
+/// and sweeps the other rows while they travel (they touch no shared body, so the velocities
+/// sent are the sweep's): the exchange's latency is hidden behind the inner rows' work. The
+/// rows are reordered so for the solve and put back after it.
 #[allow(clippy::too_many_arguments)]
 pub fn distributed_nlgs<C: Communicator + ?Sized, O: BodyVelocities>(
     comm: &C,
@@ -166,6 +183,85 @@ pub fn distributed_nlgs<C: Communicator + ?Sized, O: BodyVelocities>(
             ),
         });
     }
+    let n = op.contact_count();
+    let shared = |b: u32| {
+        interface
+            .multiplicity
+            .get(b as usize)
+            .is_some_and(|&m| m > 1)
+    };
+    let on_interface = |a: usize| op.row_bodies(a).into_iter().any(shared);
+    let mut order: Vec<u32> = (0..n as u32)
+        .filter(|&a| on_interface(a as usize))
+        .collect();
+    let split = order.len();
+    order.extend((0..n as u32).filter(|&a| !on_interface(a as usize)));
+    if order.iter().enumerate().all(|(k, &a)| k == a as usize)
+        || mu.len() != n
+        || normal_shift.len() != n
+        || impulses.len() != n
+        || !(cohesion.is_empty() || cohesion.len() == n)
+    {
+        // Already in that order (or sizes the sweeper refuses).
+        let data = Problem {
+            mu,
+            normal_shift,
+            cohesion,
+        };
+        return solve_in_order(comm, op, interface, data, impulses, params, split);
+    }
+    let pick = |values: &[f64]| {
+        order
+            .iter()
+            .map(|&a| values[a as usize])
+            .collect::<Vec<_>>()
+    };
+    let (mu_sorted, shift_sorted) = (pick(mu), pick(normal_shift));
+    let cohesion_sorted: Vec<CohesiveTerm> = if cohesion.is_empty() {
+        Vec::new()
+    } else {
+        order.iter().map(|&a| cohesion[a as usize]).collect()
+    };
+    let mut sorted: Vec<[f64; 2]> = order.iter().map(|&a| impulses[a as usize]).collect();
+    op.permute_rows(&order);
+    let data = Problem {
+        mu: &mu_sorted,
+        normal_shift: &shift_sorted,
+        cohesion: &cohesion_sorted,
+    };
+    let info = solve_in_order(comm, op, interface, data, &mut sorted, params, split);
+    let mut inverse = vec![0u32; n];
+    for (k, &a) in order.iter().enumerate() {
+        inverse[a as usize] = k as u32;
+        impulses[a as usize] = sorted[k];
+    }
+    op.permute_rows(&inverse);
+    info
+}
+
+/// The per-row data of a problem besides the operator.
+#[derive(Clone, Copy)]
+struct Problem<'a> {
+    mu: &'a [f64],
+    normal_shift: &'a [f64],
+    cohesion: &'a [CohesiveTerm],
+}
+
+/// [`distributed_nlgs`] on rows whose first `split` are those touching a shared body.
+fn solve_in_order<C: Communicator + ?Sized, O: BodyVelocities>(
+    comm: &C,
+    op: &mut O,
+    interface: &InterfaceMap,
+    data: Problem,
+    impulses: &mut [[f64; 2]],
+    params: &NlgsParams,
+    split: usize,
+) -> Result<SolveInfo, SolveError> {
+    let Problem {
+        mu,
+        normal_shift,
+        cohesion,
+    } = data;
     let sweeper = NlgsSweeper::new(op, mu, normal_shift, cohesion, impulses, params)?;
     let mut totals = [sweeper.q_norm().powi(2), op.contact_count() as f64];
     comm.all_reduce_sum(&mut totals);
@@ -181,8 +277,11 @@ pub fn distributed_nlgs<C: Communicator + ?Sized, O: BodyVelocities>(
     for sweep in 1..=params.max_iterations {
         let check = sweep % params.check_every == 0 || sweep == params.max_iterations;
         let mut acc = NormAccumulator::default();
-        sweeper.sweep_accumulating(op, impulses, check.then_some(&mut acc));
-        glue.apply(comm, op, interface);
+        let n = impulses.len();
+        sweeper.sweep_part_accumulating(op, impulses, 0..split, check.then_some(&mut acc));
+        glue.apply_overlapped(comm, op, interface, &mut |op: &mut O| {
+            sweeper.sweep_part_accumulating(op, impulses, split..n, check.then_some(&mut acc))
+        });
         if check {
             let global = global_norms(comm, &acc);
             let error = || global_error(comm, op, mu, normal_shift, impulses, q_norm);
@@ -317,7 +416,20 @@ impl Glue {
         op: &mut O,
         interface: &InterfaceMap,
     ) {
+        self.apply_overlapped(comm, op, interface, &mut |_: &mut O| {});
+    }
+
+    /// [`Glue::apply`], running `work` on `op` between posting the sends and waiting for the
+    /// neighbours' velocities; `work` must not change a shared body.
+    fn apply_overlapped<C: Communicator + ?Sized, O: BodyVelocities>(
+        &mut self,
+        comm: &C,
+        op: &mut O,
+        interface: &InterfaceMap,
+        work: &mut dyn FnMut(&mut O),
+    ) {
         if self.shared.is_empty() {
+            work(op);
             return;
         }
         let dofs = O::DOFS;
@@ -332,7 +444,7 @@ impl Glue {
                 (*rank, data)
             })
             .collect();
-        let received = comm.exchange(&sends, &self.sources);
+        let received = comm.exchange_overlapped(&sends, &self.sources, &mut || work(op));
         let Glue {
             shared,
             slots,

@@ -3,8 +3,8 @@
 
 use proptest::prelude::*;
 use xper_solver::{
-    nlgs, solve, ConvergenceNorm, CsrMatrix, DenseProblem, FrictionProblem, NlgsParams, SolveError,
-    SolveReport, SolverKind, SolverParams,
+    nlgs, solve, ContactOperator, ConvergenceNorm, CsrMatrix, DenseProblem, FrictionProblem,
+    NlgsParams, SolveError, SolveReport, SolverKind, SolverParams,
 };
 
 /// A tiny deterministic generator (splitmix64) for the random problems.
@@ -400,5 +400,46 @@ proptest! {
             prop_assert_eq!(rep.r.len(), m);
             prop_assert!(!rep.converged || rep.error.relative_max < prm.tolerance);
         }
+    }
+}
+
+/// A sweep done in two parts (`sweep_part_accumulating` over `0..k`, then `k..n`, as a
+/// domain decomposition does around its exchange) gives the bits of the whole sweep, its
+/// LMGC90 sums included, for every cut `k`.
+#[test]
+fn a_sweep_in_two_parts_is_the_whole_sweep() {
+    use xper_solver::{NlgsSweeper, NormAccumulator};
+    let mut rng = Rng(17);
+    let n = 6;
+    let p = random_problem(&mut rng, 2, n, 2 * n + 1, 0.5);
+    let m = 2 * n;
+    let dense: Vec<f64> = (0..m * m).map(|k| p.w.get(k / m, k % m)).collect();
+    let params = NlgsParams::default();
+    let state = |cut: Option<usize>| {
+        let mut op = DenseProblem::new(dense.clone(), p.q.clone(), p.mu.clone());
+        let mut impulses = vec![[0.0; 2]; n];
+        let shift = vec![0.0; n];
+        let sweeper =
+            NlgsSweeper::new(&mut op, &p.mu, &shift, &[], &mut impulses, &params).unwrap();
+        let mut acc = NormAccumulator::default();
+        for _ in 0..3 {
+            acc = NormAccumulator::default();
+            match cut {
+                None => sweeper.sweep_accumulating(&mut op, &mut impulses, Some(&mut acc)),
+                Some(k) => {
+                    sweeper.sweep_part_accumulating(&mut op, &mut impulses, 0..k, Some(&mut acc));
+                    sweeper.sweep_part_accumulating(&mut op, &mut impulses, k..n, Some(&mut acc));
+                }
+            }
+        }
+        let bits: Vec<u64> = (impulses.iter().flatten())
+            .chain(&op.local_velocity(n - 1))
+            .map(|v| v.to_bits())
+            .collect();
+        (bits, acc.to_sums())
+    };
+    let whole = state(None);
+    for k in 0..=n {
+        assert_eq!(state(Some(k)), whole, "cut at {k}");
     }
 }
