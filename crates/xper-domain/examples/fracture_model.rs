@@ -24,14 +24,15 @@
 //!
 //! `cargo run -p xper-domain --release --example fracture_model [-- SCENE_DIR ...] [--json FILE]`
 
+mod common;
+
+use common::{write_json, ALPHA, BETA};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use xper_domain::Bisection;
 use xper_fracture::FractureModel;
 use xper_math::Vector;
 
-const ALPHA: f64 = 2e-6;
-const BETA: f64 = 5e9;
 const PROCESSES: [usize; 4] = [2, 48, 256, 1024];
 
 fn model_of(scene: &Path) -> Result<FractureModel, String> {
@@ -235,12 +236,6 @@ fn main() {
         }
     }
     if let Some(path) = json {
-        let text = serde_json::to_string_pretty(&figures).expect("plain numbers");
-        let temporary = format!("{path}.tmp");
-        let written =
-            std::fs::write(&temporary, text).and_then(|_| std::fs::rename(&temporary, &path));
-        if let Err(e) = written {
-            fail(format!("{path}: {e}"))
-        }
+        write_json("fracture_model", &path, &figures);
     }
 }

@@ -12,8 +12,8 @@
 //! efficiency = T_serial / (P T_P)
 //! ```
 //!
-//! (messages, bytes and collectives of the process that sends most; a reduction or gather
-//! over `P` processes is `log2 P` deep) with `alpha` = 2 us and `beta` = 5 GB/s (an InfiniBand cluster, as the rigid model of
+//! (messages, bytes and collectives each the largest count of any process; a reduction or
+//! gather over `P` processes is `log2 P` deep) with `alpha` = 2 us and `beta` = 5 GB/s (an InfiniBand cluster, as the rigid model of
 //! BENCHMARKS.md). The busiest process's compute is the critical path when every level is
 //! balanced as the finest is; a process that waits at a level for a busier neighbour and is
 //! itself the busiest elsewhere makes the real path longer, so this is a lower bound of the
@@ -23,16 +23,18 @@
 //!
 //! `cargo run -p xper-domain --release --example pressure_model [-- NXxNY:P ...] [--json FILE]`
 
+mod common;
+
+use common::{write_json, ALPHA, BETA};
 use std::time::Instant;
 use xper_domain::strips::{strip_neighbours, StripComm};
 use xper_domain::{run_on_threads, Communicator};
 use xper_poisson::SideCondition::{Dirichlet, Neumann};
 use xper_poisson::{
-    Boundary, GridShape, Multigrid, MultigridParams, RowLinks, StripLayout, StripMultigrid,
+    Boundary, GridShape, Multigrid, MultigridParams, RowExchange, RowLinks, StripLayout,
+    StripMultigrid,
 };
 
-const ALPHA: f64 = 2e-6;
-const BETA: f64 = 5e9;
 const ROUNDS: usize = 3;
 
 /// What a call to the links returned, in call order.
@@ -63,20 +65,19 @@ impl<C: Communicator> Recording<'_, C> {
     }
 }
 
-impl<C: Communicator> RowLinks for Recording<'_, C> {
+impl<C: Communicator> RowExchange for Recording<'_, C> {
     fn exchange_rows_overlapped(
         &mut self,
         to_below: Option<&[f64]>,
         to_above: Option<&[f64]>,
         work: &mut dyn FnMut(),
     ) -> [Option<Vec<f64>>; 2] {
-        let rows = (self.links).exchange_rows_overlapped(to_below, to_above, work);
-        let [below, above] = self.links.neighbours;
-        let me = self.links.comm.rank();
-        self.count(sent_rows([below, above], me, to_below, to_above));
-        self.events.push(Event::Rows(rows.clone()));
-        rows
+        let neighbours = self.links.neighbours;
+        self.exchange_rows_among(neighbours, to_below, to_above, work)
     }
+}
+
+impl<C: Communicator> RowLinks for Recording<'_, C> {
     fn exchange_rows_among(
         &mut self,
         neighbours: [Option<usize>; 2],
@@ -156,7 +157,7 @@ impl Replay {
     }
 }
 
-impl RowLinks for Replay {
+impl RowExchange for Replay {
     fn exchange_rows_overlapped(
         &mut self,
         _to_below: Option<&[f64]>,
@@ -166,6 +167,9 @@ impl RowLinks for Replay {
         work();
         self.rows()
     }
+}
+
+impl RowLinks for Replay {
     fn exchange_rows_among(
         &mut self,
         _neighbours: [Option<usize>; 2],
@@ -294,7 +298,7 @@ fn measure(nx: usize, ny: usize, processes: usize) -> Result<serde_json::Value, 
     let cycles = recorded[0].cycles as f64;
     let busiest = compute.iter().fold(0.0, |m: f64, &c| m.max(c)) / cycles;
     let mean = compute.iter().sum::<f64>() / (processes as f64 * cycles);
-    // Per cycle on the process that sends most; a collective costs log2(P) latencies.
+    // Per cycle, each the largest of any process; a collective costs log2(P) latencies.
     let most = |of: &dyn Fn(&Process) -> usize| {
         (recorded.iter().map(of)).max().unwrap_or(0) as f64 / cycles
     };
@@ -407,13 +411,6 @@ fn main() {
         }
     }
     if let Some(path) = json {
-        let text = serde_json::to_string_pretty(&figures).expect("plain numbers");
-        let temporary = format!("{path}.tmp");
-        if let Err(e) =
-            std::fs::write(&temporary, text).and_then(|_| std::fs::rename(&temporary, &path))
-        {
-            eprintln!("pressure_model: {path}: {e}");
-            std::process::exit(1)
-        }
+        write_json("pressure_model", &path, &figures);
     }
 }

@@ -86,7 +86,7 @@ impl BodyVelocities for RigidContactOperator {
         self.rows[a].bodies
     }
     fn permute_rows(&mut self, order: &[u32]) {
-        self.rows = order.iter().map(|&a| self.rows[a as usize]).collect();
+        self.rows = permuted(&self.rows, order);
     }
 }
 
@@ -148,7 +148,7 @@ impl BodyVelocities for xper_fracture::ElementContactOperator {
         self.rows[a].elements
     }
     fn permute_rows(&mut self, order: &[u32]) {
-        self.rows = order.iter().map(|&a| self.rows[a as usize]).collect();
+        self.rows = permuted(&self.rows, order);
     }
 }
 
@@ -184,6 +184,21 @@ pub fn distributed_nlgs<C: Communicator + ?Sized, O: BodyVelocities>(
         });
     }
     let n = op.contact_count();
+    if mu.len() != n
+        || normal_shift.len() != n
+        || impulses.len() != n
+        || !(cohesion.is_empty() || cohesion.len() == n)
+    {
+        return Err(SolveError::SizeMismatch {
+            what: format!(
+                "{n} contacts, {} mu, {} shifts, {} cohesive terms, {} impulses",
+                mu.len(),
+                normal_shift.len(),
+                cohesion.len(),
+                impulses.len()
+            ),
+        });
+    }
     let shared = |b: u32| {
         interface
             .multiplicity
@@ -194,74 +209,81 @@ pub fn distributed_nlgs<C: Communicator + ?Sized, O: BodyVelocities>(
     let mut order: Vec<u32> = (0..n as u32)
         .filter(|&a| on_interface(a as usize))
         .collect();
-    let split = order.len();
+    let interface_rows = order.len();
     order.extend((0..n as u32).filter(|&a| !on_interface(a as usize)));
-    if order.iter().enumerate().all(|(k, &a)| k == a as usize)
-        || mu.len() != n
-        || normal_shift.len() != n
-        || impulses.len() != n
-        || !(cohesion.is_empty() || cohesion.len() == n)
-    {
-        // Already in that order (or sizes the sweeper refuses).
-        let data = Problem {
+    if order.iter().enumerate().all(|(k, &a)| k == a as usize) {
+        let rows = RowData {
             mu,
             normal_shift,
             cohesion,
         };
-        return solve_in_order(comm, op, interface, data, impulses, params, split);
+        return solve_interface_first(comm, op, interface, rows, impulses, params, interface_rows);
     }
-    let pick = |values: &[f64]| {
-        order
-            .iter()
-            .map(|&a| values[a as usize])
-            .collect::<Vec<_>>()
-    };
-    let (mu_sorted, shift_sorted) = (pick(mu), pick(normal_shift));
-    let cohesion_sorted: Vec<CohesiveTerm> = if cohesion.is_empty() {
+    let (mu_sorted, shift_sorted) = (permuted(mu, &order), permuted(normal_shift, &order));
+    let cohesion_sorted = if cohesion.is_empty() {
         Vec::new()
     } else {
-        order.iter().map(|&a| cohesion[a as usize]).collect()
+        permuted(cohesion, &order)
     };
-    let mut sorted: Vec<[f64; 2]> = order.iter().map(|&a| impulses[a as usize]).collect();
+    let mut sorted = permuted(impulses, &order);
     op.permute_rows(&order);
-    let data = Problem {
+    let rows = RowData {
         mu: &mu_sorted,
         normal_shift: &shift_sorted,
         cohesion: &cohesion_sorted,
     };
-    let info = solve_in_order(comm, op, interface, data, &mut sorted, params, split);
+    let info = solve_interface_first(
+        comm,
+        op,
+        interface,
+        rows,
+        &mut sorted,
+        params,
+        interface_rows,
+    );
     let mut inverse = vec![0u32; n];
     for (k, &a) in order.iter().enumerate() {
         inverse[a as usize] = k as u32;
         impulses[a as usize] = sorted[k];
     }
     op.permute_rows(&inverse);
-    info
+    info.map_err(|e| match e {
+        SolveError::InvalidData { contact, what } => SolveError::InvalidData {
+            contact: order.get(contact).map_or(contact, |&a| a as usize),
+            what,
+        },
+        other => other,
+    })
+}
+
+/// `values` in the order `order` (entry `k` is `values[order[k]]`).
+fn permuted<T: Copy>(values: &[T], order: &[u32]) -> Vec<T> {
+    order.iter().map(|&a| values[a as usize]).collect()
 }
 
 /// The per-row data of a problem besides the operator.
 #[derive(Clone, Copy)]
-struct Problem<'a> {
+struct RowData<'a> {
     mu: &'a [f64],
     normal_shift: &'a [f64],
     cohesion: &'a [CohesiveTerm],
 }
 
-/// [`distributed_nlgs`] on rows whose first `split` are those touching a shared body.
-fn solve_in_order<C: Communicator + ?Sized, O: BodyVelocities>(
+/// [`distributed_nlgs`] on rows whose first `interface_rows` are those touching a shared body.
+fn solve_interface_first<C: Communicator + ?Sized, O: BodyVelocities>(
     comm: &C,
     op: &mut O,
     interface: &InterfaceMap,
-    data: Problem,
+    rows: RowData,
     impulses: &mut [[f64; 2]],
     params: &NlgsParams,
-    split: usize,
+    interface_rows: usize,
 ) -> Result<SolveInfo, SolveError> {
-    let Problem {
+    let RowData {
         mu,
         normal_shift,
         cohesion,
-    } = data;
+    } = rows;
     let sweeper = NlgsSweeper::new(op, mu, normal_shift, cohesion, impulses, params)?;
     let mut totals = [sweeper.q_norm().powi(2), op.contact_count() as f64];
     comm.all_reduce_sum(&mut totals);
@@ -278,9 +300,10 @@ fn solve_in_order<C: Communicator + ?Sized, O: BodyVelocities>(
         let check = sweep % params.check_every == 0 || sweep == params.max_iterations;
         let mut acc = NormAccumulator::default();
         let n = impulses.len();
-        sweeper.sweep_part_accumulating(op, impulses, 0..split, check.then_some(&mut acc));
+        let (edge, inner) = (0..interface_rows, interface_rows..n);
+        sweeper.sweep_part_accumulating(op, impulses, edge, check.then_some(&mut acc));
         glue.apply_overlapped(comm, op, interface, &mut |op: &mut O| {
-            sweeper.sweep_part_accumulating(op, impulses, split..n, check.then_some(&mut acc))
+            sweeper.sweep_part_accumulating(op, impulses, inner.clone(), check.then_some(&mut acc))
         });
         if check {
             let global = global_norms(comm, &acc);

@@ -2,7 +2,7 @@
 //! rank `s`): the links of the distributed pressure multigrid ([`xper_poisson::RowLinks`]).
 
 use crate::communicator::Communicator;
-use xper_poisson::RowLinks;
+use xper_poisson::{RowExchange, RowLinks};
 
 /// The neighbours of strip `rank` among `size` strips: below and above, wrapping around when
 /// the bottom and top are periodic.
@@ -82,22 +82,18 @@ pub struct StripComm<'c, C: Communicator + ?Sized> {
     pub neighbours: [Option<usize>; 2],
 }
 
-impl<C: Communicator + ?Sized> RowLinks for StripComm<'_, C> {
+impl<C: Communicator + ?Sized> RowExchange for StripComm<'_, C> {
     fn exchange_rows_overlapped(
         &mut self,
         to_below: Option<&[f64]>,
         to_above: Option<&[f64]>,
         work: &mut dyn FnMut(),
     ) -> [Option<Vec<f64>>; 2] {
-        exchange_with_neighbours_overlapped(
-            self.comm,
-            self.neighbours,
-            to_below.map(<[f64]>::to_vec),
-            to_above.map(<[f64]>::to_vec),
-            work,
-        )
+        self.exchange_rows_among(self.neighbours, to_below, to_above, work)
     }
+}
 
+impl<C: Communicator + ?Sized> RowLinks for StripComm<'_, C> {
     fn exchange_rows_among(
         &mut self,
         neighbours: [Option<usize>; 2],

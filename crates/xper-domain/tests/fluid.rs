@@ -171,6 +171,12 @@ fn a_non_singular_strip_solve_gives_the_same_bits_on_1_to_8_processes() {
             8..=8,
         ),
         ((256, 80), vec![open_top, periodic_y], cycle(2, 1), 5..=5),
+        // The finest level re-cut (8 strips 3 rows high into 4); two stages (8 into 4 on
+        // 256 x 24, 4 into 2 on 128 x 12); one strip linked to itself after a re-cut (2
+        // strips 3 rows high on 256 x 6, periodic, into 1).
+        ((128, 24), vec![open_top, periodic_y], cycle(2, 1), 8..=8),
+        ((1024, 96), vec![open_top], cycle(2, 1), 8..=8),
+        ((512, 12), vec![periodic_y], cycle(2, 1), 2..=2),
     ];
     for ((nx, ny), boundaries, params, processes) in cases {
         let shape = unit_width_grid(nx, ny);

@@ -93,7 +93,7 @@ mod transfer;
 
 pub use multigrid::Multigrid;
 pub use strip_multigrid::StripMultigrid;
-pub use strips::{CountingLinks, OneStrip, RowLinks, StripLayout};
+pub use strips::{CountingLinks, OneStrip, RowExchange, RowLinks, StripLayout};
 
 use serde::{Deserialize, Serialize};
 use std::fmt;

@@ -6,9 +6,10 @@
 //! [`MIN_STRIP_ROWS`] rows high on the coarse level and whole coarse rows (even cuts). When it
 //! cannot, and the grid is still larger than [`GATHERED_CELLS`], the level is **agglomerated**:
 //! after its pre-smoothing its residual is re-cut into about half as many strips
-//! ([`StripLayout::balanced`], so that they coarsen again), held by every other process of
-//! the level, which restrict it and continue the cycle while the others wait for their rows
-//! of the correction. Every process computes the same hierarchy from the same layout. The
+//! ([`StripLayout::balanced`], so that they coarsen again; fewer when the grid is too low for
+//! that many), held by about every other process of the level, which restrict it and continue
+//! the cycle while the others wait for their rows of the correction. Strips thick enough but
+//! cut at odd rows are re-cut into as many strips on the same processes. Every process computes the same hierarchy from the same layout. The
 //! coarsest level (at most [`GATHERED_CELLS`] cells, or a grid that does not halve) is gathered
 //! by the processes that hold it and relaxed whole by each.
 //!
@@ -17,7 +18,7 @@
 //! 65,536 cells each cycle, three times its share of the fine grid; agglomerated, each stage
 //! halves the processes and the grid gathered has 1,024 cells.
 
-use crate::strip_level::{Field, StripLevel};
+use crate::strip_level::{Combine, Field, StripLevel};
 use crate::strips::{RowLinks, StripLayout, GATHERED_CELLS, MIN_STRIP_ROWS};
 use crate::GridShape;
 use std::ops::Range;
@@ -78,12 +79,15 @@ pub(crate) fn plan_levels(shape: GridShape, layout: &StripLayout) -> Vec<LevelPl
         let (below, next_starts, next_ranks) = if halves && on_same_strips {
             (Below::Coarser, starts.clone(), ranks.clone())
         } else if halves && ranks.len() > 1 {
-            // Strips of at least 2 MIN_STRIP_ROWS rows cut at even rows coarsen at least once.
-            let count = ranks
-                .len()
-                .div_ceil(2)
-                .min(ny / (2 * MIN_STRIP_ROWS))
-                .max(1);
+            // Strips of at least 2 MIN_STRIP_ROWS rows cut at even rows coarsen at least once;
+            // strips thick enough but cut at odd rows are only re-cut, on the same processes.
+            let thick = starts.windows(2).all(|w| w[1] - w[0] >= 2 * MIN_STRIP_ROWS);
+            let fewer = if thick {
+                ranks.len()
+            } else {
+                ranks.len().div_ceil(2)
+            };
+            let count = fewer.min(ny / (2 * MIN_STRIP_ROWS)).max(1);
             let cut = StripLayout::balanced(nx, ny, count)
                 .expect("ny / (2 MIN_STRIP_ROWS) strips fit a grid of ny rows")
                 .starts;
@@ -140,8 +144,8 @@ pub(crate) struct Cut<'a> {
 
 /// Moves the cells of `field` from the strips `from` to the strips `to` of the same level:
 /// process `me` sends the rows of its strip of `from` (held by `source`, if it holds one) that
-/// other processes' strips of `to` hold, and writes (or, with `add`, adds) into its strip of
-/// `to` (held by `target`) the rows it receives and the rows it holds in both.
+/// other processes' strips of `to` hold, and writes into its strip of `to` (held by `target`)
+/// the rows it receives and the rows it holds in both, as `combine` says.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn move_rows(
     links: &mut dyn RowLinks,
@@ -151,7 +155,7 @@ pub(crate) fn move_rows(
     to: Cut,
     target: Option<&mut StripLevel>,
     field: Field,
-    add: bool,
+    combine: Combine,
 ) {
     let rows_of = |level: &StripLevel| level.first_row..level.first_row + level.rows;
     let mut sends = Vec::new();
@@ -183,7 +187,7 @@ pub(crate) fn move_rows(
     };
     if let Some(target) = target {
         if let Some((first, cells)) = kept {
-            target.write_rows(field, first, &cells, add);
+            target.write_rows(field, first, &cells, combine);
         }
         for (rows, cells) in places.into_iter().zip(received) {
             assert_eq!(
@@ -191,7 +195,7 @@ pub(crate) fn move_rows(
                 target.nx * rows.len(),
                 "agglomerated rows {rows:?}: not the rows asked for"
             );
-            target.write_rows(field, rows.start, &cells, add);
+            target.write_rows(field, rows.start, &cells, combine);
         }
     }
 }
@@ -238,12 +242,29 @@ mod tests {
             }
             let bottom = levels.last().unwrap();
             assert!(bottom.shape.nx * bottom.shape.ny <= GATHERED_CELLS);
+            assert_eq!(bottom.strip_of(0), Some(0), "process 0 holds every level");
             assert_eq!(
                 bottom.ranks.len(),
                 gathered_rank_count,
                 "{nx} x {ny} on {strips}"
             );
         }
+    }
+
+    /// Thick strips cut at an odd row are re-cut at even rows on the same processes, not
+    /// halved.
+    #[test]
+    fn thick_strips_cut_at_odd_rows_keep_their_processes() {
+        let layout = StripLayout {
+            starts: vec![0, 80, 161, 240],
+        };
+        let levels = plan_levels(square(64, 240), &layout);
+        let Below::Agglomerated { starts, ranks } = &levels[0].below else {
+            panic!("{:?}", levels[0].below);
+        };
+        assert_eq!(ranks, &vec![0, 1, 2]);
+        assert!(starts.iter().all(|s| s % 2 == 0), "{starts:?}");
+        assert_eq!(levels[1].ranks, vec![0, 1, 2]);
     }
 
     #[test]

@@ -16,7 +16,7 @@
 //! this diagonal relaxes boundary cells exactly, as the serial [`crate::Multigrid`] does.
 //!
 //! **Deep ghost rows.** The ghost rows towards another strip (or across a periodic bottom and
-//! top) are filled by [`RowLinks::exchange_rows_overlapped`], `2 s + 1` rows of `u` and `2 s`
+//! top) are filled by [`RowExchange::exchange_rows_overlapped`], `2 s + 1` rows of `u` and `2 s`
 //! of `f` at once before `s` sweeps. The strip then relaxes its neighbours' edge rows itself, one row
 //! fewer per half-sweep, so the `s` sweeps and the residual after them need no other
 //! exchange: a V(2, 1) cycle exchanges twice per level (before the pre- and before the
@@ -30,7 +30,7 @@
 //!
 //! **Overlap.** The exchange runs while the strip relaxes the cells that do not need the
 //! rows on their way (half-sweep `h` of the rows at least `h` from a linked edge,
-//! [`RowLinks::exchange_rows_overlapped`]); the rows near the edges and the ghost rows are
+//! [`RowExchange::exchange_rows_overlapped`]); the rows near the edges and the ghost rows are
 //! relaxed once they arrive. A process slightly behind its neighbour then delays it only when
 //! the lag exceeds that inner work, instead of at every exchange.
 //!
@@ -39,7 +39,7 @@
 
 mod smoothing;
 
-use crate::strips::RowLinks;
+use crate::strips::RowExchange;
 use crate::{Boundary, MultigridParams, SideCondition};
 
 /// The ghost rows of a level for `params`: `2 s + 1` for the larger smoothing count `s`.
@@ -68,8 +68,19 @@ fn fold(condition: SideCondition) -> f64 {
 pub(crate) enum Field {
     /// The correction `u`.
     Solution,
+    /// The rhs `f`.
+    Rhs,
     /// The residual `r`.
     Residual,
+}
+
+/// How rows written into a level meet what it holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Combine {
+    /// They replace it.
+    Replace,
+    /// They are added to it.
+    Add,
 }
 
 /// One level of one strip (see the module documentation).
@@ -181,6 +192,7 @@ impl StripLevel {
     pub fn copy_rows(&self, field: Field, rows: std::ops::Range<usize>) -> Vec<f64> {
         let values = match field {
             Field::Solution => &self.u,
+            Field::Rhs => &self.f,
             Field::Residual => &self.r,
         };
         let mut cells = Vec::with_capacity(self.nx * rows.len());
@@ -192,17 +204,18 @@ impl StripLevel {
     }
 
     /// Writes `cells` (whole rows, the first of them global row `first`, within this strip)
-    /// into `field`, or adds them to it with `add`.
-    pub fn write_rows(&mut self, field: Field, first: usize, cells: &[f64], add: bool) {
+    /// into `field` as `combine` says.
+    pub fn write_rows(&mut self, field: Field, first: usize, cells: &[f64], combine: Combine) {
         let nx = self.nx;
         for (j, row) in cells.chunks_exact(nx).enumerate() {
             let k = self.index(0, (first + j - self.first_row) as isize);
             let values = match field {
                 Field::Solution => &mut self.u,
+                Field::Rhs => &mut self.f,
                 Field::Residual => &mut self.r,
             };
             let target = &mut values[k..k + nx];
-            if add {
+            if combine == Combine::Add {
                 target.iter_mut().zip(row).for_each(|(v, c)| *v += c);
             } else {
                 target.copy_from_slice(row);
@@ -306,7 +319,7 @@ impl StripLevel {
     }
 
     /// Makes the ghost row of `u` next to the cells current, by an exchange if it is not.
-    fn refresh_next_ghost_row(&mut self, links: &mut dyn RowLinks) {
+    fn refresh_next_ghost_row(&mut self, links: &mut dyn RowExchange) {
         if self.u_current == 0 {
             let [to_below, to_above] = self.messages(1, 0);
             let received = links.exchange_rows(to_below.as_deref(), to_above.as_deref());
@@ -398,7 +411,7 @@ impl StripLevel {
 
     /// `r = f - Lap u` on every cell (one ghost row exchanged first if needed); returns
     /// `sum r^2`.
-    pub fn residual(&mut self, links: &mut dyn RowLinks) -> f64 {
+    pub fn residual(&mut self, links: &mut dyn RowExchange) -> f64 {
         self.fill_ghost_columns(false, 0..self.rows as isize);
         self.refresh_next_ghost_row(links);
         (0..self.rows as isize).map(|j| self.residual_row(j)).sum()
@@ -409,7 +422,7 @@ impl StripLevel {
     /// one message the sweeps would send (so they do not exchange again), writes
     /// `r = f - Lap u` and returns this strip's `[sum f, sum f^2, sum r, sum r^2]`, from which
     /// one sum over the strips gives the mean, the rhs norm and the residual norm.
-    pub fn open_solve(&mut self, links: &mut dyn RowLinks, sweeps: usize) -> [f64; 4] {
+    pub fn open_solve(&mut self, links: &mut dyn RowExchange, sweeps: usize) -> [f64; 4] {
         let halves = 2 * sweeps.min(self.sweeps_per_exchange());
         self.fill_ghost_columns(false, 0..self.rows as isize);
         let [to_below, to_above] = self.messages(halves + 1, halves);
@@ -467,7 +480,7 @@ impl StripLevel {
     /// The ghosts of `u` next to the cells as the bilinear prolongation reads them: the
     /// linked rows current (exchanged if they are not), the rows beyond the domain's
     /// boundary and the ghost columns by the boundary rule (`+-` the interior).
-    fn fill_ghosts_reflected(&mut self, links: &mut dyn RowLinks) {
+    fn fill_ghosts_reflected(&mut self, links: &mut dyn RowExchange) {
         self.refresh_next_ghost_row(links);
         let (w, rows) = (self.width(), self.rows as isize);
         for (side, edge, ghost, condition) in [
@@ -487,7 +500,7 @@ impl StripLevel {
 
     /// Adds the bilinear interpolation of the coarse correction (its ghosts reflected) to `u`:
     /// weights 9/16, 3/16, 3/16, 1/16 of the nearest coarse centres.
-    pub fn prolong(&mut self, coarse: &mut StripLevel, links: &mut dyn RowLinks) {
+    pub fn prolong(&mut self, coarse: &mut StripLevel, links: &mut dyn RowExchange) {
         coarse.fill_ghosts_reflected(links);
         let (nx, wc) = (self.nx, coarse.width());
         for j in 0..self.rows {

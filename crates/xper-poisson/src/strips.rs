@@ -2,12 +2,10 @@
 //! strip needs from the others ([`RowLinks`]). One multigrid level of a strip, with its ghost
 //! rows, is the private module `strip_level`.
 
-/// What a strip needs from the processes holding the other strips.
-///
-/// Strip `s`'s neighbour below is `s - 1` (the last strip for `s = 0` when the bottom and top
-/// are periodic) and its neighbour above `s + 1` (the first strip for the last one when
-/// periodic). Every strip makes the same calls in the same order.
-pub trait RowLinks {
+/// The row exchange of one strip with its neighbours on a level: what a level's smoothing,
+/// residual and prolongation need ([`RowLinks`] for the strip's own neighbours, the private
+/// `AgglomeratedLinks` for a level held by some of the processes).
+pub trait RowExchange {
     /// Sends `to_below` to the strip below and `to_above` to the strip above (`None` where
     /// this side is the domain's boundary), runs `work` exactly once while the rows travel (it
     /// must not need what arrives), and returns what the neighbours sent here: `[from_below,
@@ -18,7 +16,7 @@ pub trait RowLinks {
         to_above: Option<&[f64]>,
         work: &mut dyn FnMut(),
     ) -> [Option<Vec<f64>>; 2];
-    /// [`RowLinks::exchange_rows_overlapped`] with nothing to overlap.
+    /// [`RowExchange::exchange_rows_overlapped`] with nothing to overlap.
     fn exchange_rows(
         &mut self,
         to_below: Option<&[f64]>,
@@ -26,6 +24,17 @@ pub trait RowLinks {
     ) -> [Option<Vec<f64>>; 2] {
         self.exchange_rows_overlapped(to_below, to_above, &mut || {})
     }
+}
+
+/// What a strip needs from the processes holding the other strips.
+///
+/// Strip `s`'s neighbour below is `s - 1` (the last strip for `s = 0` when the bottom and top
+/// are periodic) and its neighbour above `s + 1` (the first strip for the last one when
+/// periodic). The strips of a level make the same calls in the same order: on the levels every
+/// strip holds, every strip; on an agglomerated level, its strips only
+/// ([`RowLinks::exchange_rows_among`], [`RowLinks::send_receive`]). The collectives (`sum`,
+/// `gather`) are made by every strip.
+pub trait RowLinks: RowExchange {
     /// [`RowLinks::exchange_rows_overlapped`] with the strips `neighbours` (`[below, above]`,
     /// `None` on a boundary side) instead of this strip's own: the links of an agglomerated
     /// level, whose strips are held by some of the processes only. Only the strips of that
@@ -53,7 +62,7 @@ pub trait RowLinks {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct OneStrip;
 
-impl RowLinks for OneStrip {
+impl RowExchange for OneStrip {
     fn exchange_rows_overlapped(
         &mut self,
         to_below: Option<&[f64]>,
@@ -63,6 +72,9 @@ impl RowLinks for OneStrip {
         work();
         [to_above.map(<[f64]>::to_vec), to_below.map(<[f64]>::to_vec)]
     }
+}
+
+impl RowLinks for OneStrip {
     fn exchange_rows_among(
         &mut self,
         _neighbours: [Option<usize>; 2],
@@ -99,7 +111,7 @@ pub struct CountingLinks {
     pub transfers: usize,
 }
 
-impl RowLinks for CountingLinks {
+impl RowExchange for CountingLinks {
     fn exchange_rows_overlapped(
         &mut self,
         to_below: Option<&[f64]>,
@@ -109,6 +121,9 @@ impl RowLinks for CountingLinks {
         self.exchanges += 1;
         OneStrip.exchange_rows_overlapped(to_below, to_above, work)
     }
+}
+
+impl RowLinks for CountingLinks {
     fn exchange_rows_among(
         &mut self,
         neighbours: [Option<usize>; 2],
@@ -133,14 +148,15 @@ impl RowLinks for CountingLinks {
     }
 }
 
-/// The links of an agglomerated level: row exchanges with the strips `neighbours` of that
-/// level ([`RowLinks::exchange_rows_among`]); everything else as `links`.
-pub(crate) struct Among<'a> {
+/// The row exchange of an agglomerated level: with the strips `neighbours` of that level
+/// ([`RowLinks::exchange_rows_among`]). It has no collective: only some processes hold the
+/// level.
+pub(crate) struct AgglomeratedLinks<'a> {
     pub links: &'a mut dyn RowLinks,
     pub neighbours: [Option<usize>; 2],
 }
 
-impl RowLinks for Among<'_> {
+impl RowExchange for AgglomeratedLinks<'_> {
     fn exchange_rows_overlapped(
         &mut self,
         to_below: Option<&[f64]>,
@@ -148,24 +164,6 @@ impl RowLinks for Among<'_> {
         work: &mut dyn FnMut(),
     ) -> [Option<Vec<f64>>; 2] {
         (self.links).exchange_rows_among(self.neighbours, to_below, to_above, work)
-    }
-    fn exchange_rows_among(
-        &mut self,
-        neighbours: [Option<usize>; 2],
-        to_below: Option<&[f64]>,
-        to_above: Option<&[f64]>,
-        work: &mut dyn FnMut(),
-    ) -> [Option<Vec<f64>>; 2] {
-        (self.links).exchange_rows_among(neighbours, to_below, to_above, work)
-    }
-    fn send_receive(&mut self, sends: Vec<(usize, Vec<f64>)>, sources: &[usize]) -> Vec<Vec<f64>> {
-        self.links.send_receive(sends, sources)
-    }
-    fn sum(&mut self, values: &mut [f64]) {
-        self.links.sum(values)
-    }
-    fn gather(&mut self, values: &[f64]) -> Vec<f64> {
-        self.links.gather(values)
     }
 }
 

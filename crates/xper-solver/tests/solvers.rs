@@ -405,16 +405,25 @@ proptest! {
 
 /// A sweep done in two parts (`sweep_part_accumulating` over `0..k`, then `k..n`, as a
 /// domain decomposition does around its exchange) gives the bits of the whole sweep, its
-/// LMGC90 sums included, for every cut `k`.
+/// LMGC90 sums included, for every cut `k`, plain and over-relaxed.
 #[test]
 fn a_sweep_in_two_parts_is_the_whole_sweep() {
+    for relaxation in [1.0, 0.7] {
+        sweep_in_two_parts_with(relaxation);
+    }
+}
+
+fn sweep_in_two_parts_with(relaxation: f64) {
     use xper_solver::{NlgsSweeper, NormAccumulator};
     let mut rng = Rng(17);
     let n = 6;
     let p = random_problem(&mut rng, 2, n, 2 * n + 1, 0.5);
     let m = 2 * n;
     let dense: Vec<f64> = (0..m * m).map(|k| p.w.get(k / m, k % m)).collect();
-    let params = NlgsParams::default();
+    let params = NlgsParams {
+        relaxation,
+        ..NlgsParams::default()
+    };
     let state = |cut: Option<usize>| {
         let mut op = DenseProblem::new(dense.clone(), p.q.clone(), p.mu.clone());
         let mut impulses = vec![[0.0; 2]; n];
@@ -440,6 +449,6 @@ fn a_sweep_in_two_parts_is_the_whole_sweep() {
     };
     let whole = state(None);
     for k in 0..=n {
-        assert_eq!(state(Some(k)), whole, "cut at {k}");
+        assert_eq!(state(Some(k)), whole, "cut at {k}, relaxation {relaxation}");
     }
 }

@@ -3,7 +3,7 @@
 //! module's documentation).
 
 use super::StripLevel;
-use crate::strips::RowLinks;
+use crate::strips::RowExchange;
 
 impl StripLevel {
     /// `sweeps` red-black SOR sweeps (all cells of colour 0, `i + j` even with global `j`, then
@@ -17,7 +17,7 @@ impl StripLevel {
     /// soon as written, while in cache.
     pub fn smooth(
         &mut self,
-        links: &mut dyn RowLinks,
+        links: &mut dyn RowExchange,
         omega: f64,
         sweeps: usize,
         residual: bool,
@@ -58,7 +58,7 @@ impl StripLevel {
     /// it only when the lag exceeds that inner work.
     fn smooth_group(
         &mut self,
-        links: &mut dyn RowLinks,
+        links: &mut dyn RowExchange,
         omega: f64,
         sweeps: usize,
         residual: bool,
