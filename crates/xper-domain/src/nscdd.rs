@@ -184,21 +184,7 @@ pub fn distributed_nlgs<C: Communicator + ?Sized, O: BodyVelocities>(
         });
     }
     let n = op.contact_count();
-    if mu.len() != n
-        || normal_shift.len() != n
-        || impulses.len() != n
-        || !(cohesion.is_empty() || cohesion.len() == n)
-    {
-        return Err(SolveError::SizeMismatch {
-            what: format!(
-                "{n} contacts, {} mu, {} shifts, {} cohesive terms, {} impulses",
-                mu.len(),
-                normal_shift.len(),
-                cohesion.len(),
-                impulses.len()
-            ),
-        });
-    }
+    xper_solver::check_contact_sizes(n, mu, normal_shift, cohesion, impulses)?;
     let shared = |b: u32| {
         interface
             .multiplicity

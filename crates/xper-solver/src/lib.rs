@@ -42,7 +42,8 @@ pub use lemke::{lemke, LemkeParams};
 pub use local::solve_one_contact;
 pub use newton::{newton, NewtonParams, RhoStrategy};
 pub use nlgs::{
-    nlgs, nlgs_with_cohesion, ConvergenceNorm, NlgsParams, NlgsSweeper, SolveError, SolveInfo,
+    check_contact_sizes, nlgs, nlgs_with_cohesion, ConvergenceNorm, NlgsParams, NlgsSweeper,
+    SolveError, SolveInfo,
 };
 pub use nsgs::{nsgs, NsgsParams};
 pub use operator::{Block2, ContactOperator, DenseProblem};

@@ -222,21 +222,7 @@ impl<'a> NlgsSweeper<'a> {
         params: &NlgsParams,
     ) -> Result<Self, SolveError> {
         let n = op.contact_count();
-        if mu.len() != n
-            || normal_shift.len() != n
-            || impulses.len() != n
-            || !(cohesion.is_empty() || cohesion.len() == n)
-        {
-            return Err(SolveError::SizeMismatch {
-                what: format!(
-                    "{n} contacts, {} mu, {} shifts, {} cohesive terms, {} impulses",
-                    mu.len(),
-                    normal_shift.len(),
-                    cohesion.len(),
-                    impulses.len()
-                ),
-            });
-        }
+        check_contact_sizes(n, mu, normal_shift, cohesion, impulses)?;
         if params.tolerance.is_nan()
             || params.tolerance <= 0.0
             || params.max_iterations == 0
@@ -507,6 +493,33 @@ impl<'a> NlgsSweeper<'a> {
             acc.add(&w, r, r_new, delta);
         }
     }
+}
+
+/// Checks that `n` contacts have one friction coefficient, shift and impulse each, and one
+/// cohesive term each or none.
+pub fn check_contact_sizes(
+    n: usize,
+    mu: &[f64],
+    normal_shift: &[f64],
+    cohesion: &[CohesiveTerm],
+    impulses: &[[f64; 2]],
+) -> Result<(), SolveError> {
+    if mu.len() != n
+        || normal_shift.len() != n
+        || impulses.len() != n
+        || !(cohesion.is_empty() || cohesion.len() == n)
+    {
+        return Err(SolveError::SizeMismatch {
+            what: format!(
+                "{n} contacts, {} mu, {} shifts, {} cohesive terms, {} impulses",
+                mu.len(),
+                normal_shift.len(),
+                cohesion.len(),
+                impulses.len()
+            ),
+        });
+    }
+    Ok(())
 }
 
 /// Where a sweep puts each contact's update: nowhere (`()`), or LMGC90's sums on a check
