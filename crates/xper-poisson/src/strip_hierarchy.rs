@@ -9,9 +9,10 @@
 //! ([`StripLayout::balanced`], so that they coarsen again; fewer when the grid is too low for
 //! that many), held by about every other process of the level, which restrict it and continue
 //! the cycle while the others wait for their rows of the correction. Strips thick enough but
-//! cut at odd rows are re-cut into as many strips on the same processes. Every process computes the same hierarchy from the same layout. The
-//! coarsest level (at most [`GATHERED_CELLS`] cells, or a grid that does not halve) is gathered
-//! by the processes that hold it and relaxed whole by each.
+//! cut at odd rows are re-cut into as many strips on the same processes. Every process
+//! computes the same hierarchy from the same layout. The coarsest level (at most
+//! [`GATHERED_CELLS`] cells, or a grid that does not halve) is gathered by the processes that
+//! hold it and relaxed whole by each.
 //!
 //! Without agglomeration 48 strips of a 1024 x 1024 grid stop coarsening at 20-row strips of
 //! 256 x 256 (thinner than `2 MIN_STRIP_ROWS` one level down) and every process relaxes those
@@ -23,36 +24,33 @@ use crate::strips::{RowLinks, StripLayout, GATHERED_CELLS, MIN_STRIP_ROWS};
 use crate::GridShape;
 use std::ops::Range;
 
-/// How a level hands its residual to the next.
+/// The strips of one level: their row cuts and the process holding each.
 #[derive(Clone, Debug, PartialEq)]
-pub(crate) enum Below {
-    /// The next level is this one coarsened, on the same strips.
-    Coarser,
-    /// The residual is re-cut into the strips `starts` (rows of this level), held by the
-    /// processes `ranks`, which coarsen it into the next level.
-    Agglomerated {
-        starts: Vec<usize>,
-        ranks: Vec<usize>,
-    },
-    /// The coarsest level: gathered by its processes and relaxed whole.
-    Gathered,
-}
-
-/// One level: its grid, its strips and the processes holding them.
-#[derive(Clone, Debug, PartialEq)]
-pub(crate) struct LevelPlan {
-    pub shape: GridShape,
+pub(crate) struct Strips {
     /// `strips + 1` row cuts from 0 to `ny`.
     pub starts: Vec<usize>,
     /// The process of each strip, increasing.
     pub ranks: Vec<usize>,
-    pub below: Below,
 }
 
-impl LevelPlan {
-    /// This process's strip on this level, if it holds one.
+impl Strips {
+    /// This process's strip, if it holds one.
     pub fn strip_of(&self, rank: usize) -> Option<usize> {
         self.ranks.binary_search(&rank).ok()
+    }
+
+    /// The rows of strip `strip`.
+    pub fn rows(&self, strip: usize) -> Range<usize> {
+        self.starts[strip]..self.starts[strip + 1]
+    }
+
+    /// The height of the thinnest strip.
+    pub fn thinnest(&self) -> usize {
+        self.starts
+            .windows(2)
+            .map(|w| w[1] - w[0])
+            .min()
+            .unwrap_or(0)
     }
 
     /// The processes holding the strips below and above strip `strip` (wrapping around when
@@ -65,51 +63,85 @@ impl LevelPlan {
     }
 }
 
+/// How a level hands its residual to the next.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum Below {
+    /// The next level is this one coarsened, on the same strips.
+    Coarser,
+    /// The residual is re-cut into these strips (rows of this level), whose processes
+    /// coarsen it into the next level.
+    Agglomerated(Strips),
+    /// The coarsest level: gathered by its processes and relaxed whole.
+    Gathered,
+}
+
+/// One level: its grid, its strips and how it hands its residual to the next.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct LevelPlan {
+    pub shape: GridShape,
+    pub strips: Strips,
+    pub below: Below,
+}
+
+impl LevelPlan {
+    /// The level's strips and those its residual is re-cut into; only for a level
+    /// agglomerated below.
+    pub fn agglomeration(&self) -> (&Strips, &Strips) {
+        match &self.below {
+            Below::Agglomerated(cut) => (&self.strips, cut),
+            Below::Coarser | Below::Gathered => panic!("a level not agglomerated below"),
+        }
+    }
+}
+
 /// The levels of the strip multigrid of `layout` (strip `s` on process `s`) over `shape`.
 pub(crate) fn plan_levels(shape: GridShape, layout: &StripLayout) -> Vec<LevelPlan> {
     let mut levels = Vec::new();
     let mut shape = shape;
-    let mut starts = layout.starts.clone();
-    let mut ranks: Vec<usize> = (0..layout.strips()).collect();
+    let mut strips = Strips {
+        starts: layout.starts.clone(),
+        ranks: (0..layout.strips()).collect(),
+    };
     loop {
         let (nx, ny) = (shape.nx, shape.ny);
         let halves = nx % 2 == 0 && nx >= 4 && ny % 2 == 0 && nx * ny > GATHERED_CELLS;
-        let on_same_strips = starts.iter().all(|s| s % 2 == 0)
-            && starts.windows(2).all(|w| w[1] - w[0] >= 2 * MIN_STRIP_ROWS);
-        let (below, next_starts, next_ranks) = if halves && on_same_strips {
-            (Below::Coarser, starts.clone(), ranks.clone())
-        } else if halves && ranks.len() > 1 {
+        let thick = strips.thinnest() >= 2 * MIN_STRIP_ROWS;
+        let even = strips.starts.iter().all(|s| s % 2 == 0);
+        let count = strips.ranks.len();
+        let below = if halves && thick && even {
+            Below::Coarser
+        } else if halves && count > 1 {
             // Strips of at least 2 MIN_STRIP_ROWS rows cut at even rows coarsen at least once;
             // strips thick enough but cut at odd rows are only re-cut, on the same processes.
-            let thick = starts.windows(2).all(|w| w[1] - w[0] >= 2 * MIN_STRIP_ROWS);
-            let fewer = if thick {
-                ranks.len()
-            } else {
-                ranks.len().div_ceil(2)
-            };
-            let count = fewer.min(ny / (2 * MIN_STRIP_ROWS)).max(1);
-            let cut = StripLayout::balanced(nx, ny, count)
-                .expect("ny / (2 MIN_STRIP_ROWS) strips fit a grid of ny rows")
-                .starts;
-            let held_by: Vec<usize> = (0..count).map(|t| ranks[t * ranks.len() / count]).collect();
-            let below = Below::Agglomerated {
-                starts: cut.clone(),
-                ranks: held_by.clone(),
-            };
-            (below, cut, held_by)
+            let fewer = if thick { count } else { count.div_ceil(2) };
+            let fewer = fewer.min(ny / (2 * MIN_STRIP_ROWS)).max(1);
+            Below::Agglomerated(Strips {
+                starts: StripLayout::balanced(nx, ny, fewer)
+                    .expect("ny / (2 MIN_STRIP_ROWS) strips fit a grid of ny rows")
+                    .starts,
+                ranks: (0..fewer)
+                    .map(|t| strips.ranks[t * count / fewer])
+                    .collect(),
+            })
         } else {
             levels.push(LevelPlan {
                 shape,
-                starts,
-                ranks,
+                strips,
                 below: Below::Gathered,
             });
             return levels;
         };
+        let next = match &below {
+            Below::Agglomerated(cut) => cut,
+            _ => &strips,
+        };
+        let next = Strips {
+            starts: next.starts.iter().map(|s| s / 2).collect(),
+            ranks: next.ranks.clone(),
+        };
         levels.push(LevelPlan {
             shape,
-            starts,
-            ranks,
+            strips,
             below,
         });
         shape = GridShape {
@@ -118,8 +150,7 @@ pub(crate) fn plan_levels(shape: GridShape, layout: &StripLayout) -> Vec<LevelPl
             hx: 2.0 * shape.hx,
             hy: 2.0 * shape.hy,
         };
-        starts = next_starts.iter().map(|s| s / 2).collect();
-        ranks = next_ranks;
+        strips = next;
     }
 }
 
@@ -135,13 +166,6 @@ pub(crate) fn overlaps(starts: &[usize], rows: Range<usize>) -> Vec<(usize, Rang
         .collect()
 }
 
-/// Strips of one level: their row cuts and the process of each.
-#[derive(Clone, Copy)]
-pub(crate) struct Cut<'a> {
-    pub starts: &'a [usize],
-    pub ranks: &'a [usize],
-}
-
 /// Moves the cells of `field` from the strips `from` to the strips `to` of the same level:
 /// process `me` sends the rows of its strip of `from` (held by `source`, if it holds one) that
 /// other processes' strips of `to` hold, and writes into its strip of `to` (held by `target`)
@@ -150,9 +174,9 @@ pub(crate) struct Cut<'a> {
 pub(crate) fn move_rows(
     links: &mut dyn RowLinks,
     me: usize,
-    from: Cut,
+    from: &Strips,
     source: Option<&StripLevel>,
-    to: Cut,
+    to: &Strips,
     target: Option<&mut StripLevel>,
     field: Field,
     combine: Combine,
@@ -161,7 +185,7 @@ pub(crate) fn move_rows(
     let mut sends = Vec::new();
     let mut kept = None;
     if let Some(source) = source {
-        for (t, rows) in overlaps(to.starts, rows_of(source)) {
+        for (t, rows) in overlaps(&to.starts, rows_of(source)) {
             let cells = source.copy_rows(field, rows.clone());
             if to.ranks[t] == me {
                 kept = Some((rows.start, cells));
@@ -173,7 +197,7 @@ pub(crate) fn move_rows(
     let mut sources = Vec::new();
     let mut places = Vec::new();
     if let Some(target) = &target {
-        for (s, rows) in overlaps(from.starts, rows_of(target)) {
+        for (s, rows) in overlaps(&from.starts, rows_of(target)) {
             if from.ranks[s] != me {
                 sources.push(from.ranks[s]);
                 places.push(rows);
@@ -228,23 +252,26 @@ mod tests {
             let layout = StripLayout::balanced(nx, ny, strips).unwrap();
             let levels = plan_levels(square(nx, ny), &layout);
             for pair in levels.windows(2) {
-                assert!(pair[1].ranks.iter().all(|r| pair[0].ranks.contains(r)));
+                let (upper, lower) = (&pair[0].strips, &pair[1].strips);
+                assert!(lower.ranks.iter().all(|r| upper.ranks.contains(r)));
                 assert_eq!(pair[1].shape.nx * 2, pair[0].shape.nx);
             }
             for level in &levels {
-                assert_eq!(level.starts.first(), Some(&0));
-                assert_eq!(level.starts.last(), Some(&level.shape.ny));
-                assert_eq!(level.starts.len(), level.ranks.len() + 1);
-                assert!(level
-                    .starts
-                    .windows(2)
-                    .all(|w| w[1] - w[0] >= MIN_STRIP_ROWS));
+                let strips = &level.strips;
+                assert_eq!(strips.starts.first(), Some(&0));
+                assert_eq!(strips.starts.last(), Some(&level.shape.ny));
+                assert_eq!(strips.starts.len(), strips.ranks.len() + 1);
+                assert!(strips.thinnest() >= MIN_STRIP_ROWS);
             }
             let bottom = levels.last().unwrap();
             assert!(bottom.shape.nx * bottom.shape.ny <= GATHERED_CELLS);
-            assert_eq!(bottom.strip_of(0), Some(0), "process 0 holds every level");
             assert_eq!(
-                bottom.ranks.len(),
+                bottom.strips.strip_of(0),
+                Some(0),
+                "process 0 holds every level"
+            );
+            assert_eq!(
+                bottom.strips.ranks.len(),
                 gathered_rank_count,
                 "{nx} x {ny} on {strips}"
             );
@@ -259,12 +286,12 @@ mod tests {
             starts: vec![0, 80, 161, 240],
         };
         let levels = plan_levels(square(64, 240), &layout);
-        let Below::Agglomerated { starts, ranks } = &levels[0].below else {
+        let Below::Agglomerated(cut) = &levels[0].below else {
             panic!("{:?}", levels[0].below);
         };
-        assert_eq!(ranks, &vec![0, 1, 2]);
-        assert!(starts.iter().all(|s| s % 2 == 0), "{starts:?}");
-        assert_eq!(levels[1].ranks, vec![0, 1, 2]);
+        assert_eq!(cut.ranks, vec![0, 1, 2]);
+        assert!(cut.starts.iter().all(|s| s % 2 == 0), "{:?}", cut.starts);
+        assert_eq!(levels[1].strips.ranks, vec![0, 1, 2]);
     }
 
     #[test]

@@ -16,10 +16,10 @@
 //! this diagonal relaxes boundary cells exactly, as the serial [`crate::Multigrid`] does.
 //!
 //! **Deep ghost rows.** The ghost rows towards another strip (or across a periodic bottom and
-//! top) are filled by [`RowExchange::exchange_rows_overlapped`], `2 s + 1` rows of `u` and `2 s`
-//! of `f` at once before `s` sweeps. The strip then relaxes its neighbours' edge rows itself, one row
-//! fewer per half-sweep, so the `s` sweeps and the residual after them need no other
-//! exchange: a V(2, 1) cycle exchanges twice per level (before the pre- and before the
+//! top) are filled by [`RowExchange::exchange_rows_overlapped`], `2 s + 1` rows of `u` and
+//! `2 s` of `f` at once before `s` sweeps. The strip then relaxes its neighbours' edge rows
+//! itself, one row fewer per half-sweep, so the `s` sweeps and the residual after them need
+//! no other exchange: a V(2, 1) cycle exchanges twice per level (before the pre- and before the
 //! post-smoothing) instead of once per sweep, once for the residual and once for the
 //! prolongation. The last post-smoothing sweep leaves the ghost row next to the cells current,
 //! which is what the finer level's prolongation reads. Every value a strip computes in its
@@ -188,13 +188,27 @@ impl StripLevel {
         (self.ghosts.saturating_sub(1) / 2).max(1)
     }
 
-    /// The cells of the global rows `rows` (within this strip) of `field`, row after row.
-    pub fn copy_rows(&self, field: Field, rows: std::ops::Range<usize>) -> Vec<f64> {
-        let values = match field {
+    /// The padded array of `field`.
+    fn field(&self, field: Field) -> &[f64] {
+        match field {
             Field::Solution => &self.u,
             Field::Rhs => &self.f,
             Field::Residual => &self.r,
-        };
+        }
+    }
+
+    /// The padded array of `field`, to write.
+    fn field_mut(&mut self, field: Field) -> &mut [f64] {
+        match field {
+            Field::Solution => &mut self.u,
+            Field::Rhs => &mut self.f,
+            Field::Residual => &mut self.r,
+        }
+    }
+
+    /// The cells of the global rows `rows` (within this strip) of `field`, row after row.
+    pub fn copy_rows(&self, field: Field, rows: std::ops::Range<usize>) -> Vec<f64> {
+        let values = self.field(field);
         let mut cells = Vec::with_capacity(self.nx * rows.len());
         for global in rows {
             let k = self.index(0, (global - self.first_row) as isize);
@@ -207,13 +221,11 @@ impl StripLevel {
     /// into `field` as `combine` says.
     pub fn write_rows(&mut self, field: Field, first: usize, cells: &[f64], combine: Combine) {
         let nx = self.nx;
+        let start = self.index(0, (first - self.first_row) as isize);
+        let width = self.width();
+        let values = self.field_mut(field);
         for (j, row) in cells.chunks_exact(nx).enumerate() {
-            let k = self.index(0, (first + j - self.first_row) as isize);
-            let values = match field {
-                Field::Solution => &mut self.u,
-                Field::Rhs => &mut self.f,
-                Field::Residual => &mut self.r,
-            };
+            let k = start + j * width;
             let target = &mut values[k..k + nx];
             if combine == Combine::Add {
                 target.iter_mut().zip(row).for_each(|(v, c)| *v += c);
@@ -318,13 +330,19 @@ impl StripLevel {
         }
     }
 
+    /// Exchanges `u_depth` edge rows of `u` and `f_depth` of `f` with the neighbours, which
+    /// are then current in the ghost rows.
+    fn exchange_ghost_rows(&mut self, links: &mut dyn RowExchange, u_depth: usize, f_depth: usize) {
+        let [to_below, to_above] = self.messages(u_depth, f_depth);
+        let received = links.exchange_rows(to_below.as_deref(), to_above.as_deref());
+        self.zero_boundary_ghost_rows();
+        self.store(received, u_depth, f_depth);
+    }
+
     /// Makes the ghost row of `u` next to the cells current, by an exchange if it is not.
     fn refresh_next_ghost_row(&mut self, links: &mut dyn RowExchange) {
         if self.u_current == 0 {
-            let [to_below, to_above] = self.messages(1, 0);
-            let received = links.exchange_rows(to_below.as_deref(), to_above.as_deref());
-            self.zero_boundary_ghost_rows();
-            self.store(received, 1, 0);
+            self.exchange_ghost_rows(links, 1, 0);
         }
     }
 
@@ -425,10 +443,7 @@ impl StripLevel {
     pub fn open_solve(&mut self, links: &mut dyn RowExchange, sweeps: usize) -> [f64; 4] {
         let halves = 2 * sweeps.min(self.sweeps_per_exchange());
         self.fill_ghost_columns(false, 0..self.rows as isize);
-        let [to_below, to_above] = self.messages(halves + 1, halves);
-        let received = links.exchange_rows(to_below.as_deref(), to_above.as_deref());
-        self.zero_boundary_ghost_rows();
-        self.store(received, halves + 1, halves);
+        self.exchange_ghost_rows(links, halves + 1, halves);
         self.residual_sums()
     }
 

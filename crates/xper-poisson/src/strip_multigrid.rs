@@ -27,47 +27,33 @@
 //! rows of the first pre-smoothing, which then needs none) and one sum (the mean, the rhs
 //! norm and the first residual norm together).
 
-use crate::strip_hierarchy::{move_rows, plan_levels, Below, Cut, LevelPlan};
+use crate::strip_hierarchy::{move_rows, plan_levels, Below, LevelPlan, Strips};
 use crate::strip_level::{ghost_rows, Combine, Field, StripLevel};
 use crate::strips::{AgglomeratedLinks, RowExchange, RowLinks, StripLayout, MIN_STRIP_ROWS};
 use crate::{
     Boundary, CycleType, GridShape, Multigrid, MultigridParams, SetupError, SolveError, SolveInfo,
 };
 
-/// This process's part of an agglomeration below one of its levels.
-struct Agglomeration {
-    /// The strips of the level.
-    starts: Vec<usize>,
-    ranks: Vec<usize>,
-    /// The strips the level's residual is re-cut into.
-    cut_starts: Vec<usize>,
-    cut_ranks: Vec<usize>,
-    /// This process's strip of the re-cut level, if it holds one: the residual restricted
-    /// from it, the correction prolongated into it.
-    staging: Option<StripLevel>,
-}
-
 /// A multigrid solver for the rows of one strip of the grid.
 pub struct StripMultigrid {
     shape: GridShape,
     params: MultigridParams,
     singular: bool,
+    /// Whether the bottom and top are periodic (the strips' links wrap around).
+    periodic: bool,
+    /// The levels of every process (the same on each).
+    plans: Vec<LevelPlan>,
     /// The levels this process holds a strip of: a first part of the hierarchy, the whole of
     /// it unless an agglomeration leaves this process out.
     levels: Vec<StripLevel>,
-    /// Per level: the processes of the strips below and above, when the level's strips are
-    /// not every process's (`None`: the links' own neighbours).
-    neighbours: Vec<Option<[Option<usize>; 2]>>,
-    /// Per level: the agglomeration below it, if any.
-    agglomerations: Vec<Option<Agglomeration>>,
-    layout: StripLayout,
+    /// Per level of `levels` agglomerated below: this process's strip of the re-cut, at the
+    /// level's resolution, if it holds one (the residual is restricted from it, the
+    /// correction prolongated into it).
+    stagings: Vec<Option<StripLevel>>,
     strip: usize,
     coarse: Multigrid,
     coarse_rhs: Vec<f64>,
     coarse_solution: Vec<f64>,
-    /// The row cuts of the coarsest strip level and the processes of its strips.
-    coarse_starts: Vec<usize>,
-    coarse_ranks: Vec<usize>,
 }
 
 impl StripMultigrid {
@@ -96,36 +82,27 @@ impl StripMultigrid {
             });
         }
         let plans = plan_levels(shape, &layout);
-        let periodic = boundary.bottom == crate::SideCondition::Periodic;
         let mut levels = Vec::new();
-        let mut neighbours = Vec::new();
-        let mut agglomerations = Vec::new();
+        let mut stagings = Vec::new();
         for plan in &plans {
-            let Some(at) = plan.strip_of(strip) else {
+            let Some(at) = plan.strips.strip_of(strip) else {
                 break;
             };
-            levels.push(Self::level(plan, at, boundary, &params));
-            let whole = plan.ranks.len() == layout.strips();
-            neighbours.push((!whole).then(|| plan.neighbours(at, periodic)));
-            agglomerations.push(match &plan.below {
-                Below::Agglomerated { starts, ranks } => {
-                    let staging = ranks.binary_search(&strip).ok().map(|t| {
-                        let rows = starts[t]..starts[t + 1];
-                        let h = [plan.shape.hx, plan.shape.hy];
-                        StripLevel::new(plan.shape.nx, plan.shape.ny, rows, h, boundary, 1)
-                    });
-                    Some(Agglomeration {
-                        starts: plan.starts.clone(),
-                        ranks: plan.ranks.clone(),
-                        cut_starts: starts.clone(),
-                        cut_ranks: ranks.clone(),
-                        staging,
-                    })
+            levels.push(Self::level(
+                plan,
+                &plan.strips,
+                at,
+                boundary,
+                ghost_rows(&params),
+            ));
+            stagings.push(match &plan.below {
+                Below::Agglomerated(cut) => {
+                    (cut.strip_of(strip)).map(|t| Self::level(plan, cut, t, boundary, 1))
                 }
                 Below::Coarser | Below::Gathered => None,
             });
         }
-        let bottom = plans.last().expect("at least one level");
+        let bottom = plans.last().expect("at least one level").shape;
         // One V-cycle of the serial solver on the gathered grid, as the serial cycle would
         // continue below this level: the strip cycle is then the serial iteration, and every
         // process does no more coarse work than the serial solver. (Solving the gathered grid
@@ -137,39 +114,34 @@ impl StripMultigrid {
             cycle: CycleType::V,
             ..params
         };
-        let cells = bottom.shape.cells();
         Ok(StripMultigrid {
             shape,
             params,
             singular: boundary.is_singular(),
+            periodic: boundary.bottom == crate::SideCondition::Periodic,
+            plans,
             levels,
-            neighbours,
-            agglomerations,
-            layout,
+            stagings,
             strip,
-            coarse: Multigrid::new(bottom.shape, boundary, coarse_params)?,
-            coarse_rhs: vec![0.0; cells],
-            coarse_solution: vec![0.0; cells],
-            coarse_starts: bottom.starts.clone(),
-            coarse_ranks: bottom.ranks.clone(),
+            coarse: Multigrid::new(bottom, boundary, coarse_params)?,
+            coarse_rhs: vec![0.0; bottom.cells()],
+            coarse_solution: vec![0.0; bottom.cells()],
         })
     }
 
-    /// The level of strip `at` of `plan`, with the ghost rows of the cycle, or fewer where the
-    /// strips are thinner (the sweeps are then exchanged for in smaller groups); the same on
-    /// every strip of the level.
+    /// Strip `at` of `strips` on the grid of `plan`, with `ghosts` ghost rows or fewer where
+    /// the strips are thinner (the sweeps are then exchanged for in smaller groups); the same
+    /// on every strip of the level.
     fn level(
         plan: &LevelPlan,
+        strips: &Strips,
         at: usize,
         boundary: Boundary,
-        params: &MultigridParams,
+        ghosts: usize,
     ) -> StripLevel {
-        let starts = &plan.starts;
-        let thinnest = starts.windows(2).map(|w| w[1] - w[0]).min().unwrap_or(0);
         let GridShape { nx, ny, hx, hy } = plan.shape;
-        let rows = starts[at]..starts[at + 1];
-        let ghosts = ghost_rows(params).min(thinnest);
-        StripLevel::new(nx, ny, rows, [hx, hy], boundary, ghosts)
+        let ghosts = ghosts.min(strips.thinnest());
+        StripLevel::new(nx, ny, strips.rows(at), [hx, hy], boundary, ghosts)
     }
 
     /// Number of strip levels this process holds a strip of, the coarsest (the one gathered
@@ -184,7 +156,8 @@ impl StripMultigrid {
     /// `2 MIN_STRIP_ROWS` rows; the levels are then agglomerated on fewer processes until
     /// the grid has at most [`crate::strips::GATHERED_CELLS`] cells or does not halve.
     pub fn gathered_cells(&self) -> usize {
-        if self.coarse_ranks.binary_search(&self.strip).is_ok() {
+        let bottom = &self.plans.last().expect("at least one level").strips;
+        if bottom.strip_of(self.strip).is_some() {
             self.coarse_rhs.len()
         } else {
             0
@@ -193,7 +166,7 @@ impl StripMultigrid {
 
     /// The rows of this strip.
     pub fn rows(&self) -> std::ops::Range<usize> {
-        self.layout.rows(self.strip)
+        self.plans[0].strips.rows(self.strip)
     }
 
     /// Solves `Lap phi = rhs` over the whole grid, `rhs` and `phi` holding this strip's cells
@@ -304,30 +277,45 @@ impl StripMultigrid {
         }
     }
 
+    /// The processes holding the strips below and above this one on level `l`, when the
+    /// level's strips are not every process's (`None`: the links' own neighbours).
+    fn neighbours(&self, l: usize) -> Option<[Option<usize>; 2]> {
+        let strips = &self.plans[l].strips;
+        if strips.ranks.len() == self.plans[0].strips.ranks.len() {
+            return None;
+        }
+        let at = strips
+            .strip_of(self.strip)
+            .expect("a level this process holds");
+        Some(strips.neighbours(at, self.periodic))
+    }
+
     /// One V-cycle from level `l` (its `u` the guess, `f` the rhs); returns its work in
     /// finest-grid sweeps of this strip and, on the finest level when it is not the gathered
     /// one, this strip's `sum r^2` after the cycle (computed within the last sweep).
     fn cycle(&mut self, l: usize, links: &mut dyn RowLinks) -> (f64, Option<f64>) {
         let scale = self.levels[l].cells() as f64 / self.levels[0].cells() as f64;
-        if self.agglomerations[l].is_some() {
-            return self.agglomerated_cycle(l, links);
-        }
-        if l + 1 == self.levels.len() {
-            self.solve_gathered(links, l > 0);
-            return (scale, None);
+        match self.plans[l].below {
+            Below::Agglomerated(_) => return self.agglomerated_cycle(l, links),
+            Below::Gathered => {
+                self.solve_gathered(links, l > 0);
+                return (scale, None);
+            }
+            Below::Coarser => {}
         }
         let p = self.params;
+        let neighbours = self.neighbours(l);
         let (upper, lower) = self.levels.split_at_mut(l + 1);
         let (fine, coarse) = (&mut upper[l], &mut lower[0]);
         coarse.zero_solution();
-        with_links(self.neighbours[l], links, |links| {
+        with_links(neighbours, links, |links| {
             fine.smooth(links, p.omega, p.pre_smoothing as usize, true, Some(coarse))
         });
         let mut work = scale * (p.pre_smoothing as f64 + 1.5);
         work += self.cycle(l + 1, links).0;
         let (upper, lower) = self.levels.split_at_mut(l + 1);
         let (fine, coarse) = (&mut upper[l], &mut lower[0]);
-        let sum = with_links(self.neighbours[l], links, |links| {
+        let sum = with_links(neighbours, links, |links| {
             fine.prolong(coarse, links);
             fine.smooth(links, p.omega, p.post_smoothing as usize, l == 0, None)
         });
@@ -344,61 +332,39 @@ impl StripMultigrid {
         let me = self.strip;
         let scale = self.levels[l].cells() as f64 / self.levels[0].cells() as f64;
         let mut work = scale * (p.pre_smoothing as f64 + 1.0);
-        // Taken out while the levels below cycle (they do not use it).
-        let mut agglomeration = self.agglomerations[l]
-            .take()
-            .expect("an agglomerated level");
-        let level_cut = Cut {
-            starts: &agglomeration.starts,
-            ranks: &agglomeration.ranks,
-        };
-        let new_cut = Cut {
-            starts: &agglomeration.cut_starts,
-            ranks: &agglomeration.cut_ranks,
-        };
+        let neighbours = self.neighbours(l);
         let fine = &mut self.levels[l];
-        with_links(self.neighbours[l], links, |links| {
+        with_links(neighbours, links, |links| {
             fine.smooth(links, p.omega, p.pre_smoothing as usize, true, None)
         });
-        let staging = agglomeration.staging.as_mut();
-        move_rows(
-            links,
-            me,
-            level_cut,
-            Some(fine),
-            new_cut,
-            staging,
-            Field::Residual,
-            Combine::Replace,
-        );
-        if let Some(staging) = agglomeration.staging.as_mut() {
+        // Taken out while the levels below cycle (they do not use it).
+        let mut staging = self.stagings[l].take();
+        let (strips, cut) = self.plans[l].agglomeration();
+        let (source, target) = (Some(&*fine), staging.as_mut());
+        let (field, combine) = (Field::Residual, Combine::Replace);
+        move_rows(links, me, strips, source, cut, target, field, combine);
+        if let Some(staging) = staging.as_mut() {
             let coarse = &mut self.levels[l + 1];
             staging.restrict(coarse);
             coarse.zero_solution();
             work += scale * 0.5 + self.cycle(l + 1, links).0;
+            let coarse_neighbours = self.neighbours(l + 1);
             let coarse = &mut self.levels[l + 1];
             staging.zero_solution();
-            with_links(self.neighbours[l + 1], links, |links| {
+            with_links(coarse_neighbours, links, |links| {
                 staging.prolong(coarse, links)
             });
         }
         let fine = &mut self.levels[l];
-        let staging = agglomeration.staging.as_ref();
-        move_rows(
-            links,
-            me,
-            new_cut,
-            staging,
-            level_cut,
-            Some(&mut *fine),
-            Field::Solution,
-            Combine::Add,
-        );
+        let (strips, cut) = self.plans[l].agglomeration();
+        let (source, target) = (staging.as_ref(), Some(&mut *fine));
+        let (field, combine) = (Field::Solution, Combine::Add);
+        move_rows(links, me, cut, source, strips, target, field, combine);
         fine.solution_changed();
-        let sum = with_links(self.neighbours[l], links, |links| {
+        let sum = with_links(neighbours, links, |links| {
             fine.smooth(links, p.omega, p.post_smoothing as usize, l == 0, None)
         });
-        self.agglomerations[l] = Some(agglomeration);
+        self.stagings[l] = staging;
         let squares = (l == 0).then_some(sum);
         (work + scale * (0.5 + p.post_smoothing as f64), squares)
     }
@@ -408,23 +374,23 @@ impl StripMultigrid {
     /// With `zero_guess` (a coarse level, its `u` zero on entry) the residual is the rhs
     /// itself.
     fn solve_gathered(&mut self, links: &mut dyn RowLinks, zero_guess: bool) {
+        let neighbours = self.neighbours(self.levels.len() - 1);
         let level = self.levels.last_mut().expect("at least one level");
         let nx = level.nx;
         if !zero_guess {
-            with_links(*self.neighbours.last().expect("a level"), links, |links| {
-                level.residual(links)
-            });
+            with_links(neighbours, links, |links| level.residual(links));
         }
         let field = if zero_guess {
             Field::Rhs
         } else {
             Field::Residual
         };
-        let starts = &self.coarse_starts;
         let own = level.first_row..level.first_row + level.rows;
         let mut cells = level.copy_rows(field, own.clone());
         self.coarse_rhs[nx * own.start..nx * own.end].copy_from_slice(&cells);
-        if self.coarse_ranks.len() == self.layout.strips() {
+        let bottom = &self.plans.last().expect("at least one level").strips;
+        let starts = &bottom.starts;
+        if bottom.ranks.len() == self.plans[0].strips.ranks.len() {
             // Every process holds a strip: one collective, every strip sending as many rows
             // as the highest one (zeros after its own).
             let highest = starts.windows(2).map(|w| w[1] - w[0]).max().unwrap_or(0);
@@ -438,7 +404,7 @@ impl StripMultigrid {
             }
         } else {
             // Some processes: each sends its rows to the others.
-            let others: Vec<usize> = (self.coarse_ranks.iter())
+            let others: Vec<usize> = (bottom.ranks.iter())
                 .copied()
                 .filter(|&r| r != self.strip)
                 .collect();
@@ -448,7 +414,7 @@ impl StripMultigrid {
             } else {
                 links.send_receive(sends, &others)
             };
-            let held = self.coarse_ranks.iter().zip(starts.windows(2));
+            let held = bottom.ranks.iter().zip(starts.windows(2));
             for (rows, values) in (held.filter(|(&r, _)| r != self.strip))
                 .map(|(_, rows)| rows)
                 .zip(received)

@@ -107,8 +107,6 @@ pub struct CountingLinks {
     pub sums: usize,
     /// Gathers of the coarse grid.
     pub gathers: usize,
-    /// Point-to-point transfers between agglomeration stages.
-    pub transfers: usize,
 }
 
 impl RowExchange for CountingLinks {
@@ -135,7 +133,6 @@ impl RowLinks for CountingLinks {
         OneStrip.exchange_rows_among(neighbours, to_below, to_above, work)
     }
     fn send_receive(&mut self, sends: Vec<(usize, Vec<f64>)>, sources: &[usize]) -> Vec<Vec<f64>> {
-        self.transfers += 1;
         OneStrip.send_receive(sends, sources)
     }
     fn sum(&mut self, values: &mut [f64]) {
@@ -174,7 +171,8 @@ pub struct StripLayout {
     pub starts: Vec<usize>,
 }
 
-/// Coarse grids at most this large are gathered and solved whole on every strip.
+/// Coarse grids at most this large are gathered and relaxed whole by the processes holding
+/// their strips (every process unless an agglomeration left some out).
 pub const GATHERED_CELLS: usize = 1024;
 
 impl StripLayout {
