@@ -116,6 +116,11 @@ impl InterfaceMap {
         }
     }
 
+    /// Whether local body `body` is shared with other processes.
+    pub fn is_shared(&self, body: u32) -> bool {
+        self.multiplicity.get(body as usize).is_some_and(|&m| m > 1)
+    }
+
     /// Number of local bodies shared with other processes.
     pub fn shared_count(&self) -> usize {
         self.multiplicity.iter().filter(|&&m| m > 1).count()

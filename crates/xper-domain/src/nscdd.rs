@@ -185,13 +185,7 @@ pub fn distributed_nlgs<C: Communicator + ?Sized, O: BodyVelocities>(
     }
     let n = op.contact_count();
     xper_solver::check_contact_sizes(n, mu, normal_shift, cohesion, impulses)?;
-    let shared = |b: u32| {
-        interface
-            .multiplicity
-            .get(b as usize)
-            .is_some_and(|&m| m > 1)
-    };
-    let on_interface = |a: usize| op.row_bodies(a).into_iter().any(shared);
+    let on_interface = |a: usize| touches_shared(op, interface, a);
     let mut order: Vec<u32> = (0..n as u32)
         .filter(|&a| on_interface(a as usize))
         .collect();
@@ -240,6 +234,11 @@ pub fn distributed_nlgs<C: Communicator + ?Sized, O: BodyVelocities>(
         },
         other => other,
     })
+}
+
+/// Whether row `a` of `op` touches a body shared with other processes.
+fn touches_shared<O: BodyVelocities>(op: &O, interface: &InterfaceMap, a: usize) -> bool {
+    op.row_bodies(a).into_iter().any(|b| interface.is_shared(b))
 }
 
 /// `values` in the order `order` (entry `k` is `values[order[k]]`).
@@ -327,10 +326,11 @@ pub fn solve_with_split_masses<C: Communicator + ?Sized, O: SplitMasses>(
     params: &NlgsParams,
 ) -> Result<SolveInfo, SolveError> {
     let multiplicity = &interface.multiplicity;
-    let shared = |b: u32| multiplicity.get(b as usize).is_some_and(|&m| m > 1);
-    let bodies: Vec<usize> = (0..op.body_count()).filter(|&b| shared(b as u32)).collect();
+    let bodies: Vec<usize> = (0..op.body_count())
+        .filter(|&b| interface.is_shared(b as u32))
+        .collect();
     let rows: Vec<usize> = (0..op.contact_count())
-        .filter(|&a| op.row_bodies(a).into_iter().any(shared))
+        .filter(|&a| touches_shared(op, interface, a))
         .collect();
     let masses: Vec<_> = bodies.iter().map(|&b| op.inverse_mass(b)).collect();
     let blocks: Vec<_> = rows.iter().map(|&a| op.diagonal_block(a)).collect();
@@ -396,7 +396,7 @@ struct Glue {
 impl Glue {
     fn new(interface: &InterfaceMap, rank: usize, dofs: usize) -> Self {
         let shared: Vec<u32> = (0..interface.multiplicity.len() as u32)
-            .filter(|&b| interface.multiplicity[b as usize] > 1)
+            .filter(|&b| interface.is_shared(b))
             .collect();
         let mut slot_of = vec![u32::MAX; interface.multiplicity.len()];
         for (slot, &b) in shared.iter().enumerate() {
