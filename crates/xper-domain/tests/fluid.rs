@@ -31,16 +31,6 @@ fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
         .fold(0.0, |m: f64, (x, y)| m.max((x - y).abs()))
 }
 
-/// A square-celled `nx x ny` grid of width 1.
-fn unit_width_grid(nx: usize, ny: usize) -> GridShape {
-    GridShape {
-        nx,
-        ny,
-        hx: 1.0 / nx as f64,
-        hy: 1.0 / nx as f64,
-    }
-}
-
 /// `rhs` solved by the strip multigrid on `ranks` thread processes, balanced strips: the
 /// gathered solution and each process's outcome.
 fn solve_in_strips(
@@ -73,17 +63,14 @@ fn solve_in_strips(
 /// a relative residual of 1e-12 agree to 1e-8 of the solution's size.
 #[test]
 fn the_strip_multigrid_on_several_processes_agrees_with_the_serial_multigrid() {
-    use SideCondition::{Dirichlet, Neumann, Periodic};
+    use SideCondition::{Neumann, Periodic};
     let boundaries = [
         Boundary::all(Neumann),
         Boundary::all(Periodic),
-        Boundary {
-            top: Dirichlet,
-            ..Boundary::all(Neumann)
-        },
+        Boundary::open_top(),
     ];
     let (nx, ny) = (64, 256);
-    let shape = unit_width_grid(nx, ny);
+    let shape = GridShape::square_cells(nx, ny, 1.0);
     let params = MultigridParams {
         relative_tolerance: 1e-12,
         ..MultigridParams::default()
@@ -122,10 +109,7 @@ fn the_strip_multigrid_on_several_processes_agrees_with_the_serial_multigrid() {
 #[test]
 fn a_non_singular_strip_solve_gives_the_same_bits_on_1_to_8_processes() {
     use SideCondition::{Dirichlet, Neumann, Periodic};
-    let open_top = Boundary {
-        top: Dirichlet,
-        ..Boundary::all(Neumann)
-    };
+    let open_top = Boundary::open_top();
     let periodic_x = Boundary {
         left: Periodic,
         right: Periodic,
@@ -179,7 +163,7 @@ fn a_non_singular_strip_solve_gives_the_same_bits_on_1_to_8_processes() {
         ((512, 12), vec![periodic_y], cycle(2, 1), 2..=2),
     ];
     for ((nx, ny), boundaries, params, processes) in cases {
-        let shape = unit_width_grid(nx, ny);
+        let shape = GridShape::square_cells(nx, ny, 1.0);
         let rhs = xper_poisson::bench::random_values(nx * ny, 99);
         for boundary in boundaries {
             let solve_on = |ranks| {

@@ -38,10 +38,6 @@ fn main() {
     if grids.is_empty() {
         grids = vec![(64, 640), (160, 640), (512, 512)];
     }
-    let walls_open_top = Boundary {
-        top: SideCondition::Dirichlet,
-        ..Boundary::all(SideCondition::Neumann)
-    };
     println!(
         "{:>11} {:<9} {:>6} {:>6} {:>10} {:>10} {:>6} {:>9} {:>5}",
         "grid",
@@ -57,14 +53,9 @@ fn main() {
     for (nx, ny) in grids {
         for (name, boundary) in [
             ("neumann", Boundary::all(SideCondition::Neumann)),
-            ("open top", walls_open_top),
+            ("open top", Boundary::open_top()),
         ] {
-            let shape = GridShape {
-                nx,
-                ny,
-                hx: 1.0 / nx as f64,
-                hy: 1.0 / nx as f64,
-            };
+            let shape = GridShape::square_cells(nx, ny, 1.0);
             let params = MultigridParams {
                 relative_tolerance: 1e-8,
                 ..MultigridParams::default()

@@ -133,6 +133,15 @@ impl Boundary {
         }
     }
 
+    /// Neumann on the sides and bottom, Dirichlet on top: the pressure of a box open at the
+    /// top.
+    pub fn open_top() -> Self {
+        Boundary {
+            top: SideCondition::Dirichlet,
+            ..Boundary::all(SideCondition::Neumann)
+        }
+    }
+
     /// True when no side is Dirichlet: the operator's kernel is the constants.
     pub fn is_singular(&self) -> bool {
         [self.left, self.right, self.bottom, self.top]
@@ -164,6 +173,17 @@ pub struct GridShape {
 }
 
 impl GridShape {
+    /// `nx x ny` square cells over a width `width` (cells of side `width / nx`).
+    pub fn square_cells(nx: usize, ny: usize, width: f64) -> Self {
+        let h = width / nx as f64;
+        GridShape {
+            nx,
+            ny,
+            hx: h,
+            hy: h,
+        }
+    }
+
     /// Number of cells, `nx ny`.
     pub fn cells(&self) -> usize {
         self.nx * self.ny

@@ -1,10 +1,10 @@
 //! `mpirun -np N xper-domain-mpi-check [--tolerance T] [--anderson] [--fail-on-rank R]
-//! [--pressure]`: the distributed contact solve of the deposit fixture over MPI (with `--anderson`, its sweeps
-//! Anderson-accelerated), compared on every rank with the undivided plain solve. Prints one
-//! line per rank and exits 0 when every body's velocity is within `SPREAD_MARGIN` times the
-//! spread of the solver (undivided solves with other sweep orders, see `serial_spread`); 1
-//! otherwise. With `--fail-on-rank R`,
-//! rank R panics before the solve, which must end the whole job (the panic hook's MPI_Abort).
+//! [--pressure]`: the distributed contact solve of the deposit fixture over MPI (with
+//! `--anderson`, its sweeps Anderson-accelerated), compared on every rank with the undivided
+//! plain solve. Prints one line per rank and exits 0 when every body's velocity is within
+//! `SPREAD_MARGIN` times the spread of the solver (undivided solves with other sweep orders,
+//! see `serial_spread`); 1 otherwise. With `--fail-on-rank R`, rank R panics before the
+//! solve, which must end the whole job (the panic hook's MPI_Abort).
 //! With `--pressure`, instead, the strip multigrid of a 512 x 64 grid (agglomerated on 4
 //! processes: its 4-row strips of 128 x 16 re-cut into 2) against the same solve on one
 //! strip: every rank's rows must be the same bits.
@@ -138,20 +138,11 @@ fn main() {
 /// The `--pressure` check: whether every rank's rows of four V(2,1) cycles over MPI are the
 /// bits of the one-strip solve (the same answer on every rank).
 fn pressure_matches_one_strip(comm: &MpiCommunicator) -> bool {
-    use xper_poisson::SideCondition::{Dirichlet, Neumann};
     use xper_poisson::{Boundary, GridShape, MultigridParams, OneStrip, StripLayout};
     let (rank, size) = (comm.rank(), comm.size());
     let (nx, ny) = (512, 64);
-    let shape = GridShape {
-        nx,
-        ny,
-        hx: 1.0 / nx as f64,
-        hy: 1.0 / nx as f64,
-    };
-    let boundary = Boundary {
-        top: Dirichlet,
-        ..Boundary::all(Neumann)
-    };
+    let shape = GridShape::square_cells(nx, ny, 1.0);
+    let boundary = Boundary::open_top();
     let params = MultigridParams {
         relative_tolerance: 1e-30,
         max_cycles: 4,
