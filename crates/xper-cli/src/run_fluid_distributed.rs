@@ -30,7 +30,7 @@ pub trait FluidRun {
     /// Each process's load and communication over a run of `wall` seconds (collective; empty
     /// on one process).
     fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary>;
-    /// Cells of the pressure solve's coarse grid that every process relaxes whole (`None` on
+    /// Cells of the pressure solve's coarsest grid that this process relaxes whole (`None` on
     /// one process).
     fn pressure_gathered_cells(&self) -> Option<usize> {
         None

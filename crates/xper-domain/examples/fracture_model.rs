@@ -1,10 +1,11 @@
 //! The distributed fracture solve on many processes, from the partition it would use and the
-//! measured cost of a point update: for each process count `P`, the elements' centroids are
-//! bisected as `DistributedFracture::new` does (an interface belongs to the owner of its first
-//! element, an element is held by its owner and by the owners of its interfaces), and each
-//! process's interface points, neighbours and shared elements are counted. Per NLGS sweep
-//! (Visseq et al., Comput. Mech. 49 (2012) 709: local sweeps, the shared elements' velocities
-//! exchanged with the neighbours after each, a global check every 5 sweeps):
+//! measured cost of a point update: for each process count `P`, the elements are partitioned
+//! by `xper_domain::fracture::element_owners`, as `DistributedFracture` does (an interface
+//! belongs to the owner of its first element, an element is held by its owner and by the
+//! owners of its interfaces), and each process's interface points, neighbours and shared
+//! elements are counted. Per NLGS sweep (Visseq et al., Comput. Mech. 49 (2012) 709: local
+//! sweeps, the shared elements' velocities exchanged with the neighbours after each, a global
+//! check every 5 sweeps):
 //!
 //! ```text
 //! T_P = max_p (edge_p t_u + max(inner_p t_u, neighbours_p alpha + bytes_p / beta))
@@ -26,12 +27,11 @@
 
 mod common;
 
-use common::{write_json, ALPHA, BETA};
+use common::{arguments, write_json, ALPHA, BETA};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use xper_domain::Bisection;
+use xper_domain::fracture::element_owners;
 use xper_fracture::FractureModel;
-use xper_math::Vector;
 
 const PROCESSES: [usize; 4] = [2, 48, 256, 1024];
 
@@ -74,16 +74,7 @@ struct Load {
 
 /// Each process's load.
 fn loads(model: &FractureModel, processes: usize) -> Vec<Load> {
-    let centroids: Vec<Vector> = (model.elements.iter())
-        .map(|e| {
-            let p = e.mesh_nodes.map(|n| model.mesh.nodes[n as usize]);
-            Vector::new(
-                (p[0][0] + p[1][0] + p[2][0]) / 3.0,
-                (p[0][1] + p[1][1] + p[2][1]) / 3.0,
-            )
-        })
-        .collect();
-    let owners = Bisection::new(&centroids, processes).assign(&centroids);
+    let owners = element_owners(model, processes);
     let mut holders: Vec<Vec<u32>> = owners.iter().map(|&o| vec![o]).collect();
     let mut points = vec![0; processes];
     for interface in &model.interfaces {
@@ -132,19 +123,8 @@ fn loads(model: &FractureModel, processes: usize) -> Vec<Load> {
 }
 
 fn main() {
-    let mut scenes = Vec::new();
-    let mut json = None;
-    let mut args = std::env::args().skip(1);
-    while let Some(arg) = args.next() {
-        if arg == "--json" {
-            json = Some(args.next().unwrap_or_else(|| {
-                eprintln!("fracture_model: --json needs a file name");
-                std::process::exit(2)
-            }));
-        } else {
-            scenes.push(PathBuf::from(arg));
-        }
-    }
+    let (arguments, json) = arguments("fracture_model");
+    let mut scenes: Vec<PathBuf> = arguments.into_iter().map(PathBuf::from).collect();
     if scenes.is_empty() {
         scenes = vec![
             "scenes/nooru_mohamed".into(),

@@ -13,23 +13,22 @@
 //! ```
 //!
 //! (messages, bytes and collectives each the largest count of any process; a reduction or
-//! gather over `P` processes is `log2 P` deep) with `alpha` = 2 us and `beta` = 5 GB/s (an InfiniBand cluster, as the rigid model of
-//! BENCHMARKS.md). The busiest process's compute is the critical path when every level is
+//! gather over `P` processes is `log2 P` deep) with `alpha` = 2 us and `beta` = 5 GB/s (an
+//! InfiniBand cluster, as the rigid model of BENCHMARKS.md). The busiest process's compute is the critical path when every level is
 //! balanced as the finest is; a process that waits at a level for a busier neighbour and is
 //! itself the busiest elsewhere makes the real path longer, so this is a lower bound of the
 //! compute part. (Timing the threads' CPU in the threaded run instead counts the caches
 //! refilled at every switch between 48 threads on 2 cores: 2.6 times a process's share of the
-//! serial cycle on 1024 x 1024 against 1.3 replayed.)
+//! serial cycle on 1024 x 1024 against 1.5 replayed.)
 //!
 //! `cargo run -p xper-domain --release --example pressure_model [-- NXxNY:P ...] [--json FILE]`
 
 mod common;
 
-use common::{write_json, ALPHA, BETA};
+use common::{arguments, write_json, ALPHA, BETA};
 use std::time::Instant;
 use xper_domain::strips::{strip_neighbours, StripComm};
 use xper_domain::{run_on_threads, Communicator};
-use xper_poisson::SideCondition::{Dirichlet, Neumann};
 use xper_poisson::{
     Boundary, GridShape, Multigrid, MultigridParams, RowExchange, RowLinks, StripLayout,
     StripMultigrid,
@@ -211,16 +210,8 @@ struct Process {
 }
 
 fn measure(nx: usize, ny: usize, processes: usize) -> Result<serde_json::Value, String> {
-    let shape = GridShape {
-        nx,
-        ny,
-        hx: 1.0 / nx as f64,
-        hy: 1.0 / nx as f64,
-    };
-    let boundary = Boundary {
-        top: Dirichlet,
-        ..Boundary::all(Neumann)
-    };
+    let shape = GridShape::square_cells(nx, ny, 1.0);
+    let boundary = Boundary::open_top();
     let params = MultigridParams {
         relative_tolerance: 1e-8,
         ..MultigridParams::default()
@@ -356,17 +347,9 @@ fn measure(nx: usize, ny: usize, processes: usize) -> Result<serde_json::Value, 
 }
 
 fn main() {
+    let (arguments, json) = arguments("pressure_model");
     let mut cases = Vec::new();
-    let mut json = None;
-    let mut args = std::env::args().skip(1);
-    while let Some(arg) = args.next() {
-        if arg == "--json" {
-            json = Some(args.next().unwrap_or_else(|| {
-                eprintln!("pressure_model: --json needs a file name");
-                std::process::exit(2)
-            }));
-            continue;
-        }
+    for arg in arguments {
         let parsed = arg.split_once(':').and_then(|(grid, p)| {
             let (x, y) = grid.split_once('x')?;
             Some((x.parse().ok()?, y.parse().ok()?, p.parse().ok()?))

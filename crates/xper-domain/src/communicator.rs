@@ -28,8 +28,9 @@ impl CommStats {
 ///
 /// Every collective call (`all_to_all`, `all_reduce_*`, `all_gather`) must be made by all
 /// ranks in the same order; an `exchange` by the ranks it links (each sending to and
-/// receiving from the others in matching order). Reductions are computed in rank order on every rank, so every rank gets
-/// bit-identical results and a run is reproducible for a given number of processes.
+/// receiving from the others in matching order). Reductions are computed in rank order on
+/// every rank, so every rank gets bit-identical results and a run is reproducible for a given
+/// number of processes.
 pub trait Communicator {
     /// This process, `0..size`.
     fn rank(&self) -> usize;

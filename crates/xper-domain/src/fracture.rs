@@ -48,17 +48,8 @@ impl<'c, C: Communicator + ?Sized> DistributedFracture<'c, C> {
     /// Partitions `whole` (the same model on every process, fresh or restored from a
     /// checkpoint) among the processes of `comm` and keeps this process's part. Collective.
     pub fn new(comm: &'c C, whole: &FractureModel) -> Self {
-        let (me, size) = (comm.rank() as u32, comm.size());
-        let centroids: Vec<Vector> = (whole.elements.iter())
-            .map(|e| {
-                let p = e.mesh_nodes.map(|n| whole.mesh.nodes[n as usize]);
-                Vector::new(
-                    (p[0][0] + p[1][0] + p[2][0]) / 3.0,
-                    (p[0][1] + p[1][1] + p[2][1]) / 3.0,
-                )
-            })
-            .collect();
-        let owners = Bisection::new(&centroids, size).assign(&centroids);
+        let me = comm.rank() as u32;
+        let owners = element_owners(whole, comm.size());
         let interfaces: Vec<u32> = (0..whole.interfaces.len() as u32)
             .filter(|&i| owners[whole.interfaces[i as usize].elements[0] as usize] == me)
             .collect();
@@ -164,6 +155,22 @@ impl<'c, C: Communicator + ?Sized> DistributedFracture<'c, C> {
             ..RankLoad::default()
         }
     }
+}
+
+/// The process owning each element of `whole` on `processes` processes: the recursive
+/// coordinate bisection of the element centroids. An interface belongs to the owner of its
+/// first element.
+pub fn element_owners(whole: &FractureModel, processes: usize) -> Vec<u32> {
+    let centroids: Vec<Vector> = (whole.elements.iter())
+        .map(|e| {
+            let p = e.mesh_nodes.map(|n| whole.mesh.nodes[n as usize]);
+            Vector::new(
+                (p[0][0] + p[1][0] + p[2][0]) / 3.0,
+                (p[0][1] + p[1][1] + p[2][1]) / 3.0,
+            )
+        })
+        .collect();
+    Bisection::new(&centroids, processes).assign(&centroids)
 }
 
 const ELEMENT_VALUES: usize = 1 + 6 + 6 + 6 + 36 + 4 + 4 + 1;
