@@ -271,7 +271,7 @@ fn solid_fraction(
         })
         .collect();
     let grid = state.fluid.grid;
-    let mut forcing = ImmersedForcing::new(&grid);
+    let mut forcing = ImmersedForcing::default();
     forcing.mark(&grid, &params.boundary, &disks, params.indicator);
     forcing
 }

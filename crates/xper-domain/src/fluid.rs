@@ -98,7 +98,11 @@ impl<C: Communicator + ?Sized> BlockLinks for BlockComm<'_, C> {
 /// besides its fluid work, relative to a fluid cell's: on `suspension_settling` (300 grains of
 /// 16 cells across, 512 x 1024 cells, 2 processes) the block holding every grain took
 /// 4.7 ms per step more than the other, 16 us per grain and 0.04 us per footprint cell,
-/// against 0.08 us per fluid cell.
+/// against 0.08 us per fluid cell. Since the forcing is marked in runs (2026-11-26) the
+/// grains' work is about half that, and this weight and equal cells (weight 0) give the same
+/// step time there (10.5 s for 508 steps on 2 processes, alternated): the grains' work and
+/// the projection lie in stages that each wait for their slowest process, so no cut of rows
+/// balances both (`bench-results/NOTES.md`).
 pub const FORCED_CELL_WEIGHT: Real = 0.5;
 
 /// The work of each row of `domain`: its cells, plus [`FORCED_CELL_WEIGHT`] per cell of the

@@ -307,7 +307,7 @@ impl FluidSolver {
             grid,
             whole: None,
             projection: Projection::new(&grid),
-            forcing: ImmersedForcing::new(&grid),
+            forcing: ImmersedForcing::default(),
             predicted: grid.zero_velocity(),
             inner: Vec::new(),
             halos_current_at: None,
