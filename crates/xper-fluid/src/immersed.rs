@@ -554,24 +554,20 @@ mod tests {
                 forcing.apply(&grid, &disks, density, dt, &mut forced_u, &mut forces);
                 assert_eq!(forced_u, expected_u);
                 forcing.inner_momentum(&grid, &disks, density, &forced_u, &mut inner);
-                let close = |a: Real, b: Real, scale: Real| (a - b).abs() <= 1e-12 * scale;
+                // Equal to 1e-12 of the vector's size: [x, y, moment].
+                let close = |a: [Real; 3], e: [Real; 3]| {
+                    let scale = 1.0 + e.iter().map(|v| v.abs()).sum::<Real>();
+                    a.iter()
+                        .zip(&e)
+                        .all(|(a, e)| (a - e).abs() <= 1e-12 * scale)
+                };
                 for p in 0..disks.len() {
                     let (f, e) = (forces[p], expected_forces[p]);
-                    let scale = 1.0 + e.force.norm() + e.torque.abs();
-                    assert!(
-                        close(f.force.x, e.force.x, scale)
-                            && close(f.force.y, e.force.y, scale)
-                            && close(f.torque, e.torque, scale),
-                        "disk {p}: {f:?} against {e:?}"
-                    );
+                    let triple = |f: HydrodynamicForce| [f.force.x, f.force.y, f.torque];
+                    assert!(close(triple(f), triple(e)), "disk {p}: {f:?} against {e:?}");
                     let (m, e) = (inner[p], expected_inner[p]);
-                    let scale = 1.0 + e.linear.norm() + e.angular.abs();
-                    assert!(
-                        close(m.linear.x, e.linear.x, scale)
-                            && close(m.linear.y, e.linear.y, scale)
-                            && close(m.angular, e.angular, scale),
-                        "disk {p}: {m:?} against {e:?}"
-                    );
+                    let triple = |m: InnerMomentum| [m.linear.x, m.linear.y, m.angular];
+                    assert!(close(triple(m), triple(e)), "disk {p}: {m:?} against {e:?}");
                 }
                 let tied = disks.len() - 1;
                 assert_eq!(
