@@ -161,8 +161,8 @@ impl ForcedRun {
     }
 }
 
-/// The solid fraction of the face at offset `(dx, dy)` from the centre of `disk`, whose
-/// certain squared distances are `(outside, inside)`.
+/// The solid fraction of a face at squared distance `squared` from the centre of `disk`,
+/// whose certain squared distances are `(outside, inside)`.
 #[inline(always)]
 fn fraction_at(
     indicator: SolidIndicator,
@@ -181,9 +181,10 @@ fn fraction_at(
 }
 
 impl ImmersedForcing {
-    /// For each disk, the disks whose footprints (the faces within `radius + h`) may overlap
-    /// its own: sorted by the left end of their footprint, each disk is paired with those
-    /// starting before its right end.
+    /// For each disk, the disks whose footprints (the faces within at most `radius + h / 2`
+    /// of the centre) may overlap its own, found with a margin (`radius + 2 h` each): sorted
+    /// by the left end of that reach, each disk is paired with those starting before its
+    /// right end.
     fn find_neighbours(&mut self, disks: &[ImmersedDisk], h: Real) {
         let reach = |p: usize| disks[p].radius + 2.0 * h;
         let mut order: Vec<usize> = (0..disks.len()).collect();
@@ -491,7 +492,7 @@ mod tests {
     /// The marking by rows agrees with every face tried against every disk: the same fractions
     /// to the bit and the same owners, seen through the forcing (the same velocities to the bit,
     /// the same forces and inner momenta to round-off), for two boundaries, both indicators
-    /// and a marking that reuses the slots of the last one.
+    /// and a marking that reuses the last one's workspaces.
     #[test]
     fn the_runs_mark_what_every_face_against_every_disk_gives() {
         let grid = MacGrid {
