@@ -205,7 +205,7 @@ pub struct NlgsSweeper<'a> {
     is_adhesive: Vec<bool>,
     /// Factorised adhesive contacts; empty when none is adhesive.
     prepared: Vec<PreparedCohesiveContact>,
-    /// Reciprocals of the local solve of each contact (of `W_aa + eps I` where proximal).
+    /// The local solve's reciprocal of each contact (of `W_aa + eps I` where proximal).
     factors: Vec<LocalFactors>,
     q_norm: f64,
 }
