@@ -106,6 +106,16 @@ pub fn solve_one_contact_factored(
 mod tests {
     use super::*;
 
+    /// Uniform numbers in [-1, 1) from a linear congruential generator seeded with `seed`.
+    fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        }
+    }
+
     fn check_solution(w: &Block2, uf: [f64; 2], mu: f64) {
         let r = solve_one_contact(w, uf, mu);
         let u = [
@@ -136,13 +146,7 @@ mod tests {
 
     #[test]
     fn random_blocks_satisfy_the_law() {
-        let mut s = 7u64;
-        let mut rnd = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rnd = uniform(7);
         for _ in 0..10_000 {
             let (a, b, c) = (rnd() * 2.0, rnd() * 2.0, rnd());
             // symmetric positive definite: L L^T with L = [[a,0],[c,b]] + diagonal shift
@@ -151,17 +155,12 @@ mod tests {
             check_solution(&w, [rnd(), rnd() * 3.0], rnd().abs());
         }
     }
+
     /// A disk's block has a `W_nt` of round-off: its sliding cases multiply by `W_tt / det W`
     /// instead of dividing by `W_nn + s mu W_nt`, and must land within 1e-12 of the division.
     #[test]
     fn sliding_on_a_decoupled_block_matches_the_division() {
-        let mut s = 5u64;
-        let mut rnd = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut rnd = uniform(5);
         let mut sliding = 0;
         for _ in 0..10_000 {
             let (wnn, wtt) = (rnd().abs() + 0.1, 3.0 * (rnd().abs() + 0.1));
