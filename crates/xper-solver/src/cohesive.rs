@@ -46,7 +46,7 @@ pub fn solve_one_cohesive_contact(
     mu: f64,
     term: &CohesiveTerm,
 ) -> [f64; 2] {
-    PreparedCohesiveContact::new(w, term, mu).solve(u_free, mu)
+    PreparedCohesiveContact::new(w, term).solve(u_free, mu)
 }
 
 /// The parts of a cohesive contact's local solve that depend only on `W_aa` and the term,
@@ -67,9 +67,9 @@ fn mul(m: &Block2, x: [f64; 2]) -> [f64; 2] {
 }
 
 impl PreparedCohesiveContact {
-    /// Prepares the local solve of a contact with block `w`, adhesive part `term` and friction
-    /// coefficient `mu` (the one [`Self::solve`] is then called with).
-    pub fn new(w: &Block2, term: &CohesiveTerm, mu: f64) -> Self {
+    /// Prepares the local solve of a contact with block `w` and adhesive part `term` (the
+    /// friction coefficient is [`Self::solve`]'s).
+    pub fn new(w: &Block2, term: &CohesiveTerm) -> Self {
         let [k0, k1] = term.stiffness;
         let [w0, w1, w2, w3] = *w;
         // A = I + W K and its inverse.
@@ -88,11 +88,12 @@ impl PreparedCohesiveContact {
             w_eff,
             offset_velocity,
             term: *term,
-            factors: LocalFactors::new(&w_eff, mu),
+            factors: LocalFactors::new(&w_eff),
         }
     }
 
-    /// The total impulse `R = R_c - (o + K U)` for the free local velocity `u_free`.
+    /// The total impulse `R = R_c - (o + K U)` for the free local velocity `u_free` and the
+    /// friction coefficient `mu`.
     #[inline(always)]
     pub fn solve(&self, u_free: [f64; 2], mu: f64) -> [f64; 2] {
         let qi = mul(&self.inverse, u_free);

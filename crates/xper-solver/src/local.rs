@@ -15,7 +15,7 @@ use crate::operator::Block2;
 /// once and calls [`solve_one_contact_factored`].
 #[inline]
 pub fn solve_one_contact(w: &Block2, u_free: [f64; 2], mu: f64) -> [f64; 2] {
-    solve_one_contact_factored(w, &LocalFactors::new(w, mu), u_free, mu)
+    solve_one_contact_factored(w, &LocalFactors::new(w), u_free, mu)
 }
 
 /// The reciprocal [`solve_one_contact_factored`] multiplies by instead of dividing, computed
@@ -25,8 +25,8 @@ pub fn solve_one_contact(w: &Block2, u_free: [f64; 2], mu: f64) -> [f64; 2] {
 /// The sliding cases need `1 / (W_nn + s mu W_nt)`. When `W_nt` is negligible (a disk's
 /// contact: its normal passes through the centres, so `W_nt` is round-off) that is
 /// `W_tt / det W` to a relative 1e-12, a multiplication; the contacts of polygons and of
-/// finite elements, whose `W_nt` is not small, divide when they slide. A stored reciprocal per sliding direction would cost
-/// 16 bytes more per contact for every contact.
+/// finite elements, whose `W_nt` is not small, divide when they slide. A stored reciprocal
+/// per sliding direction would cost 16 bytes more per contact for every contact.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct LocalFactors {
     /// `1 / det W`, or 0 when `det W <= 0` (no sticking solution is tried).
@@ -34,9 +34,8 @@ pub struct LocalFactors {
 }
 
 impl LocalFactors {
-    /// The factors of block `w` (the friction coefficient only matters to
-    /// [`solve_one_contact_factored`]).
-    pub fn new(w: &Block2, _mu: f64) -> Self {
+    /// The factors of block `w`.
+    pub fn new(w: &Block2) -> Self {
         let [wnn, wnt, wtn, wtt] = *w;
         let det = wnn * wtt - wnt * wtn;
         LocalFactors {

@@ -307,13 +307,12 @@ impl<'a> NlgsSweeper<'a> {
                     if !adhesive(a) {
                         return PreparedCohesiveContact::default();
                     }
-                    PreparedCohesiveContact::new(&local_block(a), &cohesion[a], mu[a])
+                    PreparedCohesiveContact::new(&local_block(a), &cohesion[a])
                 })
                 .collect()
         };
-        let factors: Vec<LocalFactors> = (0..n)
-            .map(|a| LocalFactors::new(&local_block(a), mu[a]))
-            .collect();
+        let factors: Vec<LocalFactors> =
+            (0..n).map(|a| LocalFactors::new(&local_block(a))).collect();
         Ok(NlgsSweeper {
             mu,
             normal_shift,
