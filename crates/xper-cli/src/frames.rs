@@ -83,11 +83,14 @@ pub fn bodies_grid(world: &World) -> UnstructuredGrid {
 
 /// Contact status for output: 0 open (no impulse), 1 sticking, 2 sliding.
 fn status(world: &World, c: &xper_geometry::Contact) -> i32 {
-    let InteractionLaw::SignoriniCoulomb(law) = world.laws.law(c.law);
+    let friction = match world.contact_law(c.row.bodies) {
+        Some(InteractionLaw::SignoriniCoulomb(law)) => law.friction,
+        None => 0.0,
+    };
     let [rn, rt] = c.impulse;
     if rn <= 0.0 {
         0
-    } else if rt.abs() < law.friction * rn * (1.0 - 1e-9) {
+    } else if rt.abs() < friction * rn * (1.0 - 1e-9) {
         1
     } else {
         2
@@ -96,25 +99,30 @@ fn status(world: &World, c: &xper_geometry::Contact) -> i32 {
 
 /// Contacts as points (`normal`, `normal_impulse`, `tangential_impulse` in N s/m, `status`,
 /// `gap`) and, when `chains` is set, as lines between the two body centres (walls: the contact
-/// point) with the same cell data, to draw force chains.
+/// point) with the same cell data, to draw force chains. A contact point is the one detected
+/// at the beginning of the step, carried with its first body to that body's current position
+/// (its lever arm is what a contact keeps).
 pub fn contacts_grid(world: &World, chains: bool) -> UnstructuredGrid {
     let mut g = UnstructuredGrid::default();
-    let contacts = &world.contacts.contacts;
-    for c in contacts {
+    let contacts = &world.contacts;
+    for c in contacts.iter() {
         let first = g.points.len() as i64;
+        let point = c
+            .row
+            .point(&world.bodies.position[c.row.bodies[0] as usize]);
         if chains {
-            for &body in &c.bodies {
+            for &body in &c.row.bodies {
                 let b = body as usize;
                 let end = if world.bodies.is_dynamic(b) {
                     world.bodies.position[b]
                 } else {
-                    c.point
+                    point
                 };
                 g.points.push([end.x, end.y, 0.0]);
             }
             g.add_cell(VTK_LINE, &[first, first + 1]);
         } else {
-            g.points.push([c.point.x, c.point.y, 0.0]);
+            g.points.push([point.x, point.y, 0.0]);
             g.add_cell(VTK_VERTEX, &[first]);
         }
     }
@@ -124,7 +132,7 @@ pub fn contacts_grid(world: &World, chains: bool) -> UnstructuredGrid {
             3,
             contacts
                 .iter()
-                .flat_map(|c| [c.normal.x, c.normal.y, 0.0])
+                .flat_map(|c| [c.row.normal[0], c.row.normal[1], 0.0])
                 .collect(),
         ),
         f64_array(
@@ -139,7 +147,7 @@ pub fn contacts_grid(world: &World, chains: bool) -> UnstructuredGrid {
         ),
         i32_array(
             "status",
-            contacts.iter().map(|c| status(world, c)).collect(),
+            contacts.iter().map(|c| status(world, &c)).collect(),
         ),
         f64_array("gap", 1, contacts.iter().map(|c| c.gap).collect()),
     ];

@@ -161,9 +161,10 @@ impl Outputs {
 /// First field of `checkpoint.bin` of rigid and fluid runs: "XP" and the version of the
 /// layout, raised whenever a type the checkpoint holds changes (version 2: `NlgsParams` gained
 /// `acceleration`; version 3: `BodySet` keeps the imposed degrees of freedom instead of the
-/// inverse masses). bincode is not self-describing, so without it a checkpoint of another build
-/// could be misread instead of refused.
-pub(crate) const CHECKPOINT_TAG: u32 = 0x5850_0003;
+/// inverse masses; version 4: a contact set holds its contacts' rows, keys, gaps and impulses
+/// as parallel arrays). bincode is not self-describing, so without it a checkpoint of another
+/// build could be misread instead of refused.
+pub(crate) const CHECKPOINT_TAG: u32 = 0x5850_0004;
 
 /// The bytes of `checkpoint.bin`: the tag, the scene hash and the state, by bincode.
 pub(crate) fn checkpoint_bytes<T: Serialize>(

@@ -240,8 +240,8 @@ fn column_case() -> Result<Case, CliError> {
     } else {
         Real::INFINITY
     };
-    for c in &w.contacts.contacts {
-        let [a, b] = c.bodies;
+    for c in w.contacts.iter() {
+        let [a, b] = c.row.bodies;
         let below = if b as usize == n {
             a as usize
         } else {
@@ -306,11 +306,7 @@ fn deposit_case(count: usize, steps: usize, accelerated: bool) -> Result<Vec<Cas
         |a, b| w.laws.between(a, b),
         &mut contacts,
     );
-    let overlap = contacts
-        .contacts
-        .iter()
-        .map(|c| -c.gap)
-        .fold(0.0, Real::max);
+    let overlap = contacts.gaps.iter().map(|&gap| -gap).fold(0.0, Real::max);
     let ke = w.kinetic_energy();
     let (overlaps, decays, sweeps) = if accelerated {
         (

@@ -107,7 +107,8 @@ impl SplitMasses for RigidContactOperator {
         self.rows[a].set_full_block(block);
     }
     fn refresh_block(&mut self, a: usize) {
-        self.rows[a].refresh_block(&self.bodies);
+        let bodies = &self.bodies;
+        self.rows[a].refresh_block(|b| bodies[b].inv_mass);
     }
 }
 

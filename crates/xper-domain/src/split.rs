@@ -38,9 +38,7 @@ impl LocalProblem {
             rows: self.problem.rows.clone(),
         };
         interface.split_masses(&mut op.bodies);
-        for row in &mut op.rows {
-            row.refresh_block(&op.bodies);
-        }
+        op.refresh_blocks();
         op
     }
 

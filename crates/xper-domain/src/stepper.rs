@@ -36,7 +36,7 @@ use crate::local_bodies;
 use crate::partition::{in_box, Bisection};
 use crate::shared_solve::SharedNlgs;
 use xper_bodies::{BodySet, Ownership};
-use xper_geometry::Contact;
+use xper_geometry::{Contact, ContactKey, ContactRow, ContactSet};
 use xper_math::{Real, Vector};
 use xper_nscd::{contact_owner_body, EnergyBudget, MoreauJean, StepError, StepReport, World};
 
@@ -75,7 +75,7 @@ pub struct RankLoad {
 }
 
 const STATE: usize = 7;
-const CONTACT: usize = 11;
+const CONTACT: usize = 12;
 
 /// A rigid-body world stepped by `comm.size()` processes (see the module documentation).
 pub struct DistributedStepper<'c, C: Communicator + ?Sized> {
@@ -122,7 +122,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
         let halo = 2.0 * r_max + world.params.alert_distance;
         let mut local = world.clone();
         local.bodies = BodySet::new();
-        local.contacts.contacts.clear();
+        local.contacts.clear();
         let mut me = DistributedStepper {
             comm,
             params,
@@ -130,7 +130,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
             movable,
             driven_of,
             owned: Vec::new(),
-            carried: world.contacts.contacts.clone(),
+            carried: world.contacts.iter().collect(),
             partition: Bisection::new(&[], 1),
             region: (Vector::zeros(), Vector::zeros()),
             partitioned_at: world.step,
@@ -187,7 +187,12 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
             scale: Real::INFINITY,
             ..Default::default()
         };
-        let mut report = self.stepper.step_with(&mut self.local, &mut solver)?;
+        let stepped = self.stepper.step_with(&mut self.local, &mut solver);
+        if stepped.is_err() {
+            // The contacts as they were, so that a gather still finds them.
+            self.carry_local_contacts();
+        }
+        let mut report = stepped?;
         self.load.interface_bodies = solver.shared_bodies;
         self.load.contacts = self.local.contacts.len();
         self.store_local();
@@ -237,8 +242,9 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
         for &b in &self.owned {
             owned[b as usize] = true;
         }
-        self.carried
-            .retain(|c| owned[contact_owner_body(bodies, c.bodies[0] as _, c.bodies[1] as _)]);
+        self.carried.retain(|c| {
+            owned[contact_owner_body(bodies, c.row.bodies[0] as _, c.row.bodies[1] as _)]
+        });
     }
 
     /// Stage 1: bodies whose centre left this region go to its owner, with the contacts they
@@ -279,7 +285,8 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
     fn send_contacts(&mut self, contacts: Vec<Contact>, near: bool) {
         let mut sends = vec![Vec::new(); self.comm.size()];
         for c in &contacts {
-            let b = contact_owner_body(&self.all.bodies, c.bodies[0] as _, c.bodies[1] as _);
+            let [i, j] = c.row.bodies;
+            let b = contact_owner_body(&self.all.bodies, i as _, j as _);
             let p = self.partition.part_of(&self.all.bodies.position[b]);
             write_contact(&mut sends[p as usize], c);
         }
@@ -344,15 +351,16 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
             &mut self.local_of,
         );
         let local_of = &self.local_of;
-        self.local.contacts.contacts = (self.carried.iter())
-            .filter_map(|c| {
-                let [i, j] = c.bodies.map(|b| local_of[b as usize]);
-                (i != u32::MAX && j != u32::MAX).then_some(Contact {
-                    bodies: [i, j],
-                    ..*c
-                })
-            })
-            .collect();
+        // The carried contacts live in the local world during the step, in ascending order of
+        // bodies as a detection expects them (those received from other processes come
+        // rank by rank).
+        let mut carried = std::mem::take(&mut self.carried);
+        carried.retain_mut(|c| {
+            c.row.bodies = c.row.bodies.map(|b| local_of[b as usize]);
+            !c.row.bodies.contains(&u32::MAX)
+        });
+        carried.sort_by_key(|c| (c.row.bodies, c.key.feature));
+        self.local.contacts = carried.into_iter().collect();
         self.local.step = self.all.step;
         self.local.time = self.all.time;
         self.local.params.dt = self.all.params.dt;
@@ -370,14 +378,22 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
                 all.angular_velocity[b] = local.angular_velocity[k];
             }
         }
-        self.carried = (self.local.contacts.contacts.iter())
-            .map(|c| Contact {
-                bodies: c.bodies.map(|b| local.id[b as usize] as u32),
-                ..*c
-            })
-            .collect();
+        self.carry_local_contacts();
         self.all.step = self.local.step;
         self.all.time = self.local.time;
+    }
+
+    /// The local world's contacts into the carried ones, in global body ids; the local world
+    /// holds none until the next step loads them back.
+    fn carry_local_contacts(&mut self) {
+        let id = &self.local.bodies.id;
+        self.carried = (self.local.contacts.iter())
+            .map(|mut c| {
+                c.row.bodies = c.row.bodies.map(|b| id[b as usize] as u32);
+                c
+            })
+            .collect();
+        self.local.contacts = ContactSet::default();
     }
 
     /// Stage 4: totals over processes into `report` and the global energy budget, with the
@@ -464,8 +480,8 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
                     .map(read_contact),
             );
         }
-        contacts.sort_by_key(|c: &Contact| (c.bodies, c.feature));
-        world.contacts.contacts = contacts;
+        contacts.sort_by_key(|c: &Contact| (c.row.bodies, c.key.feature));
+        world.contacts = contacts.into_iter().collect();
         Some(world)
     }
 
@@ -508,30 +524,29 @@ fn set_state(bodies: &mut BodySet, s: &[f64]) -> u32 {
     b as u32
 }
 
+/// A contact as [`CONTACT`] numbers: bodies, feature, normal, lever arms, gap, impulse
+/// (the Delassus block is the step's, recomputed by each).
 fn write_contact(out: &mut Vec<f64>, c: &Contact) {
-    out.extend_from_slice(&[
-        c.bodies[0] as f64,
-        c.bodies[1] as f64,
-        c.feature as f64,
-        c.law as f64,
-        c.point.x,
-        c.point.y,
-        c.normal.x,
-        c.normal.y,
-        c.gap,
-        c.impulse[0],
-        c.impulse[1],
-    ]);
+    let r = &c.row;
+    out.extend_from_slice(&[r.bodies[0] as f64, r.bodies[1] as f64]);
+    out.push(c.key.feature as f64);
+    out.extend_from_slice(&r.normal);
+    out.extend_from_slice(&r.arms);
+    out.extend_from_slice(&[c.gap, c.impulse[0], c.impulse[1]]);
 }
 
 fn read_contact(m: &[f64]) -> Contact {
     Contact {
-        bodies: [m[0] as u32, m[1] as u32],
-        feature: m[2] as u32,
-        law: m[3] as u16,
-        point: Vector::new(m[4], m[5]),
-        normal: Vector::new(m[6], m[7]),
-        gap: m[8],
-        impulse: [m[9], m[10]],
+        row: ContactRow {
+            bodies: [m[0] as u32, m[1] as u32],
+            normal: [m[3], m[4]],
+            arms: [m[5], m[6], m[7], m[8]],
+            block: [0.0; 3],
+        },
+        key: ContactKey {
+            feature: m[2] as u32,
+        },
+        gap: m[9],
+        impulse: [m[10], m[11]],
     }
 }

@@ -216,7 +216,7 @@ fn a_body_crossing_regions_in_one_step_migrates_to_a_process_that_is_not_a_neigh
         Body::disk(0.01, 1000.0, Vector::new(0.2, 1.0)).with_velocity(Vector::new(2500.0, 0.0)),
     );
     world.bodies = bodies;
-    world.contacts.contacts.clear();
+    world.contacts.clear();
     world.params.gravity = Vector::zeros();
     let steps = 3;
     let reference = serial(world.clone(), steps);

@@ -10,7 +10,9 @@
 //! its box at the build grown by `d_b`, and every pair within the alert distance is still a
 //! candidate while the two largest `d_b` sum to at most `s`.
 //!
-//! The candidates are kept in ascending `(first body, second body)` order, and the narrow
+//! The candidates are kept in ascending `(first body, second body)` order (compressed: the
+//! second bodies in one array, where each first body's start; 4 bytes per pair and per
+//! body instead of 8 per pair), and the narrow
 //! phase finds exactly the contacts within the alert distance, so the contacts, their order
 //! and hence the whole run do not depend on the skin or on when the list was built: a run
 //! resumed from a checkpoint (which starts a new list) matches an uninterrupted one.
@@ -20,10 +22,11 @@
 //! `[alert, SKIN_CAP_OVER_SIZE * largest box extent]`.
 
 use crate::broad::BroadPhase;
-use crate::contacts::{Contact, ContactSet};
+use crate::carry::CarryOver;
+use crate::contacts::{Contact, ContactKey, ContactRow, ContactSet};
 use crate::narrow::{collide, disk_disk_point, Manifold};
 use xper_bodies::{BodySet, Shape};
-use xper_math::buffer::{clear_for, refill};
+use xper_math::buffer::refill;
 use xper_math::Real;
 
 /// Calls a candidate list should last, at the rate the bodies moved during the previous one.
@@ -36,17 +39,10 @@ pub const TARGET_STEPS_PER_BUILD: Real = 8.0;
 /// wall: beyond it, the candidates would reach past the nearest neighbours.
 pub const SKIN_CAP_OVER_SIZE: Real = 0.25;
 
-/// The impulse of a contact of the previous step, kept for the warm start.
-#[derive(Clone, Copy, Debug, Default)]
-struct CarriedImpulse {
-    bodies: [u32; 2],
-    feature: u32,
-    impulse: [Real; 2],
-}
-
-/// A body's pose when the candidate list was built, in single precision (16 bytes instead of
-/// 40 with the id): the rounding is bounded by [`Detector::pose_rounding`] and added to the
-/// displacement bounds, so no pair within the alert distance is missed.
+/// A body's pose when the candidate list was built, in single precision: the rounding is
+/// bounded by [`Detector::pose_rounding`] and added to the displacement bounds, so no pair
+/// within the alert distance is missed. A detector keeps the position of every body (8 bytes)
+/// and the rotation and reach only of the bodies with a reach (not disks).
 #[derive(Clone, Copy, Debug)]
 struct BuildPose {
     x: f32,
@@ -125,13 +121,21 @@ pub struct DetectorStats {
 
 /// Detection with its reusable buffers: candidate pairs, narrow phase, carry-over of impulses.
 ///
-/// Between calls it holds the candidate pairs and the poses they were built at. During a call
-/// it also holds the non-zero impulses of the previous contacts (32 bytes each), for the
-/// merge with the new ones, and during a list build the broad phase's arrays.
+/// Between calls it holds the candidate pairs and the poses they were built at; during a list
+/// build, also the broad phase's arrays. The new contacts are written over the previous ones,
+/// whose impulses they take, in the contact set's own buffers (see `carry.rs`).
 #[derive(Clone, Debug, Default)]
 pub struct Detector {
-    candidates: Vec<(u32, u32)>,
-    built: Vec<BuildPose>,
+    /// Where each first body's candidates start in `seconds` (one entry per body and one past
+    /// the end).
+    first_start: Vec<u32>,
+    /// The second body of each candidate pair, ascending within each first body's.
+    seconds: Vec<u32>,
+    /// Each body's position at the build, `[x, y]` of its [`BuildPose`].
+    built: Vec<[f32; 2]>,
+    /// The bodies with a reach (not disks), ascending, with `[angle, reach]` of their
+    /// [`BuildPose`].
+    built_turning: Vec<(u32, [f32; 2])>,
     /// [`ids_fingerprint`] of the bodies at the build.
     built_ids: u64,
     /// The largest displacement bound the single-precision poses may hide (m).
@@ -151,7 +155,7 @@ impl Detector {
     /// What the detector has done so far.
     pub fn stats(&self) -> DetectorStats {
         DetectorStats {
-            candidates: self.candidates.len(),
+            candidates: self.seconds.len(),
             skin: self.skin,
             ..self.stats
         }
@@ -160,9 +164,9 @@ impl Detector {
     /// Replaces `contacts` by the contacts of the current configuration within `alert`, in
     /// ascending `(first body, second body)` order.
     ///
-    /// `law_of(group_a, group_b)` gives the law between two groups, or `None` when they do not
-    /// interact. Pairs of bodies that contacts cannot move (all inverse masses zero) are
-    /// skipped. Impulses of contacts present before (same bodies and features) are kept.
+    /// `law_of(group_a, group_b)` is `None` when two groups do not interact (a law table's
+    /// `between`): their pairs are skipped, as are pairs of bodies that contacts cannot move
+    /// (all inverse masses zero). Impulses of contacts present before (same bodies and features) are kept.
     pub fn detect(
         &mut self,
         bodies: &BodySet,
@@ -171,21 +175,15 @@ impl Detector {
         contacts: &mut ContactSet,
     ) {
         self.stats.calls += 1;
-        // The list first, then the impulses to carry over: the two are never held at once.
+        // The list first, then the contacts: a build's arrays are gone before the merge.
         let moved = self.moved_since_build(bodies, alert);
         if moved.is_none_or(|m| m > self.skin) {
             self.build(bodies, alert, moved);
         }
         self.calls_since_build += 1;
-        // Held during detection only, so not during the solve (32 bytes per contact).
-        let carried = carried_impulses(&contacts.contacts);
-        // Room for as many contacts as before and a sixteenth more, so the buffer tracks the
-        // count instead of doubling (see `xper_math::buffer`).
-        let previous = contacts.contacts.len();
-        clear_for(&mut contacts.contacts, previous + previous / 16 + 16);
+        let mut merge = CarryOver::new(contacts);
         let immobile = |b: usize| !bodies.is_movable(b);
-        let mut next_carried = 0;
-        for &(i, j) in &self.candidates {
+        let mut pair = |i: u32, j: u32| {
             let (a, b) = (i as usize, j as usize);
             let (shape_a, shape_b) = (&bodies.shape[a], &bodies.shape[b]);
             let (pa, pb) = (&bodies.position[a], &bodies.position[b]);
@@ -194,16 +192,13 @@ impl Detector {
                 (Shape::Disk { radius: ra }, Shape::Disk { radius: rb }) => {
                     match disk_disk_point(pa, *ra, pb, *rb, alert) {
                         Some(p) => Manifold::one(p),
-                        None => continue,
+                        None => return,
                     }
                 }
                 _ => Manifold::EMPTY,
             };
-            let Some(law) = law_of(bodies.group[a], bodies.group[b]) else {
-                continue;
-            };
-            if immobile(a) && immobile(b) {
-                continue;
+            if law_of(bodies.group[a], bodies.group[b]).is_none() || immobile(a) && immobile(b) {
+                return;
             }
             let m = if disks.len > 0 {
                 disks
@@ -212,22 +207,24 @@ impl Detector {
                 collide(shape_a, pa, angle_a, shape_b, pb, angle_b, alert)
             };
             if m.as_slice().is_empty() {
-                continue;
+                return;
             }
-            let previous = carried_of_pair(&carried, &mut next_carried, [i, j]);
+            let (previous, count) = merge.previous_of([i, j]);
             for p in m.as_slice() {
-                let impulse = (previous.iter())
-                    .find(|c| c.feature == p.feature)
-                    .map_or([0.0, 0.0], |c| c.impulse);
-                contacts.contacts.push(Contact {
-                    bodies: [i, j],
-                    feature: p.feature,
-                    law,
-                    point: p.point,
-                    normal: p.normal,
+                let impulse = (previous[..count].iter())
+                    .find(|c| c.0 == p.feature)
+                    .map_or([0.0, 0.0], |c| c.1);
+                merge.push(Contact {
+                    row: ContactRow::new([i, j], &p.point, &p.normal, pa, pb),
+                    key: ContactKey { feature: p.feature },
                     gap: p.gap,
                     impulse,
                 });
+            }
+        };
+        for (i, range) in (0u32..).zip(self.first_start.windows(2)) {
+            for &j in &self.seconds[range[0] as usize..range[1] as usize] {
+                pair(i, j);
             }
         }
     }
@@ -245,14 +242,15 @@ impl Detector {
         // The two largest squared bounds: the square root is taken of these two only (for a
         // disk, `d_b^2` is the squared displacement itself).
         let (mut first, mut second): (Real, Real) = (0.0, 0.0);
-        for (b, pose) in self.built.iter().enumerate() {
+        let mut turning = self.built_turning.iter().peekable();
+        for (b, &[x, y]) in self.built.iter().enumerate() {
             let p = bodies.position[b];
-            let (dx, dy) = (p.x - pose.x as Real, p.y - pose.y as Real);
+            let (dx, dy) = (p.x - x as Real, p.y - y as Real);
             let mut squared = dx * dx + dy * dy;
-            if pose.reach > 0.0 {
+            if let Some(&(_, [angle_built, reach])) = turning.next_if(|t| t.0 as usize == b) {
                 let angle = bodies.angle[b];
-                let turned = wrapped(angle - pose.angle as Real).abs() + wrap_error(angle);
-                let d = squared.sqrt() + pose.reach as Real * turned;
+                let turned = wrapped(angle - angle_built as Real).abs() + wrap_error(angle);
+                let d = squared.sqrt() + reach as Real * turned;
                 squared = d * d;
             }
             second = second.max(squared.min(first));
@@ -270,6 +268,7 @@ impl Detector {
         self.stats.builds += 1;
         self.built_ids = ids_fingerprint(&bodies.id);
         let mut rounding: Real = 0.0;
+        self.built_turning.clear();
         refill(
             &mut self.built,
             (0..bodies.len()).map(|b| {
@@ -281,27 +280,31 @@ impl Detector {
                 let p = bodies.position[b];
                 let (pose, hidden) = BuildPose::rounded(p.x, p.y, bodies.angle[b], reach);
                 rounding = rounding.max(hidden);
-                pose
+                if pose.reach > 0.0 {
+                    self.built_turning
+                        .push((b as u32, [pose.angle, pose.reach]));
+                }
+                [pose.x, pose.y]
             }),
         );
+        self.built_turning.shrink_to_fit();
         self.pose_rounding = rounding;
         // What serves only this build is held only during it, and never all at once: the list
         // that ends (dropped first), the broad phase's arrays (dropped once the pairs are
-        // found), the unsorted pairs and the sort's counts (dropped once sorted). Between
-        // builds the detector holds the list and the poses alone; at a build its peak is the
-        // broad phase's arrays and the unsorted pairs.
-        let previous = self.candidates.len();
-        self.candidates = Vec::new();
+        // found), the unsorted pairs (dropped once sorted). Between builds the detector holds
+        // the list and the poses alone; at a build its peak is the broad phase's arrays and
+        // the unsorted pairs.
+        let previous = self.seconds.len();
+        self.seconds = Vec::new();
         let mut unsorted = Vec::with_capacity(previous + previous / 16 + 16);
         let mut broad = BroadPhase::new();
         broad.find_pairs(bodies, alert + self.skin, &mut unsorted);
         drop(broad);
-        let mut group_start = Vec::new();
         sort_pairs(
             &unsorted,
             bodies.len(),
-            &mut group_start,
-            &mut self.candidates,
+            &mut self.first_start,
+            &mut self.seconds,
         );
     }
 
@@ -322,52 +325,10 @@ impl Detector {
     }
 }
 
-/// The non-zero impulses of `previous`, ascending by bodies, for the merge with the new
-/// contacts.
-fn carried_impulses(previous: &[Contact]) -> Vec<CarriedImpulse> {
-    let loaded = |c: &&Contact| c.impulse != [0.0, 0.0];
-    // Sized exactly: collecting a filter would grow the vector by doubling.
-    let mut carried = Vec::with_capacity(previous.iter().filter(loaded).count());
-    carried.extend(previous.iter().filter(loaded).map(|c| CarriedImpulse {
-        bodies: c.bodies,
-        feature: c.feature,
-        impulse: c.impulse,
-    }));
-    // Contacts from elsewhere (a checkpoint of an older version) may be in another order.
-    if !carried.is_sorted_by_key(|c| c.bodies) {
-        carried.sort_by_key(|c| (c.bodies, c.feature));
-    }
-    carried
-}
-
-/// The impulses of `carried` of pair `bodies`, advancing the merge cursor `next`; the pairs
-/// are met in ascending order.
-fn carried_of_pair<'a>(
-    carried: &'a [CarriedImpulse],
-    next: &mut usize,
-    bodies: [u32; 2],
-) -> &'a [CarriedImpulse] {
-    let mut start = *next;
-    while start < carried.len() && carried[start].bodies < bodies {
-        start += 1;
-    }
-    let mut end = start;
-    while end < carried.len() && carried[end].bodies == bodies {
-        end += 1;
-    }
-    *next = end;
-    &carried[start..end]
-}
-
-/// `pairs` (each `(i, j)` with `i < j`) into `sorted` in ascending order: a counting sort by
-/// first body (`start` its buffer), then the few second bodies of each first body sorted in
-/// place.
-fn sort_pairs(
-    pairs: &[(u32, u32)],
-    n_bodies: usize,
-    start: &mut Vec<u32>,
-    sorted: &mut Vec<(u32, u32)>,
-) {
+/// `pairs` (each `(i, j)` with `i < j`) in ascending order, compressed: `seconds` the second
+/// bodies, `start[i]..start[i + 1]` those of first body `i`. A counting sort by first body,
+/// then the few second bodies of each first body sorted in place.
+fn sort_pairs(pairs: &[(u32, u32)], n_bodies: usize, start: &mut Vec<u32>, seconds: &mut Vec<u32>) {
     refill(start, std::iter::repeat_n(0, n_bodies + 1));
     for &(i, _) in pairs {
         start[i as usize + 1] += 1;
@@ -375,17 +336,19 @@ fn sort_pairs(
     for b in 0..n_bodies {
         start[b + 1] += start[b];
     }
-    refill(sorted, std::iter::repeat_n((0, 0), pairs.len()));
+    refill(seconds, std::iter::repeat_n(0, pairs.len()));
+    // `start[i]` serves as the cursor of group `i`, then moves back to its beginning.
     for &(i, j) in pairs {
         let slot = &mut start[i as usize];
-        sorted[*slot as usize] = (i, j);
+        seconds[*slot as usize] = j;
         *slot += 1;
     }
-    // Each start has moved to the end of its group.
-    let mut begin = 0;
-    for &end in &start[..n_bodies] {
-        sorted[begin..end as usize].sort_unstable();
-        begin = end as usize;
+    for b in (0..n_bodies).rev() {
+        start[b + 1] = start[b];
+    }
+    start[0] = 0;
+    for b in 0..n_bodies {
+        seconds[start[b] as usize..start[b + 1] as usize].sort_unstable();
     }
 }
 

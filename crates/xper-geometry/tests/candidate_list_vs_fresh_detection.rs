@@ -36,24 +36,25 @@ proptest! {
         let mut set_impulses: Vec<([u32; 2], u32, [Real; 2])> = Vec::new();
         for call in 0..25u64 {
             kept.detect(&set, alert, law, &mut kept_contacts);
-            for c in &kept_contacts.contacts {
+            for c in kept_contacts.iter() {
+                let (bodies, feature) = (c.row.bodies, c.key.feature);
                 let before = (set_impulses.iter())
-                    .find(|(b, f, _)| *b == c.bodies && *f == c.feature)
+                    .find(|(b, f, _)| *b == bodies && *f == feature)
                     .map_or([0.0, 0.0], |e| e.2);
-                prop_assert_eq!(c.impulse, before, "call {}: impulse of {:?}", call, c.bodies);
+                prop_assert_eq!(c.impulse, before, "call {}: impulse of {:?}", call, bodies);
             }
             let mut fresh_contacts = ContactSet::default();
             Detector::new().detect(&set, alert, law, &mut fresh_contacts);
             let strip = |c: &ContactSet| -> Vec<_> {
-                c.contacts.iter().map(|c| (c.bodies, c.feature, c.gap.to_bits())).collect()
+                c.iter().map(|c| (c.row, c.key, c.gap.to_bits())).collect()
             };
             prop_assert_eq!(strip(&kept_contacts), strip(&fresh_contacts), "call {}", call);
             // Every contact carries a non-zero impulse into the next call.
-            for (k, c) in kept_contacts.contacts.iter_mut().enumerate() {
-                c.impulse = [1.0 + k as Real, 0.0];
+            for (k, r) in kept_contacts.impulses.iter_mut().enumerate() {
+                *r = [1.0 + k as Real, 0.0];
             }
-            set_impulses = (kept_contacts.contacts.iter())
-                .map(|c| (c.bodies, c.feature, c.impulse))
+            set_impulses = (kept_contacts.iter())
+                .map(|c| (c.row.bodies, c.key.feature, c.impulse))
                 .collect();
             // Move and turn every movable body; now and then one jumps far.
             for b in 0..set.len() {

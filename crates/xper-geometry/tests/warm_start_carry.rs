@@ -32,30 +32,28 @@ fn impulses_follow_their_contacts_between_detections() {
     detector.detect(&bodies, 0.01, |_, _| Some(0), &mut contacts);
     assert_eq!(contacts.len(), 5);
     // Distinct impulses, one left at zero.
-    for (k, c) in contacts.contacts.iter_mut().enumerate() {
-        c.impulse = if k == 2 {
+    for (k, r) in contacts.impulses.iter_mut().enumerate() {
+        *r = if k == 2 {
             [0.0, 0.0]
         } else {
             [1.0 + k as Real, -0.5 * k as Real]
         };
     }
-    let expected: Vec<([u32; 2], [Real; 2])> = contacts
-        .contacts
-        .iter()
-        .map(|c| (c.bodies, c.impulse))
-        .collect();
+    let expected: Vec<([u32; 2], [Real; 2])> =
+        contacts.iter().map(|c| (c.row.bodies, c.impulse)).collect();
     // Move the last disk away (its contact leaves) and add a new touching disk.
     bodies.position[5].x += 1.0;
     bodies.insert(disk(0.0, 2.0, 1.0));
     detector.detect(&bodies, 0.01, |_, _| Some(0), &mut contacts);
-    for c in &contacts.contacts {
-        let before = expected.iter().find(|(b, _)| *b == c.bodies);
+    for c in contacts.iter() {
+        let bodies = c.row.bodies;
+        let before = expected.iter().find(|(b, _)| *b == bodies);
         match before {
-            Some((_, impulse)) => assert_eq!(c.impulse, *impulse, "{:?}", c.bodies),
-            None => assert_eq!(c.impulse, [0.0, 0.0], "new contact {:?}", c.bodies),
+            Some((_, impulse)) => assert_eq!(c.impulse, *impulse, "{bodies:?}"),
+            None => assert_eq!(c.impulse, [0.0, 0.0], "new contact {bodies:?}"),
         }
     }
-    assert!(contacts.contacts.iter().all(|c| c.bodies != [4, 5]));
-    assert!(contacts.contacts.iter().any(|c| c.bodies == [0, 6]));
+    assert!(contacts.rows.iter().all(|r| r.bodies != [4, 5]));
+    assert!(contacts.rows.iter().any(|r| r.bodies == [0, 6]));
     assert_eq!(contacts.len(), 5);
 }

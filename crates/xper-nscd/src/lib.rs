@@ -34,13 +34,12 @@ mod assemble;
 mod contact_solve;
 mod operator;
 mod report;
+mod select;
 mod step;
 mod world;
 
 pub use assemble::assemble_problem;
 pub use operator::{ContactRow, RigidContactOperator, RigidProblem, SolverBody};
-pub use step::{
-    contact_owner_body, is_movable, normal_shift, ContactSolve, MoreauJean, StageTimes, StepError,
-    StepReport,
-};
+pub use select::{contact_owner_body, is_movable, normal_shift};
+pub use step::{ContactSolve, MoreauJean, StageTimes, StepError, StepReport};
 pub use world::{EnergyBudget, StepParams, VelocitySolver, World};

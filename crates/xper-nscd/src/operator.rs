@@ -6,9 +6,9 @@
 //! stores what the two updates need and nothing else.
 
 use xper_bodies::BodySet;
-use xper_geometry::Contact;
+pub use xper_geometry::ContactRow;
 use xper_math::buffer::refill;
-use xper_math::{cross, tangent, Real, Vector, DOFS};
+use xper_math::{tangent, Real, Vector, DOFS};
 use xper_solver::{Block2, ContactOperator};
 
 /// Working state of one body: generalised velocity and inverse masses per degree of freedom.
@@ -19,54 +19,6 @@ pub struct SolverBody {
     pub velocity: [Real; DOFS],
     /// Inverse mass per degree of freedom (0 where imposed or infinite).
     pub inv_mass: [Real; DOFS],
-}
-
-/// What one contact needs: its bodies, normal, lever arms and diagonal Delassus block
-/// (80 bytes).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct ContactRow {
-    /// Bodies `[i, j]`; the normal points from `i` to `j`.
-    pub bodies: [u32; 2],
-    /// Unit normal.
-    pub normal: [Real; 2],
-    /// `[r_i x n, r_i x t, r_j x n, r_j x t]`, lever arms from each centre to the point.
-    pub arms: [Real; 4],
-    /// `W_aa = G_i^T M_i^-1 G_i + G_j^T M_j^-1 G_j`, symmetric, as `[W_NN, W_NT, W_TT]`.
-    pub block: [Real; 3],
-}
-
-impl ContactRow {
-    /// Recomputes `W_aa = G_i^T M_i^-1 G_i + G_j^T M_j^-1 G_j` from the inverse masses of
-    /// `bodies` (e.g. after a domain decomposition has split the mass of shared bodies).
-    pub fn refresh_block(&mut self, bodies: &[SolverBody]) {
-        let n = Vector::new(self.normal[0], self.normal[1]);
-        let t = tangent(&n);
-        let [i, j] = [self.bodies[0] as usize, self.bodies[1] as usize];
-        let arms = self.arms;
-        let mut block = [0.0; 3];
-        for (m, an, at) in [
-            (bodies[i].inv_mass, arms[0], arms[1]),
-            (bodies[j].inv_mass, arms[2], arms[3]),
-        ] {
-            block[0] += m[0] * n.x * n.x + m[1] * n.y * n.y + m[2] * an * an;
-            block[1] += m[0] * n.x * t.x + m[1] * n.y * t.y + m[2] * an * at;
-            block[2] += m[0] * t.x * t.x + m[1] * t.y * t.y + m[2] * at * at;
-        }
-        self.block = block;
-    }
-
-    /// `W_aa` as a 2x2 block `[W_NN, W_NT, W_TN, W_TT]`.
-    #[inline(always)]
-    pub fn full_block(&self) -> Block2 {
-        let [nn, nt, tt] = self.block;
-        [nn, nt, nt, tt]
-    }
-
-    /// Sets `W_aa` from a 2x2 block, which must be symmetric (as a Delassus block is).
-    pub fn set_full_block(&mut self, block: Block2) {
-        debug_assert_eq!(block[1], block[2], "a Delassus block is symmetric");
-        self.block = [block[0], block[1], block[3]];
-    }
 }
 
 /// A velocity problem in factorised form: the bodies at their free velocities, the active
@@ -107,26 +59,12 @@ impl RigidContactOperator {
         );
     }
 
-    /// Builds the row of a contact from its geometry and the body positions.
-    pub fn row(set: &BodySet, inv_mass: &[SolverBody], c: &Contact) -> ContactRow {
-        let [i, j] = [c.bodies[0] as usize, c.bodies[1] as usize];
-        let n = c.normal;
-        let t = tangent(&n);
-        let (ri, rj) = (c.point - set.position[i], c.point - set.position[j]);
-        let arms = [
-            cross(&ri, &n),
-            cross(&ri, &t),
-            cross(&rj, &n),
-            cross(&rj, &t),
-        ];
-        let mut row = ContactRow {
-            bodies: c.bodies,
-            normal: [n.x, n.y],
-            arms,
-            block: [0.0; 3],
-        };
-        row.refresh_block(inv_mass);
-        row
+    /// Fills the Delassus blocks of the rows from the inverse masses of the bodies.
+    pub fn refresh_blocks(&mut self) {
+        let bodies = &self.bodies;
+        for row in &mut self.rows {
+            row.refresh_block(|b| bodies[b].inv_mass);
+        }
     }
 
     /// The local velocity `(U_N, U_T)` of row `a` for the velocities of the bodies of `set`

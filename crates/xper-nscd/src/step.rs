@@ -7,64 +7,17 @@ use crate::contact_solve::reborrow;
 pub use crate::contact_solve::ContactSolve;
 use crate::operator::{ContactRow, RigidContactOperator, RigidProblem};
 pub use crate::report::{StageTimes, StepError, StepReport};
+use crate::select::{contact_owner_body, normal_shift};
 use crate::world::{VelocitySolver, World};
 use std::time::Instant;
-use xper_bodies::{BodySet, Ownership};
+use xper_bodies::Ownership;
 use xper_geometry::Detector;
 use xper_laws::InteractionLaw;
-use xper_math::buffer::{clear_for, refill, renew, renew_for};
+use xper_math::buffer::{refill, renew, renew_for};
 use xper_math::{Real, DOFS};
 use xper_solver::{
     nlgs, solve, ContactOperator, FrictionProblem, NlgsParams, ProblemError, SolveError,
 };
-
-/// Whether a body with these inverse masses per degree of freedom can be moved by contacts
-/// (at least one free degree of freedom); immovable bodies (walls, fully driven bodies) are
-/// held by every process of a distributed run.
-#[inline]
-pub fn is_movable(inv_mass: &[Real; DOFS]) -> bool {
-    inv_mass.iter().any(|&w| w != 0.0)
-}
-
-/// The body whose owner owns contact `(i, j)`: the first, or the second when the first is
-/// immovable (a wall, held by every process).
-#[inline]
-pub fn contact_owner_body(bodies: &BodySet, i: usize, j: usize) -> usize {
-    if bodies.is_movable(i) {
-        i
-    } else {
-        j
-    }
-}
-
-/// The normal shift `s` of a contact in the Signorini condition `U_N + s >= 0 _|_ R_N >= 0`,
-/// or `None` when the contact stays out of the problem this step.
-///
-/// With `g_TT = g + h (1 - theta) U_N,i` the gap after the explicit part of the motion:
-/// - `e = 0` (LMGC90's inelastic quasi-shock law): every contact within the alert distance is in
-///   the problem with `s = max(g_TT, 0) / h`, so bodies may approach by at most the open gap;
-///   the gap then closes in two steps (to `(1 - theta) g_TT`, then exactly to 0) with neither
-///   an impact nor an overlap, and a resting contact is simply `U_N >= 0`;
-/// - `e > 0` (Newton's impact law): the contact enters the problem when `g_TT` closes (within
-///   `closed`), with `s = e min(U_N,i, 0)`, so an impact restitutes `-e U_N,i` exactly.
-#[inline]
-pub fn normal_shift(
-    gap: Real,
-    un_begin: Real,
-    h: Real,
-    theta: Real,
-    restitution: Real,
-    closed: Real,
-) -> Option<Real> {
-    let g_tt = gap + h * (1.0 - theta) * un_begin;
-    if restitution == 0.0 {
-        Some(g_tt.max(0.0) / h)
-    } else if g_tt <= closed {
-        Some(restitution * un_begin.min(0.0))
-    } else {
-        None
-    }
-}
 
 /// A problem the assembly refused (inconsistent sizes: a bug, never the user's data).
 fn problem_error(e: ProblemError) -> StepError {
@@ -74,10 +27,11 @@ fn problem_error(e: ProblemError) -> StepError {
 /// The Moreau-Jean stepper with its buffers.
 ///
 /// After a step that completes it holds the detector's candidate list, the solver's bodies and
-/// the external forces: the rows, friction coefficients, shifts and impulses are taken, in
-/// room for the step's contacts exactly, when a step assembles its problem and released when
-/// it ends, so that they never coexist with the detection's own buffers (the carried
-/// impulses, a list build's arrays).
+/// the external forces. During a step it borrows the world's contact rows (and impulses, when
+/// every contact is active) for its operator, and gives them back when the step ends, failed
+/// or not; the friction coefficients and shifts are taken, in room for the step's contacts
+/// exactly, when a step assembles its problem and released when it ends, so that they never
+/// coexist with a list build's arrays.
 #[derive(Default)]
 pub struct MoreauJean {
     capture: bool,
@@ -156,7 +110,7 @@ impl MoreauJean {
         world: &mut World,
         t_begin: Real,
         t_end: Real,
-        mut shared: Option<&mut dyn ContactSolve>,
+        shared: Option<&mut dyn ContactSolve>,
     ) -> Result<StepReport, StepError> {
         let start = Instant::now();
         let mut report = StepReport {
@@ -165,52 +119,10 @@ impl MoreauJean {
         };
         let distributed = shared.is_some();
         self.prepare(world, &mut report, t_begin, t_end, distributed);
-
-        // Stage: solve.
-        let t_solve = Instant::now();
-        self.solve(world, &mut report, reborrow(&mut shared))?;
-        report.times.solve = t_solve.elapsed().as_secs_f64();
-
-        // Stage: energy exchanged at contacts, with the same H at both ends of the step.
-        let mut dissipated = 0.0;
-        let mut imposed_work = 0.0;
-        for k in 0..self.impulses.len() {
-            let (r, row) = (self.impulses[k], &self.op.rows[k]);
-            let u0 = self.op.local_velocity_at(k, &world.bodies);
-            let u1 = self.op.local_velocity(k);
-            dissipated -= r[0] * (u0[0] + u1[0]) / 2.0 + r[1] * (u0[1] + u1[1]) / 2.0;
-            let (gi, gj) = RigidContactOperator::generalized_impulses(row, r);
-            for (b, g) in [(row.bodies[0] as usize, gi), (row.bodies[1] as usize, gj)] {
-                let (body, v0) = (&self.op.bodies[b], world.bodies.generalized_velocity(b));
-                for (d, &gd) in g.iter().enumerate() {
-                    if body.inv_mass[d] == 0.0 {
-                        imposed_work += gd * (v0[d] + body.velocity[d]) / 2.0;
-                    }
-                }
-            }
-        }
-        world.energy.dissipated += dissipated;
-        world.energy.external_work += self.driven_work(world, t_begin, t_end) - imposed_work;
-
-        // Stage: linearised gaps at the end of the step, while the bodies still hold the
-        // velocities at its beginning.
-        let deepest = self.end_gaps(world);
-
-        // Stage: update velocities and positions; keep impulses for the warm start.
-        self.update(world)?;
-        for c in &mut world.contacts.contacts {
-            c.impulse = [0.0, 0.0];
-        }
-        for (k, &r) in self.impulses.iter().enumerate() {
-            world.contacts.contacts[self.active_contact(k)].impulse = r;
-        }
-
-        // Stage: project positions out of overlaps.
-        let t_project = Instant::now();
-        (report.projection_iterations, report.max_overlap) =
-            self.project(world, deepest, reborrow(&mut shared))?;
-        report.times.project = t_project.elapsed().as_secs_f64();
+        let advanced = self.advance(world, &mut report, t_begin, t_end, shared);
+        self.give_back(world);
         self.release_step_buffers();
+        advanced?;
 
         world.step += 1;
         world.time = t_end;
@@ -237,13 +149,82 @@ impl MoreauJean {
         Ok(report)
     }
 
-    /// The contact (index in the world's contacts) of active row `k`.
-    #[inline]
-    fn active_contact(&self, k: usize) -> usize {
+    /// Stages solve, energy, end gaps, update and project, on the problem
+    /// [`Self::prepare`] left.
+    fn advance(
+        &mut self,
+        world: &mut World,
+        report: &mut StepReport,
+        t_begin: Real,
+        t_end: Real,
+        mut shared: Option<&mut dyn ContactSolve>,
+    ) -> Result<(), StepError> {
+        // Stage: solve.
+        let t_solve = Instant::now();
+        self.solve(world, report, reborrow(&mut shared))?;
+        report.times.solve = t_solve.elapsed().as_secs_f64();
+
+        // Stage: energy exchanged at contacts, with the same H at both ends of the step.
+        let mut dissipated = 0.0;
+        let mut imposed_work = 0.0;
+        for k in 0..self.impulses.len() {
+            let (r, row) = (self.impulses[k], &self.op.rows[k]);
+            let u0 = self.op.local_velocity_at(k, &world.bodies);
+            let u1 = self.op.local_velocity(k);
+            dissipated -= r[0] * (u0[0] + u1[0]) / 2.0 + r[1] * (u0[1] + u1[1]) / 2.0;
+            let (gi, gj) = RigidContactOperator::generalized_impulses(row, r);
+            for (b, g) in [(row.bodies[0] as usize, gi), (row.bodies[1] as usize, gj)] {
+                let (body, v0) = (&self.op.bodies[b], world.bodies.generalized_velocity(b));
+                for (d, &gd) in g.iter().enumerate() {
+                    if body.inv_mass[d] == 0.0 {
+                        imposed_work += gd * (v0[d] + body.velocity[d]) / 2.0;
+                    }
+                }
+            }
+        }
+        world.energy.dissipated += dissipated;
+        world.energy.external_work += self.driven_work(world, t_begin, t_end) - imposed_work;
+
+        // Stage: linearised gaps at the end of the step, while the bodies still hold the
+        // velocities at its beginning; the shifts are done with.
+        self.shift = Vec::new();
+        let deepest = self.end_gaps(world);
+
+        // Stage: update velocities and positions; keep impulses for the warm start.
+        self.update(world)?;
         if self.active_is_subset {
-            self.active[k] as usize
+            let impulses = &mut world.contacts.impulses;
+            impulses.fill([0.0, 0.0]);
+            for (&a, &r) in self.active.iter().zip(&self.impulses) {
+                impulses[a as usize] = r;
+            }
         } else {
-            k
+            world.contacts.impulses = std::mem::take(&mut self.impulses);
+        }
+
+        // Stage: project positions out of overlaps.
+        let t_project = Instant::now();
+        (report.projection_iterations, report.max_overlap) =
+            self.project(world, deepest, reborrow(&mut shared))?;
+        report.times.project = t_project.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    /// Returns the rows lent to the operator by [`Self::prepare`] to the world's contacts, and
+    /// their impulses when a failed step kept them (zero when it lost them).
+    fn give_back(&mut self, world: &mut World) {
+        let n = world.contacts.len();
+        world.contacts.rows = if self.op.rows.len() == n {
+            std::mem::take(&mut self.op.rows)
+        } else {
+            std::mem::take(&mut self.all_rows)
+        };
+        if world.contacts.impulses.len() != n {
+            world.contacts.impulses = if self.impulses.len() == n {
+                std::mem::take(&mut self.impulses)
+            } else {
+                vec![[0.0, 0.0]; n]
+            };
         }
     }
 
@@ -331,25 +312,24 @@ impl MoreauJean {
         );
         if owned_only {
             let bodies = &world.bodies;
-            world.contacts.contacts.retain(|c| {
-                let b = contact_owner_body(bodies, c.bodies[0] as usize, c.bodies[1] as usize);
+            world.contacts.retain(|c| {
+                let [i, j] = c.row.bodies;
+                let b = contact_owner_body(bodies, i as usize, j as usize);
                 bodies.ownership[b] == Ownership::Owned
             });
         }
         report.contacts = world.contacts.len();
         report.times.detect = start.elapsed().as_secs_f64();
 
-        // Stage: assemble the rows. The velocities at the beginning of the step stay in the
-        // bodies until the update; the local ones, U_i = H^T v_i, are computed from them
-        // where needed (not stored).
+        // Stage: assemble: the contacts' rows (normals and lever arms, from the detection) are
+        // lent to the operator for the step, which fills their Delassus blocks. The velocities
+        // at the beginning of the step stay in the bodies until the update; the local ones,
+        // U_i = H^T v_i, are computed from them where needed (not stored).
         let bodies = &world.bodies;
         self.op
             .load_bodies(bodies, |b| bodies.generalized_velocity(b));
-        let contacts = &world.contacts.contacts;
-        renew(
-            &mut self.op.rows,
-            (contacts.iter()).map(|c| RigidContactOperator::row(bodies, &self.op.bodies, c)),
-        );
+        self.op.rows = std::mem::take(&mut world.contacts.rows);
+        self.op.refresh_blocks();
 
         // Stage: free velocity.
         self.free_velocity(world, t_begin, t_end);
@@ -359,13 +339,16 @@ impl MoreauJean {
         self.active = Vec::new();
         renew_for(&mut self.mu, n);
         renew_for(&mut self.shift, n);
-        renew_for(&mut self.impulses, n);
         let closed = world.params.projection_tolerance.unwrap_or(0.0);
         let mut subset = false;
-        for (a, c) in world.contacts.contacts.iter().enumerate() {
+        for (a, &gap) in world.contacts.gaps.iter().enumerate() {
             let un = self.op.local_velocity_at(a, &world.bodies)[0];
-            let InteractionLaw::SignoriniCoulomb(law) = *world.laws.law(c.law);
-            let Some(shift) = normal_shift(c.gap, un, h, theta, law.restitution, closed) else {
+            // A contact whose groups no longer interact (a changed scene) is left out.
+            let law = world.contact_law(self.op.rows[a].bodies);
+            let Some((law, shift)) = law.and_then(|InteractionLaw::SignoriniCoulomb(law)| {
+                let shift = normal_shift(gap, un, h, theta, law.restitution, closed)?;
+                Some((law, shift))
+            }) else {
                 if !subset {
                     // The first contact left out: the active ones so far are all before it.
                     subset = true;
@@ -379,9 +362,9 @@ impl MoreauJean {
             }
             self.mu.push(law.friction);
             self.shift.push(shift);
-            self.impulses.push(c.impulse);
         }
-        // Rows of the active contacts: every row as it is when all are active (no copy).
+        // Rows and warm start of the active contacts: the contacts' own when all are active
+        // (no copy).
         self.active_is_subset = subset;
         self.all_rows = Vec::new();
         if self.active_is_subset {
@@ -391,6 +374,13 @@ impl MoreauJean {
                 &mut self.op.rows,
                 self.active.iter().map(|&a| all[a as usize]),
             );
+            let impulses = &world.contacts.impulses;
+            renew(
+                &mut self.impulses,
+                self.active.iter().map(|&a| impulses[a as usize]),
+            );
+        } else {
+            self.impulses = std::mem::take(&mut world.contacts.impulses);
         }
         report.active = self.impulses.len();
     }
@@ -559,27 +549,25 @@ impl MoreauJean {
         }
     }
 
-    /// The linearised gap at the end of the step of every contact, into `self.shift`, and
-    /// the largest overlap among them; called before [`Self::update`], while the bodies hold
-    /// the velocities at the beginning of the step.
-    fn end_gaps(&mut self, world: &World) -> Real {
+    /// Replaces the gap of every contact by its linearised gap at the end of the step, and
+    /// returns the largest overlap among them; called before [`Self::update`], while the
+    /// bodies hold the velocities at the beginning of the step.
+    fn end_gaps(&mut self, world: &mut World) -> Real {
         let (h, theta) = (world.params.dt, world.params.theta);
         self.exchange_rows();
-        clear_for(&mut self.shift, world.contacts.len());
         let mut deepest: Real = 0.0;
-        for (a, c) in world.contacts.contacts.iter().enumerate() {
+        for (a, gap) in world.contacts.gaps.iter_mut().enumerate() {
             let u_end = self.op.local_velocity(a)[0];
             let u_begin = self.op.local_velocity_at(a, &world.bodies)[0];
-            let gap = c.gap + h * ((1.0 - theta) * u_begin + theta * u_end);
-            deepest = deepest.max(-gap);
-            self.shift.push(gap);
+            *gap += h * ((1.0 - theta) * u_begin + theta * u_end);
+            deepest = deepest.max(-*gap);
         }
         self.exchange_rows();
         deepest
     }
 
     /// Removes overlaps larger than the projection tolerance, from the end gaps that
-    /// [`Self::end_gaps`] left in `self.shift` and their largest overlap `deepest` on this
+    /// [`Self::end_gaps`] left in the contacts and their largest overlap `deepest` on this
     /// process: returns the sweeps used and the largest overlap before projection.
     fn project(
         &mut self,
@@ -604,7 +592,7 @@ impl MoreauJean {
             acceleration: xper_solver::Acceleration::None,
             ..world.params.nlgs
         };
-        let (op, mu, shift) = (&mut self.op, &self.mu, &self.shift);
+        let (op, mu, shift) = (&mut self.op, &self.mu, &world.contacts.gaps);
         let info = match shared {
             Some(s) => s.solve(op, mu, shift, &mut self.impulses, &params),
             None => nlgs(op, mu, shift, &mut self.impulses, &params),

@@ -3,7 +3,7 @@
 use serde::{Deserialize, Serialize};
 use xper_bodies::BodySet;
 use xper_geometry::ContactSet;
-use xper_laws::LawTable;
+use xper_laws::{InteractionLaw, LawTable};
 use xper_math::{Real, Vector};
 use xper_solver::{NlgsParams, SolverParams};
 
@@ -63,7 +63,8 @@ pub struct EnergyBudget {
 pub struct World {
     /// The bodies.
     pub bodies: BodySet,
-    /// Contacts of the last step, with their impulses (the warm start).
+    /// Contacts of the last step, with their impulses (the warm start) and their linearised
+    /// gaps at its end.
     pub contacts: ContactSet,
     /// Laws per pair of groups.
     pub laws: LawTable,
@@ -94,6 +95,14 @@ impl World {
                 ..Default::default()
             },
         }
+    }
+
+    /// The interaction law of a contact between `bodies` (that of their groups), if any.
+    #[inline]
+    pub fn contact_law(&self, bodies: [u32; 2]) -> Option<InteractionLaw> {
+        let group = |b: u32| self.bodies.group[b as usize];
+        let k = self.laws.between(group(bodies[0]), group(bodies[1]))?;
+        Some(*self.laws.law(k))
     }
 
     /// Kinetic energy (J per m).
