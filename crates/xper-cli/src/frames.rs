@@ -98,7 +98,7 @@ fn status(world: &World, c: &xper_geometry::Contact) -> i32 {
 }
 
 /// Contacts as points (`normal`, `normal_impulse`, `tangential_impulse` in N s/m, `status`,
-/// `gap`) and, when `chains` is set, as lines between the two body centres (walls: the contact
+/// `gap`: the linearised gap at the end of the step, m) and, when `chains` is set, as lines between the two body centres (walls: the contact
 /// point) with the same cell data, to draw force chains. A contact point is the one detected
 /// at the beginning of the step, carried with its first body to that body's current position
 /// (its lever arm is what a contact keeps).
