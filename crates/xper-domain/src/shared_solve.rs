@@ -3,7 +3,7 @@
 //!
 //! For each problem of the step (velocities, then positions when the projection runs) the
 //! interface is built collectively ([`InterfaceMap::build`]), the shared bodies' masses are split
-//! among their copies, [`distributed_nlgs`] solves, and the operator gets its own masses and
+//! among their copies, [`crate::distributed_nlgs`] solves, and the operator gets its own masses and
 //! Delassus blocks back (copied, not recomputed, so they keep their bits).
 
 use crate::communicator::Communicator;
