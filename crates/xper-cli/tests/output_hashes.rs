@@ -1,0 +1,223 @@
+//! Output-hash regression test: every shipped scene, cut to a few steps, must give the same
+//! `series.csv` (timing columns aside) and the same last frame, byte for byte, as when the
+//! hashes in `output_hashes.txt` were recorded.
+//!
+//! A refactor must leave every hash unchanged. When the physics changes on purpose, refresh
+//! the file with
+//!
+//! ```sh
+//! XPER_UPDATE_HASHES=1 cargo test --release -p xper-cli --test output_hashes
+//! ```
+//!
+//! and say in the commit which scenes changed and why. The file lists, per scene, the number
+//! of steps run; a scene directory missing from it fails the test, so a new scene cannot be
+//! forgotten (add a line `name steps - -` and refresh).
+
+use std::path::{Path, PathBuf};
+
+/// Columns of series.csv that hold wall-clock measurements, left out of the hash.
+fn is_timing_column(name: &str) -> bool {
+    name == "wall_time" || name.ends_with("_time") && name != "time" || name.ends_with("_seconds")
+}
+
+/// FNV-1a, 64 bits: a stable hash (std's `DefaultHasher` may change between Rust releases).
+fn fnv1a(bytes: &[u8], mut hash: u64) -> u64 {
+    for &b in bytes {
+        hash ^= u64::from(b);
+        hash = hash.wrapping_mul(0x0000_0100_0000_01b3);
+    }
+    hash
+}
+
+const FNV_OFFSET: u64 = 0xcbf2_9ce4_8422_2325;
+
+fn repo_root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+/// The hash of series.csv without its timing columns.
+fn series_hash(path: &Path) -> u64 {
+    let text = std::fs::read_to_string(path)
+        .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines
+        .next()
+        .expect("series.csv has a header")
+        .split(',')
+        .collect();
+    let keep: Vec<bool> = header.iter().map(|c| !is_timing_column(c)).collect();
+    let mut hash = FNV_OFFSET;
+    for line in std::iter::once(header.join(",").as_str()).chain(lines) {
+        for (field, keep) in line.split(',').zip(&keep) {
+            if *keep {
+                hash = fnv1a(field.as_bytes(), hash);
+                hash = fnv1a(b",", hash);
+            }
+        }
+        hash = fnv1a(b"\n", hash);
+    }
+    hash
+}
+
+/// The hash of every file of the last frame (the highest step number in `frames/`), in name
+/// order, with the number of rows of series.csv checked by the caller.
+fn last_frame_hash(frames: &Path) -> (u64, String) {
+    let mut files: Vec<(u64, String)> = std::fs::read_dir(frames)
+        .unwrap_or_else(|e| panic!("cannot list {}: {e}", frames.display()))
+        .map(|entry| entry.unwrap().file_name().to_string_lossy().into_owned())
+        .filter_map(|name| {
+            let digits: String = name.chars().filter(char::is_ascii_digit).collect();
+            digits.parse::<u64>().ok().map(|step| (step, name))
+        })
+        .collect();
+    let last = files
+        .iter()
+        .map(|(s, _)| *s)
+        .max()
+        .expect("at least one frame");
+    files.retain(|(s, _)| *s == last);
+    files.sort();
+    let mut hash = FNV_OFFSET;
+    let mut names = Vec::new();
+    for (_, name) in &files {
+        hash = fnv1a(name.as_bytes(), hash);
+        hash = fnv1a(&std::fs::read(frames.join(name)).unwrap(), hash);
+        names.push(name.clone());
+    }
+    (hash, names.join("+"))
+}
+
+/// The scene of `scenes/NAME/scene.toml` cut to `steps` steps, with a frame and a checkpoint
+/// at the last one (no shipped scene names a file by a relative path).
+fn reduced_scene(name: &str, steps: u64, dir: &Path) -> PathBuf {
+    let path = repo_root().join("scenes").join(name).join("scene.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut doc: toml::Table = text.parse().unwrap();
+    let scene = doc["scene"].as_table_mut().expect("[scene]");
+    scene.remove("duration");
+    scene.insert("steps".into(), toml::Value::Integer(steps as i64));
+    let output = doc
+        .entry("output")
+        .or_insert_with(|| toml::Value::Table(toml::Table::new()))
+        .as_table_mut()
+        .unwrap();
+    output.insert("frame_every".into(), toml::Value::Integer(steps as i64));
+    output.insert(
+        "checkpoint_every".into(),
+        toml::Value::Integer(steps as i64),
+    );
+    // Problem dumps need the hdf5 feature and are not hashed.
+    output.remove("dump_problems");
+    let out = dir.join(format!("{name}.toml"));
+    std::fs::write(&out, toml::to_string(&doc).unwrap()).unwrap();
+    out
+}
+
+struct Entry {
+    scene: String,
+    steps: u64,
+    series: String,
+    frame: String,
+}
+
+fn read_entries(path: &Path) -> Vec<Entry> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .filter(|l| !l.trim().is_empty() && !l.starts_with('#'))
+        .map(|l| {
+            let f: Vec<&str> = l.split_whitespace().collect();
+            assert_eq!(f.len(), 4, "{}: bad line `{l}`", path.display());
+            Entry {
+                scene: f[0].into(),
+                steps: f[1].parse().unwrap(),
+                series: f[2].into(),
+                frame: f[3].into(),
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn every_shipped_scene_gives_its_recorded_outputs() {
+    let list = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/output_hashes.txt");
+    let mut entries = read_entries(&list);
+    let mut shipped: Vec<String> = std::fs::read_dir(repo_root().join("scenes"))
+        .unwrap()
+        .map(|e| e.unwrap())
+        .filter(|e| e.path().join("scene.toml").is_file())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    shipped.sort();
+    let listed: Vec<String> = entries.iter().map(|e| e.scene.clone()).collect();
+    let missing: Vec<&String> = shipped.iter().filter(|s| !listed.contains(s)).collect();
+    assert!(
+        missing.is_empty(),
+        "scenes without a recorded hash in {}: {missing:?}",
+        list.display()
+    );
+
+    let update = std::env::var_os("XPER_UPDATE_HASHES").is_some();
+    let tmp = Path::new(env!("CARGO_TARGET_TMPDIR")).join("output-hashes");
+    let _ = std::fs::remove_dir_all(&tmp);
+    std::fs::create_dir_all(&tmp).unwrap();
+    let mut failures = Vec::new();
+    for entry in &mut entries {
+        let scene = reduced_scene(&entry.scene, entry.steps, &tmp);
+        let out = tmp.join(&entry.scene);
+        let started = std::time::Instant::now();
+        let run = std::process::Command::new(env!("CARGO_BIN_EXE_xper"))
+            .args([
+                "run",
+                scene.to_str().unwrap(),
+                "--out",
+                out.to_str().unwrap(),
+                "--quiet",
+            ])
+            .output()
+            .expect("xper runs");
+        assert!(
+            run.status.success(),
+            "{}: exit {:?}\n{}",
+            entry.scene,
+            run.status.code(),
+            String::from_utf8_lossy(&run.stderr)
+        );
+        let series = format!("{:016x}", series_hash(&out.join("series.csv")));
+        let (frame, files) = last_frame_hash(&out.join("frames"));
+        let frame = format!("{frame:016x}");
+        eprintln!(
+            "{:28} {:6} steps {:6.1} s  series {series}  frame {frame} ({files})",
+            entry.scene,
+            entry.steps,
+            started.elapsed().as_secs_f64()
+        );
+        if series != entry.series || frame != entry.frame {
+            failures.push(format!(
+                "{}: series {} (recorded {}), last frame {} (recorded {})",
+                entry.scene, series, entry.series, frame, entry.frame
+            ));
+        }
+        entry.series = series;
+        entry.frame = frame;
+    }
+    if update {
+        let mut text = String::from(
+            "# scene, steps run, FNV-1a of series.csv without timing columns, of the last frame.\n\
+             # Refresh: XPER_UPDATE_HASHES=1 cargo test --release -p xper-cli --test output_hashes\n",
+        );
+        for e in &entries {
+            text.push_str(&format!(
+                "{} {} {} {}\n",
+                e.scene, e.steps, e.series, e.frame
+            ));
+        }
+        std::fs::write(&list, text).unwrap();
+        return;
+    }
+    assert!(
+        failures.is_empty(),
+        "outputs changed:\n{}",
+        failures.join("\n")
+    );
+}
