@@ -3,12 +3,12 @@
 //!
 //! Each scene runs in a child process of its own so that its peak memory is its own.
 
-use crate::world_from_scene::world_from_scene;
 use crate::CliError;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use xper_geometry::{ContactSet, Detector};
 use xper_nscd::MoreauJean;
+use xper_simulation::rigid::build::world_from_scene;
 
 /// Arguments of `xper bench`.
 #[derive(clap::Args)]
@@ -83,15 +83,6 @@ pub struct BenchResult {
     wall_time_s: f64,
 }
 
-/// Mean of a sample; 0 when empty (summaries of runs that stopped before their first step).
-pub(crate) fn mean(v: &[f64]) -> f64 {
-    if v.is_empty() {
-        0.0
-    } else {
-        v.iter().sum::<f64>() / v.len() as f64
-    }
-}
-
 /// Median of a sample (the upper one for an even count); NaN when empty.
 pub(crate) fn median(mut v: Vec<f64>) -> f64 {
     if v.is_empty() {
@@ -129,7 +120,7 @@ fn bench_one(
     settled: usize,
 ) -> Result<BenchResult, CliError> {
     let mut world = world_from_scene(&scene);
-    crate::world_from_scene::release_body_descriptions(&mut scene);
+    xper_simulation::rigid::build::release_body_descriptions(&mut scene);
     let steps = steps.map_or(scene.steps, |s| s.min(scene.steps));
     let mut stepper = MoreauJean::new();
     // Sized for the run: grown by doubling, these figures would weigh on the heap peak.

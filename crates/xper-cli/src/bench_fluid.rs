@@ -139,8 +139,8 @@ fn two_grains(scene: &Path, until: Real) -> Result<(f64, Real, u64), CliError> {
         .fluid
         .as_ref()
         .ok_or_else(|| CliError::BadInput("the two-grain scene has no [fluid]".into()))?;
-    let params = crate::run_fluid::fluid_params(desc, scene.dt);
-    let mut state = crate::run_fluid::coupled_state(&scene, desc, &params);
+    let params = xper_simulation::fluid::build::fluid_params(desc, scene.dt);
+    let mut state = xper_simulation::fluid::build::coupled_state(&scene, desc, &params);
     let mut stepper = xper_fluid::CoupledStepper::new(&params, &state)
         .map_err(|e| CliError::Runtime(e.to_string()))?;
     let start = Instant::now();

@@ -10,8 +10,8 @@ use xper_fracture::{FractureModel, FractureStepper, InterfaceLaw};
 use xper_scene::MeshSource;
 
 use crate::bench::median;
-use crate::crack::{mesh_centre, midpoint};
 use crate::CliError;
+use xper_simulation::fracture::crack::{mesh_centre, midpoint};
 
 /// Prefix of the JSON files of fracture results in the results directory.
 pub const FILE_PREFIX: &str = "fracture-";
@@ -96,7 +96,7 @@ pub fn bench_one(
     machine: String,
 ) -> Result<FractureBenchResult, CliError> {
     let built = Instant::now();
-    let (scene, mut model) = crate::run_fracture::load_model(path)?;
+    let (scene, mut model) = xper_simulation::fracture::build::load_model(path)?;
     let build_time_s = built.elapsed().as_secs_f64();
     let steps = steps.map_or(scene.steps, |s| s.min(scene.steps));
     let sides = interface_sides(&model);

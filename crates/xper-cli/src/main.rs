@@ -9,7 +9,8 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use xper_cli::{bench, run, run_fracture, solve, validation, CliError};
+use xper_cli::{bench, solve, validation, CliError};
+use xper_simulation::RunOptions;
 
 /// Counts heap bytes, so that benchmarks report the memory a run's data needs exactly.
 #[global_allocator]
@@ -94,8 +95,7 @@ fn main() -> ExitCode {
     default_sigpipe();
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Check { scene } if is_fracture(&scene) => run_fracture::check(&scene),
-        Command::Check { scene } => check(&scene),
+        Command::Check { scene } => xper_simulation::check::check(&scene),
         Command::Run {
             scene,
             out,
@@ -105,21 +105,14 @@ fn main() -> ExitCode {
             compare_serial,
         } => {
             let quiet = quiet || !interactive();
-            let fracture = is_fracture(&scene);
-            let opts = run::RunOptions {
+            let opts = RunOptions {
                 scene,
                 out,
                 resume,
                 stop_at_step,
                 compare_serial,
             };
-            if fracture {
-                run_maybe_distributed(&opts, quiet, |o, q, c| {
-                    run_fracture::run_on(o, q, c).map(|_| ())
-                })
-            } else {
-                run_maybe_distributed(&opts, quiet, run::run_on)
-            }
+            run_maybe_distributed(&opts, quiet)
         }
         Command::Bench(args) => bench::bench(&args),
         Command::Solve(args) => solve::run_solve(&args),
@@ -138,24 +131,16 @@ fn main() -> ExitCode {
     }
 }
 
-/// The run loop of one kind of scene, on the processes of a communicator or on this one.
-type RunOn =
-    fn(&run::RunOptions, bool, Option<&dyn xper_domain::Communicator>) -> Result<(), CliError>;
-
 /// `xper run`: under `mpirun` with more than one process (binary built with `--features mpi`)
 /// a distributed run, otherwise a run on this process.
 #[cfg(feature = "mpi")]
-fn run_maybe_distributed(
-    opts: &run::RunOptions,
-    quiet: bool,
-    run_on: RunOn,
-) -> Result<(), CliError> {
+fn run_maybe_distributed(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
     let comm = xper_domain::MpiCommunicator::launched()
         .then(xper_domain::MpiCommunicator::init)
         .flatten();
     match comm {
         Some(comm) => {
-            let result = run_on(opts, quiet, Some(&comm));
+            let result = xper_simulation::run_on(opts, quiet, Some(&comm)).map(drop);
             // A failure every process met alike (bad input) ends them all normally; anything
             // else a process met alone would leave the others waiting: end them all.
             match (&result, xper_domain::Communicator::size(&comm)) {
@@ -165,18 +150,14 @@ fn run_maybe_distributed(
                 _ => result,
             }
         }
-        None => run_on(opts, quiet, None),
+        None => xper_simulation::run(opts, quiet).map(drop),
     }
 }
 
 /// `xper run` on this process (built without MPI).
 #[cfg(not(feature = "mpi"))]
-fn run_maybe_distributed(
-    opts: &run::RunOptions,
-    quiet: bool,
-    run_on: RunOn,
-) -> Result<(), CliError> {
-    run_on(opts, quiet, None)
+fn run_maybe_distributed(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
+    xper_simulation::run(opts, quiet).map(drop)
 }
 
 /// Whether progress can be shown: stderr is a terminal or, for a process an MPI launcher
@@ -188,58 +169,4 @@ fn interactive() -> bool {
     #[cfg(not(feature = "mpi"))]
     let launched = false;
     std::io::stderr().is_terminal() || (launched && std::io::stdout().is_terminal())
-}
-
-/// Whether the file is a fracture scene (a readable TOML file with a `[mesh]` section);
-/// anything else goes to the rigid-scene reader, which reports what is wrong.
-fn is_fracture(path: &std::path::Path) -> bool {
-    std::fs::read_to_string(path).is_ok_and(|text| xper_scene::is_fracture_scene(&text))
-}
-
-fn check(path: &std::path::Path) -> Result<(), CliError> {
-    let scene = xper_scene::load_scene(path).map_err(|e| CliError::BadInput(e.to_string()))?;
-    let walls = scene
-        .bodies
-        .iter()
-        .filter(|b| matches!(b.shape, xper_scene::ShapeDesc::Segment { .. }))
-        .count();
-    println!(
-        "{}: scene `{}` is valid: {} bodies ({} walls), {} groups, {} laws, {} steps of {} s",
-        path.display(),
-        scene.name,
-        scene.bodies.len(),
-        walls,
-        scene.groups.len(),
-        scene.laws.len(),
-        scene.steps,
-        scene.dt
-    );
-    if let Some(fluid) = &scene.fluid {
-        let grid = xper_cli::run_fluid::fluid_grid(fluid);
-        println!(
-            "fluid: {} x {} cells of {} m, density {} kg/m^3, viscosity {} Pa s; runs to t = {} s",
-            grid.nx,
-            grid.ny,
-            grid.h,
-            fluid.density,
-            fluid.viscosity,
-            scene.steps as f64 * scene.dt
-        );
-    }
-    let n = scene.groups.len();
-    for a in 0..n {
-        for b in a..n {
-            if !scene
-                .laws
-                .iter()
-                .any(|l| (l.groups == [a, b]) || (l.groups == [b, a]))
-            {
-                println!(
-                    "note: groups `{}` and `{}` have no law: they do not interact",
-                    scene.groups[a], scene.groups[b]
-                );
-            }
-        }
-    }
-    Ok(())
 }

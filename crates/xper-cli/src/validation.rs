@@ -2,12 +2,12 @@
 //! compares one measured number with its reference. The test suite asserts every case; `xper
 //! validate` writes them all to VALIDATION.md.
 
-use crate::world_from_scene::world_from_scene;
 use crate::CliError;
 use xper_bodies::{Body, BodySet};
 use xper_laws::{InteractionLaw, LawTable, SignoriniCoulomb};
 use xper_math::{Real, Vector};
 use xper_nscd::{MoreauJean, StepParams, VelocitySolver, World};
+use xper_simulation::rigid::build::world_from_scene;
 use xper_solver::{ConvergenceNorm, NlgsParams};
 
 const G: Real = 9.81;

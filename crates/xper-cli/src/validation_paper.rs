@@ -7,9 +7,9 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::fracture_outputs::FractureSummary;
-use crate::run::RunOptions;
 use crate::CliError;
+use xper_simulation::fracture::outputs::FractureSummary;
+use xper_simulation::RunOptions;
 
 /// Directory of the paper-resolution runs.
 pub const RUNS_DIR: &str = "validation-runs";
@@ -37,7 +37,10 @@ fn paper_run(name: &str, full: bool) -> Result<Option<FractureSummary>, CliError
         compare_serial: false,
     };
     let quiet = !full || !std::io::IsTerminal::is_terminal(&std::io::stderr());
-    crate::run_fracture::run_with_summary(&opts, quiet).map(Some)
+    let summary = xper_simulation::run(&opts, quiet)?;
+    serde_json::from_value(summary)
+        .map(Some)
+        .map_err(|e| CliError::Runtime(format!("{name}: summary: {e}")))
 }
 
 fn progress(s: &FractureSummary) -> String {

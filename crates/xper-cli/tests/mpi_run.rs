@@ -225,7 +225,7 @@ fn fracture_scene(dir: &Path, name: &str, tolerance: &str) -> std::path::PathBuf
 
 fn fracture_run(ranks: usize, scene: &Path, out: &Path, extra: &[&str]) -> Vec<[f64; 6]> {
     run_xper(ranks, scene, out, extra);
-    xper_cli::run_fracture::checkpoint_displacements(out)
+    xper_simulation::fracture::checkpoint::checkpoint_displacements(out)
         .unwrap()
         .1
 }

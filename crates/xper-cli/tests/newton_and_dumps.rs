@@ -132,9 +132,9 @@ fn dumps_need_hdf5() {
 #[cfg(feature = "hdf5")]
 #[test]
 fn dumped_problem_is_the_problem_of_that_step() {
-    use xper_cli::run::problem_path;
-    use xper_cli::world_from_scene::world_from_scene;
     use xper_nscd::MoreauJean;
+    use xper_simulation::rigid::build::world_from_scene;
+    use xper_simulation::rigid::outputs::problem_path;
     use xper_solver::{solve, SolverKind, SolverParams};
 
     let dir = temp_dir("dumps");

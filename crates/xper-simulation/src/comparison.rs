@@ -1,12 +1,12 @@
 //! `--compare-serial`: the steps of a distributed run repeated on one process, for the
 //! parallel efficiency and the largest difference of the two answers.
 
-use crate::CliError;
-use serde::Serialize;
+use crate::RunError;
+use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
 /// A distributed run against the same steps on one process (`--compare-serial`).
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct SerialComparison {
     /// Steps compared.
     pub steps: u64,
@@ -34,12 +34,12 @@ impl SerialComparison {
         mut step: impl FnMut(&mut S) -> Result<(), E>,
         difference: impl FnOnce(&S) -> f64,
         distributed: (f64, usize),
-    ) -> Result<Self, CliError> {
+    ) -> Result<Self, RunError> {
         let steps = end_step - step_of(&start);
         let clock = Instant::now();
         while step_of(&start) < end_step {
             step(&mut start)
-                .map_err(|e| CliError::Runtime(format!("--compare-serial: serial run: {e}")))?;
+                .map_err(|e| RunError::Runtime(format!("--compare-serial: serial run: {e}")))?;
         }
         let serial = clock.elapsed().as_secs_f64();
         let (wall, processes) = distributed;

@@ -5,9 +5,9 @@
 use xper_domain::{CommStats, Communicator, DistributedFluid};
 use xper_fluid::{CoupledError, CoupledReport, CoupledState, CoupledStepper, FluidParams};
 
-use crate::run_distributed::RankSummary;
-use crate::serial_comparison::SerialComparison;
-use crate::CliError;
+use crate::comparison::SerialComparison;
+use crate::ranks::{rank_summaries, RankSummary};
+use crate::RunError;
 
 /// A run with a fluid advanced step by step. `whole` is the state the outputs are written
 /// from: on the writing process it holds the grains and the fluid's time after every step and
@@ -123,7 +123,7 @@ impl FluidRun for DistributedFluidRun<'_> {
         self.setup = self.comm.stats();
     }
     fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary> {
-        crate::run_distributed::rank_summaries(self.comm, self.run.load(), &self.setup, wall)
+        rank_summaries(self.comm, self.run.load(), &self.setup, wall)
     }
     fn pressure_gathered_cells(&self) -> Option<usize> {
         Some(self.run.pressure_gathered_cells())
@@ -138,15 +138,15 @@ pub fn compare_serial(
     end: &CoupledState,
     distributed_wall: f64,
     processes: usize,
-) -> Result<SerialComparison, CliError> {
+) -> Result<SerialComparison, RunError> {
     let mut stepper = CoupledStepper::new(params, &start)
-        .map_err(|e| CliError::Runtime(format!("--compare-serial: serial run: {e}")))?;
+        .map_err(|e| RunError::Runtime(format!("--compare-serial: serial run: {e}")))?;
     SerialComparison::rerun(
         start,
         end.world.step,
         |s: &CoupledState| s.world.step,
         |s| stepper.step(params, s).map(drop),
-        |s| crate::run::largest_position_difference(&s.world, &end.world),
+        |s| crate::rigid::stepping::largest_position_difference(&s.world, &end.world),
         (distributed_wall, processes),
     )
 }

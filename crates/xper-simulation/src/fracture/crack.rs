@@ -12,7 +12,7 @@ use serde::Serialize;
 use xper_fracture::{FractureModel, InterfaceLaw};
 
 /// Measures of the broken interfaces of a model (lengths in m).
-#[derive(Clone, Debug, Default, Serialize)]
+#[derive(Clone, Debug, Default, Serialize, serde::Deserialize)]
 pub struct CrackMetrics {
     /// Interfaces broken during the run (every point at intensity 0).
     pub broken_interfaces: usize,
@@ -36,7 +36,7 @@ pub struct CrackMetrics {
 }
 
 /// Midpoint of an interface in the reference mesh.
-pub(crate) fn midpoint(m: &FractureModel, i: &xper_fracture::Interface) -> [f64; 2] {
+pub fn midpoint(m: &FractureModel, i: &xper_fracture::Interface) -> [f64; 2] {
     let e = &m.elements[i.elements[0] as usize];
     let p: Vec<[f64; 2]> = (i.local_nodes[0].iter())
         .map(|&j| m.mesh.nodes[e.mesh_nodes[j as usize] as usize])
@@ -45,7 +45,7 @@ pub(crate) fn midpoint(m: &FractureModel, i: &xper_fracture::Interface) -> [f64;
 }
 
 /// Centre of the bounding box of the reference mesh.
-pub(crate) fn mesh_centre(m: &FractureModel) -> [f64; 2] {
+pub fn mesh_centre(m: &FractureModel) -> [f64; 2] {
     let (lo, hi) = m.mesh.nodes.iter().fold(
         ([f64::MAX, f64::MAX], [f64::MIN, f64::MIN]),
         |(lo, hi), p| {
@@ -170,7 +170,7 @@ mod tests {
     fn model() -> FractureModel {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("../../scenes/nooru_mohamed_small/scene.toml");
-        crate::run_fracture::load_model(&path).unwrap().1
+        crate::fracture::build::load_model(&path).unwrap().1
     }
 
     /// Breaks the interfaces whose reference midpoint satisfies `select`; returns their

@@ -1,412 +1,204 @@
-//! `xper check` and `xper run` for fracture scenes (a scene with a `[mesh]` section): the
-//! model built from the scene, the time loop with its progress bar, frames, series,
-//! checkpoints, summary and plots.
+//! Dynamic fracture of a meshed specimen (every element its own body, a frictional cohesive
+//! zone between every pair of neighbouring elements): the [`Simulation`] of a scene with a
+//! `[mesh]` section, on this process ([`stepping::SerialFracture`]) or over a communicator
+//! ([`stepping::DistributedFractureRun`]).
 
-use std::path::{Path, PathBuf};
-use std::time::Instant;
+pub mod build;
+pub mod checkpoint;
+pub mod crack;
+pub mod frames;
+pub mod outputs;
+pub mod stepping;
 
-use serde::{Deserialize, Serialize};
-use xper_fem::MaterialState;
-use xper_fracture::{FractureEnergy, FractureModel, FractureStepError, PointState};
-use xper_io::{write_atomic, write_json_atomic, write_vtu, PvdCollection, SeriesTable};
-use xper_scene::{FractureScene, MeshSource};
-
-use crate::fracture_frames::{elements_grid, interfaces_grid};
-use crate::fracture_outputs::{
+use crate::comparison::SerialComparison;
+use crate::driver::RunOptions;
+use crate::outputs::io_err;
+use crate::ranks::RankSummary;
+use crate::simulation::{RunFacts, Simulation, StepFailure};
+use crate::RunError;
+use checkpoint::Checkpoint;
+use frames::{elements_grid, interfaces_grid};
+use outputs::{
     series_columns, series_row, summary, write_crack_pattern, write_force_displacement,
-    write_series_plot, FractureSummary,
+    write_series_plot,
 };
-use crate::run::RunOptions;
-use crate::run_fracture_distributed::{
-    compare_serial, DistributedFractureRun, FractureRun, SerialFracture,
-};
-use crate::CliError;
+use std::path::Path;
+use stepping::{DistributedFractureRun, FractureRun, SerialFracture};
+use xper_domain::Communicator;
+use xper_fracture::{FractureModel, FractureStepError};
+use xper_io::{write_json_atomic, write_vtu, PvdCollection, SeriesTable};
+use xper_scene::FractureScene;
 
-fn io_err(e: std::io::Error) -> CliError {
-    CliError::Runtime(e.to_string())
-}
-
-fn bad(e: impl std::fmt::Display) -> CliError {
-    CliError::BadInput(e.to_string())
-}
-
-/// Reads a fracture scene and builds its model; every problem is a bad-input error naming
-/// the scene file (and the place in it).
-pub fn load_model(path: &Path) -> Result<(FractureScene, FractureModel), CliError> {
-    let (scene, model, _) = load(path)?;
-    Ok((scene, model))
-}
-
-/// The scene, its model and the notes of its build (rule-of-thumb stiffnesses).
-fn load(path: &Path) -> Result<(FractureScene, FractureModel, Vec<String>), CliError> {
-    let scene = match xper_scene::load_any_scene(path).map_err(bad)? {
-        xper_scene::AnyScene::Fracture(s) => s,
-        xper_scene::AnyScene::Rigid(_) => {
-            return Err(CliError::BadInput(format!(
-                "{}: not a fracture scene (it has no [mesh] section)",
-                path.display()
-            )))
-        }
-    };
-    let setup = scene.build().map_err(bad)?;
-    let model = FractureModel::new(setup.mesh, setup.spec).map_err(|e| {
-        CliError::BadInput(format!(
-            "{}: cannot build the fracture model: {e}",
-            path.display()
-        ))
-    })?;
-    Ok((scene, model, setup.notes))
-}
-
-/// `xper check` on a fracture scene: builds the model and prints what it holds.
-pub fn check(path: &Path) -> Result<(), CliError> {
-    let (scene, model, notes) = load(path)?;
-    let mesh = &model.mesh;
-    println!(
-        "{}: fracture scene `{}` is valid: {} elements, {} nodes, {} interfaces ({} broken at \
-         start), {} steps of {:e} s",
-        path.display(),
-        scene.name,
-        model.elements.len(),
-        mesh.nodes.len(),
-        model.interfaces.len(),
-        model.broken_interfaces(),
-        scene.steps,
-        scene.dt
-    );
-    for (r, region) in mesh.regions.iter().enumerate() {
-        let n = model
-            .elements
-            .iter()
-            .filter(|e| e.region as usize == r)
-            .count();
-        println!("region `{}`: {n} elements", region.name);
-    }
-    for load in &model.spec.loads {
-        println!("load `{}`: {} nodes", load.name, load.nodes.len());
-    }
-    for note in notes {
-        println!("note: {note}");
-    }
-    Ok(())
-}
-
-/// The evolving state of one element, as checkpointed.
-#[derive(Serialize, Deserialize)]
-struct ElementState {
-    displacement: [f64; 6],
-    velocity: [f64; 6],
-    state: MaterialState,
-    internal_force: [f64; 6],
-    stiffness: [[f64; 6]; 6],
-}
-
-/// A checkpoint: the scene's hash and everything of the model that evolves.
-#[derive(Serialize, Deserialize)]
-struct Checkpoint {
+/// A fracture scene being run.
+pub struct FractureSimulation<'c> {
+    runner: Box<dyn FractureRun + 'c>,
+    /// The whole model on the writing process: its step, time and energy after every step,
+    /// its full state after a sync.
+    model: FractureModel,
+    scene: FractureScene,
     scene_hash: u64,
-    step: u64,
-    time: f64,
-    energy: FractureEnergy,
-    elements: Vec<ElementState>,
-    points: Vec<[PointState; 2]>,
-}
-
-impl Checkpoint {
-    fn of(m: &FractureModel, scene_hash: u64) -> Self {
-        Checkpoint {
-            scene_hash,
-            step: m.step,
-            time: m.time,
-            energy: m.energy,
-            elements: (m.elements.iter())
-                .map(|e| ElementState {
-                    displacement: e.displacement,
-                    velocity: e.velocity,
-                    state: e.state,
-                    internal_force: e.internal_force,
-                    stiffness: e.stiffness,
-                })
-                .collect(),
-            points: m.interfaces.iter().map(|i| i.points).collect(),
-        }
-    }
-
-    /// Overwrites the evolving state of a freshly built model.
-    fn restore(self, m: &mut FractureModel, file: &Path) -> Result<(), CliError> {
-        if self.elements.len() != m.elements.len() || self.points.len() != m.interfaces.len() {
-            return Err(CliError::BadInput(format!(
-                "{}: the checkpoint holds {} elements and {} interfaces, the scene builds {} and {}",
-                file.display(),
-                self.elements.len(),
-                self.points.len(),
-                m.elements.len(),
-                m.interfaces.len()
-            )));
-        }
-        for (el, s) in m.elements.iter_mut().zip(self.elements) {
-            el.displacement = s.displacement;
-            el.velocity = s.velocity;
-            el.state = s.state;
-            el.internal_force = s.internal_force;
-            el.stiffness = s.stiffness;
-        }
-        for (i, p) in m.interfaces.iter_mut().zip(self.points) {
-            i.points = p;
-        }
-        m.step = self.step;
-        m.time = self.time;
-        m.energy = self.energy;
-        Ok(())
-    }
-}
-
-/// The step and the nodal displacements of each element (m) held by the checkpoint of a
-/// fracture run in `dir` (for comparing runs).
-pub fn checkpoint_displacements(dir: &Path) -> Result<(u64, Vec<[f64; 6]>), CliError> {
-    let path = dir.join("checkpoint.bin");
-    let bytes = std::fs::read(&path)
-        .map_err(|e| CliError::BadInput(format!("{}: cannot read: {e}", path.display())))?;
-    let c: Checkpoint = bincode::deserialize(&bytes).map_err(|e| {
-        CliError::BadInput(format!(
-            "{}: not a fracture checkpoint of xper: {e}",
-            path.display()
-        ))
-    })?;
-    Ok((c.step, c.elements.iter().map(|e| e.displacement).collect()))
-}
-
-/// FNV-1a hash of the scene text and, for a mesh file, of its bytes.
-fn scene_hash(scene: &FractureScene) -> Result<u64, CliError> {
-    let mut bytes = std::fs::read(&scene.file).map_err(|e| {
-        CliError::BadInput(format!("{}: cannot read scene: {e}", scene.file.display()))
-    })?;
-    if let MeshSource::File(mesh) = &scene.mesh.source {
-        bytes.extend(std::fs::read(mesh).map_err(|e| {
-            CliError::BadInput(format!("{}: cannot read mesh: {e}", mesh.display()))
-        })?);
-    }
-    Ok(bytes.iter().fold(0xcbf29ce484222325u64, |h, &b| {
-        (h ^ u64::from(b)).wrapping_mul(0x100000001b3)
-    }))
-}
-
-struct Outputs {
-    dir: PathBuf,
     series: SeriesTable,
-    pvd: PvdCollection,
-    scene_hash: u64,
+    compare_from: Option<FractureModel>,
+    /// Broken points and sweeps of the last step, for the progress bar.
+    last: (usize, u32),
 }
 
-impl Outputs {
-    fn write_frame(&mut self, m: &FractureModel) -> Result<(), CliError> {
-        let frames = self.dir.join("frames");
-        self.pvd.truncate_after(m.time - 0.5 * m.spec.dt);
+impl<'c> FractureSimulation<'c> {
+    /// The run of `scene` (whose files hash to `scene_hash`) at time 0 or, with
+    /// `opts.resume`, from the checkpoint in `opts.out`; over `comm` when given.
+    pub fn new(
+        scene: FractureScene,
+        scene_hash: u64,
+        opts: &RunOptions,
+        comm: Option<&'c dyn Communicator>,
+    ) -> Result<Self, RunError> {
+        let (mut model, _) = build::build_model(&scene, &opts.scene)?;
+        if opts.resume {
+            Checkpoint::read(&opts.out, scene_hash)?
+                .restore(&mut model, &opts.out.join("checkpoint.bin"))?;
+        }
+        let names: Vec<String> = model.spec.loads.iter().map(|l| l.name.clone()).collect();
+        let columns = series_columns(&names);
+        let columns: Vec<&str> = columns.iter().map(String::as_str).collect();
+        let runner: Box<dyn FractureRun + 'c> = match comm {
+            Some(comm) => Box::new(DistributedFractureRun::new(comm, &model)),
+            None => Box::<SerialFracture>::default(),
+        };
+        let compare_from =
+            (opts.compare_serial && runner.is_root() && comm.is_some()).then(|| model.clone());
+        Ok(FractureSimulation {
+            runner,
+            model,
+            scene,
+            scene_hash,
+            series: SeriesTable::new(&columns),
+            compare_from,
+            last: (0, 0),
+        })
+    }
+
+    /// The whole model (on the writing process; its full state after a sync).
+    pub fn model(&self) -> &FractureModel {
+        &self.model
+    }
+}
+
+impl Simulation for FractureSimulation<'_> {
+    fn step_index(&self) -> u64 {
+        self.model.step
+    }
+    fn time(&self) -> f64 {
+        self.model.time
+    }
+    fn is_complete(&self) -> bool {
+        self.model.step >= self.scene.steps
+    }
+    fn progress(&self) -> (u64, u64) {
+        (self.scene.steps, self.model.step)
+    }
+    fn status_line(&self) -> String {
+        let (broken, sweeps) = self.last;
+        format!(
+            "t = {:.4e} s, {broken} broken points, {sweeps} sweeps",
+            self.model.time
+        )
+    }
+    fn is_root(&self) -> bool {
+        self.runner.is_root()
+    }
+    fn processes(&self) -> usize {
+        self.runner.processes()
+    }
+    fn step(&mut self) -> Result<f64, StepFailure> {
+        match self.runner.step(&mut self.model) {
+            Ok(report) => {
+                self.series.push(series_row(&report));
+                self.last = (report.broken_points, report.iterations);
+                Ok(report.wall_time)
+            }
+            // Every process meets it together. The diverged state is shown, not checkpointed.
+            Err(e @ FractureStepError::Diverging(_)) => Err(StepFailure {
+                message: e.to_string(),
+                step: self.model.step,
+                time: self.model.step as f64 * self.model.spec.dt,
+                collective: true,
+                show_state: true,
+            }),
+            Err(e) => Err(StepFailure {
+                message: e.to_string(),
+                step: self.model.step + 1,
+                time: (self.model.step + 1) as f64 * self.model.spec.dt,
+                collective: false,
+                show_state: false,
+            }),
+        }
+    }
+    fn sync(&mut self) {
+        self.runner.sync(&mut self.model);
+    }
+    fn write_frame(&mut self, dir: &Path, pvd: &mut PvdCollection) -> Result<(), RunError> {
+        let m = &self.model;
+        pvd.truncate_after(m.time - 0.5 * m.spec.dt);
         let parts = [
             ("elements", elements_grid(m)),
             ("interfaces", interfaces_grid(m)),
         ];
         for (part, (name, grid)) in parts.iter().enumerate() {
-            let file = format!("{name}_{:08}.vtu", m.step);
-            write_vtu(&frames.join(&file), grid).map_err(io_err)?;
-            self.pvd.push(m.time, part as u32, format!("frames/{file}"));
+            let file = format!("frames/{name}_{:08}.vtu", m.step);
+            write_vtu(&dir.join(&file), grid).map_err(io_err)?;
+            pvd.push(m.time, part as u32, file);
         }
-        self.pvd.write(&self.dir.join("result.pvd")).map_err(io_err)
+        pvd.write(&dir.join("result.pvd")).map_err(io_err)
     }
-
-    fn write_checkpoint(&self, m: &FractureModel) -> Result<(), CliError> {
-        let bytes = bincode::serialize(&Checkpoint::of(m, self.scene_hash))
-            .map_err(|e| CliError::Runtime(e.to_string()))?;
-        write_atomic(&self.dir.join("checkpoint.bin"), &bytes).map_err(io_err)?;
-        self.series
-            .write_csv(&self.dir.join("series.csv"))
-            .map_err(io_err)
+    fn checkpoint(&self) -> Result<Vec<u8>, RunError> {
+        bincode::serialize(&Checkpoint::of(&self.model, self.scene_hash))
+            .map_err(|e| RunError::Runtime(e.to_string()))
     }
-
-    fn resume(&mut self, m: &mut FractureModel) -> Result<(), CliError> {
-        let path = self.dir.join("checkpoint.bin");
-        let bytes = std::fs::read(&path)
-            .map_err(|e| CliError::BadInput(format!("{}: cannot resume: {e}", path.display())))?;
-        let c: Checkpoint = bincode::deserialize(&bytes).map_err(|e| {
-            CliError::BadInput(format!(
-                "{}: not a fracture checkpoint of xper: {e}",
-                path.display()
-            ))
-        })?;
-        if c.scene_hash != self.scene_hash {
-            return Err(CliError::BadInput(format!(
-                "{}: the checkpoint was written for a different scene or mesh file (changed since)",
-                path.display()
-            )));
-        }
-        c.restore(m, &path)?;
-        self.series = SeriesTable::read_csv(&self.dir.join("series.csv")).map_err(bad)?;
-        self.series
-            .truncate_rows_where_first_column_greater_than(m.step as f64);
-        self.pvd = PvdCollection::read(&self.dir.join("result.pvd")).map_err(bad)?;
-        Ok(())
+    fn tables(&self) -> Vec<(&'static str, &SeriesTable)> {
+        vec![("series.csv", &self.series)]
     }
-}
-
-/// Runs a fracture scene (see [`RunOptions`]); `quiet` hides the progress bar.
-pub fn run(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
-    run_with_summary(opts, quiet).map(|_| ())
-}
-
-/// [`run`], returning the run's summary (as written to `summary.json`).
-pub fn run_with_summary(opts: &RunOptions, quiet: bool) -> Result<FractureSummary, CliError> {
-    run_on(opts, quiet, None)
-}
-
-/// [`run`] on the processes of `comm` when it has several (every process calls it; rank 0
-/// writes the outputs, and the summary it returns is the run's), on this process otherwise.
-pub fn run_on(
-    opts: &RunOptions,
-    quiet: bool,
-    comm: Option<&dyn xper_domain::Communicator>,
-) -> Result<FractureSummary, CliError> {
-    let (scene, mut model) = load_model(&opts.scene)?;
-    let distributed = comm.filter(|c| c.size() > 1);
-    let root = distributed.is_none_or(|c| c.rank() == 0);
-    if root {
-        crate::run::create_output_dir(&opts.out.join("frames"))?;
+    fn tables_mut(&mut self) -> Vec<(&'static str, &mut SeriesTable)> {
+        vec![("series.csv", &mut self.series)]
     }
-    let names: Vec<String> = model.spec.loads.iter().map(|l| l.name.clone()).collect();
-    let columns = series_columns(&names);
-    let columns: Vec<&str> = columns.iter().map(String::as_str).collect();
-    let mut out = Outputs {
-        dir: opts.out.clone(),
-        series: SeriesTable::new(&columns),
-        pvd: PvdCollection::default(),
-        scene_hash: scene_hash(&scene)?,
-    };
-    if opts.resume {
-        out.resume(&mut model)?;
-    } else if root {
-        // A checkpoint of an earlier run in the same directory is not this run's.
-        let _ = std::fs::remove_file(opts.out.join("checkpoint.bin"));
-        out.write_frame(&model)?;
+    fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary> {
+        self.runner.rank_summaries(wall)
     }
-    let last = opts
-        .stop_at_step
-        .map_or(scene.steps, |s| s.min(scene.steps));
-    let bar = crate::run::progress_bar(quiet || !root, scene.steps, model.step);
-    let compare_from =
-        (opts.compare_serial && root && distributed.is_some()).then(|| model.clone());
-    let mut runner: Box<dyn FractureRun + '_> = match distributed {
-        Some(comm) => Box::new(DistributedFractureRun::new(comm, &model)),
-        None => Box::<SerialFracture>::default(),
-    };
-    let started = Instant::now();
-    let mut stepping = 0.0;
-    let mut failure = None;
-    while model.step < last {
-        let (step, error) = match runner.step(&mut model) {
-            Ok(report) => {
-                stepping += report.wall_time;
-                out.series.push(series_row(&report));
-                let step = model.step;
-                let frame = step % scene.output.frame_every == 0 || step == scene.steps;
-                let checkpoint = step % scene.output.checkpoint_every == 0;
-                if frame || checkpoint {
-                    runner.sync(&mut model);
-                }
-                if frame && root {
-                    out.write_frame(&model)?;
-                }
-                if checkpoint && root {
-                    out.write_checkpoint(&model)?;
-                }
-                if step % 10 == 0 || step == last {
-                    bar.set_position(step);
-                    bar.set_message(format!(
-                        "t = {:.4e} s, {} broken points, {} sweeps",
-                        model.time, report.broken_points, report.iterations
-                    ));
-                }
-                continue;
-            }
-            Err(e @ FractureStepError::Diverging(_)) => {
-                // Every process meets it together. The diverged state is shown, not
-                // checkpointed.
-                runner.sync(&mut model);
-                if root {
-                    out.write_frame(&model)?;
-                }
-                (model.step, e.to_string())
-            }
-            Err(e) => {
-                if let Some(comm) = distributed {
-                    // This process may be alone in failing: the others would wait for it.
-                    comm.abort(&format!("step {}: {e}", model.step + 1), 1);
-                }
-                (model.step + 1, e.to_string())
-            }
+    fn compare_serial(&mut self, stepping: f64) -> Result<Option<SerialComparison>, RunError> {
+        let Some(start) = self.compare_from.take() else {
+            return Ok(None);
         };
-        let checkpoint = opts.out.join("checkpoint.bin");
-        let kept = if checkpoint.exists() {
-            format!("the last checkpoint is kept in {}", checkpoint.display())
-        } else {
-            "no checkpoint was written".to_string()
-        };
-        failure = Some(format!(
-            "step {step} (t = {:.6e} s): {error}; {kept}",
-            step as f64 * model.spec.dt
-        ));
-        break;
+        let processes = self.runner.processes();
+        stepping::compare_serial(start, &self.model, stepping, processes).map(Some)
     }
-    bar.finish_and_clear();
-    let wall = started.elapsed().as_secs_f64();
-    if failure.is_none() {
-        runner.sync(&mut model);
-    }
-    let ranks = runner.rank_summaries(wall);
-    let processes = runner.processes();
-    let comparison = match compare_from.filter(|_| failure.is_none()) {
-        Some(start) => Some(compare_serial(start, &model, stepping, processes)?),
-        None => None,
-    };
-    let status = crate::run::run_status(failure.is_some(), model.step == scene.steps);
-    let message = failure.clone().unwrap_or_default();
-    let mut s = summary(
-        &model,
-        &out.series,
-        (&scene.name, &opts.scene),
-        status,
-        message,
-    );
-    (s.processes, s.ranks, s.serial_comparison) = (processes, ranks, comparison);
-    if !root {
-        return match failure {
-            Some(message) => Err(CliError::Runtime(message)),
-            None => Ok(s),
-        };
-    }
-    if failure.is_none() {
-        out.write_checkpoint(&model)?;
-    } else {
-        out.series
-            .write_csv(&opts.out.join("series.csv"))
-            .map_err(io_err)?;
-    }
-    write_json_atomic(&opts.out.join("summary.json"), &s).map_err(io_err)?;
-    write_series_plot(&out.series, &opts.out.join("series.png"), &scene.name).map_err(io_err)?;
-    let fd = opts.out.join("force_displacement.png");
-    write_force_displacement(&model, &out.series, &fd, &scene.name).map_err(io_err)?;
-    write_crack_pattern(&model, &opts.out.join("crack_pattern.png"), &scene.name)
-        .map_err(io_err)?;
-    if !quiet {
-        eprintln!(
-            "{status}: {} of {} steps in {wall:.2} s on {processes} process(es), {} broken points, \
-             outputs in {}",
-            model.step,
-            scene.steps,
-            model.broken_points(),
-            opts.out.display()
+    fn write_summary(&self, dir: &Path, facts: &RunFacts) -> Result<serde_json::Value, RunError> {
+        let mut s = summary(
+            &self.model,
+            &self.series,
+            (&self.scene.name, facts.scene_file),
+            facts.status,
+            facts.message.clone(),
         );
+        s.processes = self.runner.processes();
+        s.ranks = facts.ranks.clone();
+        s.serial_comparison = facts.comparison.clone();
+        let (m, name) = (&self.model, &self.scene.name);
+        write_json_atomic(&dir.join("summary.json"), &s).map_err(io_err)?;
+        write_series_plot(&self.series, &dir.join("series.png"), name).map_err(io_err)?;
+        let fd = dir.join("force_displacement.png");
+        write_force_displacement(m, &self.series, &fd, name).map_err(io_err)?;
+        write_crack_pattern(m, &dir.join("crack_pattern.png"), name).map_err(io_err)?;
+        serde_json::to_value(&s).map_err(|e| RunError::Runtime(e.to_string()))
     }
-    match failure {
-        Some(message) => Err(CliError::Runtime(message)),
-        None => Ok(s),
+    fn closing_line(&self, facts: &RunFacts, dir: &Path) -> String {
+        format!(
+            "{}: {} of {} steps in {:.2} s on {} process(es), {} broken points, outputs in {}",
+            facts.status,
+            self.model.step,
+            self.scene.steps,
+            facts.wall,
+            self.runner.processes(),
+            self.model.broken_points(),
+            dir.display()
+        )
     }
 }

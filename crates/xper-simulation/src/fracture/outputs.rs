@@ -3,12 +3,12 @@
 
 use std::path::Path;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use xper_bodies::Drive;
 use xper_fracture::{FractureEnergy, FractureModel, FractureStepReport, InterfaceLaw};
 use xper_io::{plot_panels, plot_segments, Curve, Panel, SegmentLayer, SeriesTable};
 
-use crate::fracture_frames::{is_damaged, point_position};
+use super::frames::{is_damaged, point_position};
 
 /// Per-load columns of `series.csv`, after `step` and `time`: `<name>_fx`, `<name>_fy` (N),
 /// `<name>_ux`, `<name>_uy` (m) for each load in scene order.
@@ -75,14 +75,14 @@ pub fn series_row(r: &FractureStepReport) -> Vec<f64> {
 }
 
 /// `summary.json` of a fracture run.
-#[derive(Serialize)]
+#[derive(Serialize, Deserialize)]
 pub struct FractureSummary {
     /// Scene name.
     pub scene: String,
     /// Scene file as given.
     pub scene_file: String,
     /// `completed`, `stopped` (by `--stop-at-step`) or `failed`.
-    pub status: &'static str,
+    pub status: String,
     /// Why the run failed (empty otherwise).
     pub message: String,
     /// Triangles, i.e. element bodies.
@@ -118,17 +118,17 @@ pub struct FractureSummary {
     /// `energy.error()` at the end (J).
     pub energy_error: f64,
     /// Measures of the crack pattern at the end.
-    pub crack: crate::crack::CrackMetrics,
+    pub crack: super::crack::CrackMetrics,
     /// Peak resident memory of the process (bytes), where the platform reports it.
     pub peak_memory_bytes: Option<u64>,
     /// Version of xper.
-    pub xper_version: &'static str,
+    pub xper_version: String,
     /// Processes of the run (1 without mpirun).
     pub processes: usize,
     /// Each process's load and communication (empty on one process).
-    pub ranks: crate::run::RankLoads,
+    pub ranks: Vec<crate::ranks::RankSummary>,
     /// The same steps on one process (`--compare-serial` under mpirun).
-    pub serial_comparison: Option<crate::serial_comparison::SerialComparison>,
+    pub serial_comparison: Option<crate::comparison::SerialComparison>,
 }
 
 /// The summary of a run from its series and final model.
@@ -148,7 +148,7 @@ pub fn summary(
     FractureSummary {
         scene: scene.0.to_string(),
         scene_file: scene.1.display().to_string(),
-        status,
+        status: status.to_string(),
         message,
         elements: m.elements.len(),
         interfaces: m.interfaces.len(),
@@ -170,9 +170,9 @@ pub fn summary(
         final_broken_interfaces: m.broken_interfaces(),
         energy: m.energy,
         energy_error: m.energy.error(),
-        crack: crate::crack::crack_metrics(m),
+        crack: super::crack::crack_metrics(m),
         peak_memory_bytes: xper_io::peak_memory_bytes(),
-        xper_version: env!("CARGO_PKG_VERSION"),
+        xper_version: env!("CARGO_PKG_VERSION").to_string(),
         processes: 1,
         ranks: Vec::new(),
         serial_comparison: None,
@@ -302,8 +302,8 @@ pub fn write_crack_pattern(m: &FractureModel, path: &Path, title: &str) -> std::
         for edge in &topology.boundary {
             let t = edge.triangle as usize;
             let j = edge.local_edge as usize;
-            let p = crate::fracture_frames::node_position(m, t, j);
-            let q = crate::fracture_frames::node_position(m, t, (j + 1) % 3);
+            let p = super::frames::node_position(m, t, j);
+            let q = super::frames::node_position(m, t, (j + 1) % 3);
             layers[0].push([p, q]);
         }
     }

@@ -5,9 +5,9 @@
 use xper_domain::{CommStats, Communicator, DistributedFracture};
 use xper_fracture::{FractureModel, FractureStepError, FractureStepReport, FractureStepper};
 
-use crate::run_distributed::RankSummary;
-use crate::serial_comparison::SerialComparison;
-use crate::CliError;
+use crate::comparison::SerialComparison;
+use crate::ranks::{rank_summaries, RankSummary};
+use crate::RunError;
 
 /// A fracture run advanced step by step. `whole` is the model the outputs are written from:
 /// on the writing process it holds the whole model's step, time and energy after every step
@@ -87,7 +87,7 @@ impl FractureRun for DistributedFractureRun<'_> {
         self.comm.size()
     }
     fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary> {
-        crate::run_distributed::rank_summaries(self.comm, self.run.load(), &self.setup, wall)
+        rank_summaries(self.comm, self.run.load(), &self.setup, wall)
     }
 }
 
@@ -98,7 +98,7 @@ pub fn compare_serial(
     end: &FractureModel,
     distributed_wall: f64,
     processes: usize,
-) -> Result<SerialComparison, CliError> {
+) -> Result<SerialComparison, RunError> {
     let mut stepper = FractureStepper::new();
     SerialComparison::rerun(
         start,

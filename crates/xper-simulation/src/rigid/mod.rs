@@ -1,0 +1,235 @@
+//! Rigid bodies in frictional contact (NSCD, Moreau-Jean): the [`Simulation`] of a scene
+//! without `[mesh]` or `[fluid]`, stepped on this process ([`stepping::SerialRun`]) or over a
+//! communicator ([`stepping::DistributedRun`], NSCDD).
+
+pub mod build;
+pub mod frames;
+pub mod outputs;
+pub mod stepping;
+
+use crate::checkpoint::{checkpoint_bytes, read_checkpoint};
+use crate::comparison::SerialComparison;
+use crate::driver::RunOptions;
+use crate::outputs::{create_output_dir, io_err};
+use crate::ranks::RankSummary;
+use crate::simulation::{RunFacts, Simulation, StepFailure};
+use crate::RunError;
+use build::{release_body_descriptions, world_from_scene};
+use frames::{bodies_grid, contacts_grid};
+use outputs::{series_row, solver_name, SeriesFigures, Summary, SERIES_COLUMNS};
+use std::path::Path;
+use stepping::{check_distributable, DistributedRun, RigidRun, SerialRun};
+use xper_domain::Communicator;
+use xper_io::{write_json_atomic, write_vtu, PvdCollection, SeriesTable};
+use xper_nscd::World;
+use xper_scene::Scene;
+
+/// A rigid scene being run.
+pub struct RigidSimulation<'c> {
+    run: Box<dyn RigidRun + 'c>,
+    /// The whole world gathered on the writing process of a distributed run at the last sync.
+    gathered: Option<World>,
+    root: bool,
+    processes: usize,
+    /// The scene, its body descriptions released once the world is built.
+    scene: Scene,
+    scene_hash: u64,
+    series: SeriesTable,
+    /// The start of a distributed run kept for `--compare-serial`.
+    compare_from: Option<World>,
+    /// Time, contacts and sweeps of the last step, for the progress bar.
+    last: (f64, usize, u32),
+}
+
+impl<'c> RigidSimulation<'c> {
+    /// The run of `scene` (whose files hash to `scene_hash`) at time 0 or, with
+    /// `opts.resume`, from the checkpoint in `opts.out`; over `comm` when given.
+    pub fn new(
+        mut scene: Scene,
+        scene_hash: u64,
+        opts: &RunOptions,
+        comm: Option<&'c dyn Communicator>,
+    ) -> Result<Self, RunError> {
+        let dumps = scene.output.dump_problems.clone();
+        if !dumps.is_empty() && !cfg!(feature = "hdf5") {
+            return Err(RunError::BadInput(format!(
+                "{}: [output] dump_problems: built without HDF5 support: rebuild with --features hdf5",
+                opts.scene.display()
+            )));
+        }
+        check_distributable(&scene, &opts.scene, comm.is_some())?;
+        let root = comm.is_none_or(|c| c.rank() == 0);
+        if !dumps.is_empty() && root {
+            create_output_dir(&opts.out.join("problems"))?;
+        }
+        let world = if opts.resume {
+            let bytes: Vec<u8> = read_checkpoint(&opts.out, scene_hash, "an xper checkpoint")?;
+            World::from_bytes(&bytes).map_err(|e| {
+                RunError::BadInput(format!(
+                    "{}: {e}",
+                    opts.out.join("checkpoint.bin").display()
+                ))
+            })?
+        } else {
+            world_from_scene(&scene)
+        };
+        release_body_descriptions(&mut scene);
+        let compare_from = (opts.compare_serial && root && comm.is_some()).then(|| world.clone());
+        let (run, processes): (Box<dyn RigidRun + 'c>, usize) = match comm {
+            Some(comm) => (
+                Box::new(DistributedRun::new(
+                    comm,
+                    world,
+                    scene.output.checkpoint_every,
+                )),
+                comm.size(),
+            ),
+            None => (Box::new(SerialRun::new(world, dumps, opts.out.clone())), 1),
+        };
+        Ok(RigidSimulation {
+            run,
+            gathered: None,
+            root,
+            processes,
+            scene,
+            scene_hash,
+            series: SeriesTable::new(&SERIES_COLUMNS),
+            compare_from,
+            last: (0.0, 0, 0),
+        })
+    }
+
+    /// The whole world, on the writing process (after a sync in a distributed run).
+    pub fn world(&self) -> Option<&World> {
+        self.run.whole().or(self.gathered.as_ref())
+    }
+
+    fn whole(&self) -> Result<&World, RunError> {
+        self.world()
+            .ok_or_else(|| RunError::Runtime("the whole world is not held by this process".into()))
+    }
+}
+
+impl Simulation for RigidSimulation<'_> {
+    fn step_index(&self) -> u64 {
+        self.run.step_index()
+    }
+    fn time(&self) -> f64 {
+        self.run.time()
+    }
+    fn is_complete(&self) -> bool {
+        self.run.step_index() >= self.scene.steps
+    }
+    fn progress(&self) -> (u64, u64) {
+        (self.scene.steps, self.run.step_index())
+    }
+    fn status_line(&self) -> String {
+        let (time, contacts, sweeps) = self.last;
+        format!("t = {time:.4e} s, {contacts} contacts, {sweeps} sweeps")
+    }
+    fn is_root(&self) -> bool {
+        self.root
+    }
+    fn processes(&self) -> usize {
+        self.processes
+    }
+    fn begin(&mut self) {
+        self.run.begin();
+    }
+    fn step(&mut self) -> Result<f64, StepFailure> {
+        let failure = |message: String, run: &dyn RigidRun| StepFailure {
+            message,
+            step: run.step_index() + 1,
+            time: run.time(),
+            collective: false,
+            show_state: false,
+        };
+        match self.run.step() {
+            Ok(Ok(report)) => {
+                self.series.push(series_row(&report));
+                self.last = (report.time, report.contacts, report.iterations);
+                Ok(report.times.total)
+            }
+            Ok(Err(e)) => Err(failure(e.to_string(), self.run.as_ref())),
+            Err(e) => Err(failure(e.to_string(), self.run.as_ref())),
+        }
+    }
+    fn sync(&mut self) {
+        if let Some(world) = self.run.gather() {
+            self.gathered = Some(world);
+        }
+    }
+    fn write_frame(&mut self, dir: &Path, pvd: &mut PvdCollection) -> Result<(), RunError> {
+        let world = self.whole()?;
+        let parts = [
+            ("bodies", bodies_grid(world)),
+            ("contacts", contacts_grid(world, false)),
+            ("force_chains", contacts_grid(world, true)),
+        ];
+        pvd.truncate_after(world.time - 0.5 * world.params.dt);
+        for (part, (name, grid)) in parts.iter().enumerate() {
+            let file = format!("frames/{name}_{:08}.vtu", world.step);
+            write_vtu(&dir.join(&file), grid).map_err(io_err)?;
+            pvd.push(world.time, part as u32, file);
+        }
+        pvd.write(&dir.join("result.pvd")).map_err(io_err)
+    }
+    fn checkpoint(&self) -> Result<Vec<u8>, RunError> {
+        checkpoint_bytes(self.scene_hash, &self.whole()?.to_bytes())
+    }
+    fn tables(&self) -> Vec<(&'static str, &SeriesTable)> {
+        vec![("series.csv", &self.series)]
+    }
+    fn tables_mut(&mut self) -> Vec<(&'static str, &mut SeriesTable)> {
+        vec![("series.csv", &mut self.series)]
+    }
+    fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary> {
+        self.run.rank_summaries(wall)
+    }
+    fn compare_serial(&mut self, stepping: f64) -> Result<Option<SerialComparison>, RunError> {
+        let Some(start) = self.compare_from.take() else {
+            return Ok(None);
+        };
+        let end = self.whole()?;
+        stepping::compare_serial(start, end, stepping, self.processes).map(Some)
+    }
+    fn write_summary(&self, dir: &Path, facts: &RunFacts) -> Result<serde_json::Value, RunError> {
+        let f = SeriesFigures::of(&self.series);
+        let summary = Summary {
+            scene: self.scene.name.clone(),
+            scene_file: facts.scene_file.display().to_string(),
+            solver: solver_name(self.scene.solver.kind),
+            status: facts.status,
+            message: facts.message.clone(),
+            bodies: self.run.body_count(),
+            dt: self.scene.dt,
+            first_step: facts.first_step,
+            steps: self.run.step_index(),
+            simulated_time: self.run.time(),
+            wall_time_s: f.wall_time_s,
+            average_iterations: f.average_iterations,
+            max_iterations: f.max_iterations,
+            non_converged_steps: f.non_converged_steps,
+            average_contacts: f.average_contacts,
+            max_contacts: f.max_contacts,
+            peak_memory_bytes: xper_io::peak_memory_bytes(),
+            xper_version: env!("CARGO_PKG_VERSION"),
+            processes: facts.ranks.len().max(1),
+            ranks: facts.ranks.clone(),
+            serial_comparison: facts.comparison.clone(),
+        };
+        write_json_atomic(&dir.join("summary.json"), &summary).map_err(io_err)?;
+        outputs::write_plot(&self.series, &dir.join("series.png"), &self.scene.name)?;
+        serde_json::to_value(&summary).map_err(|e| RunError::Runtime(e.to_string()))
+    }
+    fn closing_line(&self, facts: &RunFacts, dir: &Path) -> String {
+        format!(
+            "{}: {} of {} steps in {:.2} s, outputs in {}",
+            facts.status,
+            self.run.step_index(),
+            self.scene.steps,
+            facts.wall,
+            dir.display()
+        )
+    }
+}
