@@ -1,14 +1,7 @@
-//! The library behind the `xper` command besides the run driver (which is
-//! [`xper_simulation`]): `xper solve`, the benchmarks and the validation cases.
+//! The `xper` command's own code: its arguments and `xper solve`. Running scenes is
+//! [`xper_simulation`], benchmarks [`xper_bench`], validation [`xper_validation`].
 
-pub mod bench;
-pub mod bench_fluid;
-pub mod bench_fracture;
-pub mod bench_solvers;
 pub mod solve;
-pub mod validation;
-pub mod validation_fluid;
-pub mod validation_paper;
 
 /// A failure with the exit code it maps to (bad input: 2, a failed run: 1).
 pub use xper_simulation::RunError as CliError;

@@ -9,7 +9,8 @@ use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use xper_cli::{bench, solve, validation, CliError};
+use xper_bench as bench;
+use xper_cli::{solve, CliError};
 use xper_simulation::RunOptions;
 
 /// Counts heap bytes, so that benchmarks report the memory a run's data needs exactly.
@@ -116,7 +117,7 @@ fn main() -> ExitCode {
         }
         Command::Bench(args) => bench::bench(&args),
         Command::Solve(args) => solve::run_solve(&args),
-        Command::Validate { report, full } => validation::write_report(&report, full),
+        Command::Validate { report, full } => xper_validation::report::write_report(&report, full),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -10,10 +10,8 @@ use crate::CliError;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
-use xper_fclib::{read_problem, read_siconos_as, Problem, SiconosKind};
-use xper_solver::{
-    solve, ErrorScaling, FrictionProblem, ProblemErrorMeasure, SolverKind, SolverParams,
-};
+use xper_fclib::{read_local, ReadAs};
+use xper_solver::{solve_timed, ErrorScaling, FrictionProblem, ProblemErrorMeasure, SolverKind};
 
 /// Solver names accepted on the command line.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -120,39 +118,12 @@ pub struct SolveOutput {
 
 /// Reads a problem and reduces it to the local form.
 pub fn load_local(path: &Path, form: FormArg) -> Result<(FrictionProblem, &'static str), CliError> {
-    let problem = match form {
-        FormArg::Auto => read_problem(path),
-        FormArg::Local => read_siconos_as(path, SiconosKind::Local),
-        FormArg::Global => read_siconos_as(path, SiconosKind::Global),
-    }
-    .map_err(|e| CliError::BadInput(e.to_string()))?;
-    let form = match problem {
-        Problem::Local(_) => "local",
-        Problem::Global(_) => "global",
+    let how = match form {
+        FormArg::Auto => ReadAs::Auto,
+        FormArg::Local => ReadAs::Local,
+        FormArg::Global => ReadAs::Global,
     };
-    let local = problem
-        .into_local()
-        .map_err(|e| CliError::BadInput(format!("{}: {e}", path.display())))?;
-    Ok((local, form))
-}
-
-/// Solves a local problem with the given settings and measures the wall time.
-pub fn solve_timed(
-    problem: &FrictionProblem,
-    solver: SolverKind,
-    tol: f64,
-    max_iter: Option<u32>,
-    scaling: ErrorScaling,
-) -> Result<(xper_solver::SolveReport, f64), xper_solver::SolveError> {
-    let mut params = SolverParams::with_kind(solver);
-    params.tolerance = tol;
-    params.scaling = scaling;
-    if let Some(n) = max_iter {
-        params.max_iterations = n;
-    }
-    let start = Instant::now();
-    let report = solve(problem, &params, None)?;
-    Ok((report, start.elapsed().as_secs_f64()))
+    read_local(path, how).map_err(CliError::BadInput)
 }
 
 /// Runs `xper solve`: prints the JSON; an unconverged solve is an error (exit 1) after printing.

@@ -19,6 +19,7 @@
 
 pub mod communicator;
 mod distributed_bisection;
+#[cfg(any(test, feature = "fixtures"))]
 pub mod fixtures;
 pub mod fluid;
 pub mod fracture;

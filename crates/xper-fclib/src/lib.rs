@@ -77,6 +77,36 @@ impl Problem {
     }
 }
 
+/// How a problem file is read by [`read_local`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ReadAs {
+    /// As the file says (by extension and content, see [`read_problem`]).
+    Auto,
+    /// A Siconos `.dat` read as a local problem.
+    Local,
+    /// A Siconos `.dat` read as a global problem.
+    Global,
+}
+
+/// Reads a problem file and reduces it to the local form; returns it with the form the file
+/// stored (`"local"` or `"global"`). The error names the file and the reason.
+pub fn read_local(path: &Path, how: ReadAs) -> Result<(FrictionProblem, &'static str), String> {
+    let problem = match how {
+        ReadAs::Auto => read_problem(path),
+        ReadAs::Local => read_siconos_as(path, SiconosKind::Local),
+        ReadAs::Global => read_siconos_as(path, SiconosKind::Global),
+    }
+    .map_err(|e| e.to_string())?;
+    let form = match problem {
+        Problem::Local(_) => "local",
+        Problem::Global(_) => "global",
+    };
+    let local = problem
+        .into_local()
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok((local, form))
+}
+
 /// Reads a problem, choosing the format by extension: `.hdf5`/`.h5` for FCLib (needs the
 /// `hdf5` feature), `.dat` for Siconos text (local or global told apart by content).
 pub fn read_problem(path: impl AsRef<Path>) -> Result<Problem, ReadError> {

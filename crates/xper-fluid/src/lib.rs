@@ -33,7 +33,4 @@ pub use grid::MacGrid;
 pub use immersed::{HydrodynamicForce, ImmersedDisk, InnerMomentum, SolidIndicator};
 pub use solver::{FluidError, FluidParams, FluidSolver, FluidState, FluidStepReport};
 pub mod coupling;
-pub mod validation;
 pub use coupling::{CoupledError, CoupledReport, CoupledState, CoupledStepper};
-#[path = "validation_grains.rs"]
-pub mod validation_grains;

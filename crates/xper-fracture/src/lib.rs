@@ -20,7 +20,6 @@ mod part;
 mod solve;
 mod step;
 mod update;
-pub mod validation;
 
 pub use dense::{masked_spd_inverse, Mat6};
 pub use model::{

@@ -15,7 +15,6 @@
 use serde::{Deserialize, Serialize};
 
 pub mod buffer;
-pub mod validation;
 
 /// Floating-point type of every physical quantity.
 pub type Real = f64;

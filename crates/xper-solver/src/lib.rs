@@ -52,4 +52,4 @@ pub use problem::{
     ProblemErrorMeasure,
 };
 pub use proximal::{proximal_newton, ProximalParams};
-pub use solve::{solve, ErrorScaling, SolveReport, SolverKind, SolverParams};
+pub use solve::{solve, solve_timed, ErrorScaling, SolveReport, SolverKind, SolverParams};

@@ -189,6 +189,27 @@ pub fn solve(
     }
 }
 
+/// [`solve`] from zero with the solver `kind`, tolerance `tol` under `scaling` and at most
+/// `max_iter` iterations (the solver's default when `None`); returns the report and the wall
+/// time of the solve (s).
+pub fn solve_timed(
+    problem: &FrictionProblem,
+    kind: SolverKind,
+    tol: f64,
+    max_iter: Option<u32>,
+    scaling: ErrorScaling,
+) -> Result<(SolveReport, f64), SolveError> {
+    let mut params = SolverParams::with_kind(kind);
+    params.tolerance = tol;
+    params.scaling = scaling;
+    if let Some(n) = max_iter {
+        params.max_iterations = n;
+    }
+    let start = std::time::Instant::now();
+    let report = solve(problem, &params, None)?;
+    Ok((report, start.elapsed().as_secs_f64()))
+}
+
 /// Checks the problem, the parameters and the warm start; returns the diagonal blocks of `W`
 /// (row-major `dim x dim` in a `[f64; 9]`) and the starting `r`.
 pub(crate) fn prepare(

@@ -35,7 +35,7 @@ pub fn assert_success(output: &Output) {
 
 /// A box of disks deposited under gravity, with frames and checkpoints.
 pub fn deposit_scene(count: usize, steps: usize) -> String {
-    xper_cli::validation::deposit_scene(count, steps).replace(
+    xper_validation::rigid::deposit_scene(count, steps).replace(
         "[[materials]]",
         "[output]\nframe_every = 50\ncheckpoint_every = 40\n\n[[materials]]",
     )

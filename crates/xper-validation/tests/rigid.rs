@@ -2,7 +2,7 @@
 
 #[test]
 fn every_validation_case_passes() {
-    let cases = xper_cli::validation::all_cases(300, 3000).expect("cases run");
+    let cases = xper_validation::rigid::all_cases(300, 3000).expect("cases run");
     for c in &cases {
         assert!(
             c.passed(),

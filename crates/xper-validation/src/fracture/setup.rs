@@ -2,12 +2,12 @@
 //! s, Pa, Pa/m for interface stiffnesses, J, N).
 
 use super::Case;
-use crate::{
+use xper_bodies::{Drive, TimeFunction};
+use xper_fem::{Hypothesis, Material};
+use xper_fracture::{
     FractureModel, FractureSpec, FractureStepReport, FractureStepper, InterfaceLaw, InterfaceRule,
     MassMatrix, NodeLoad,
 };
-use xper_bodies::{Drive, TimeFunction};
-use xper_fem::{Hypothesis, Material};
 use xper_laws::cohesive::CohesiveZone;
 use xper_mesh::{Mesh, Region};
 use xper_solver::{ConvergenceNorm, NlgsParams};

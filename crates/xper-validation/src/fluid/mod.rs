@@ -11,11 +11,14 @@
 //!   residual scaled by `dt / rho`, so its norm relative to the divergence before is at most
 //!   the solve's relative tolerance.
 
-use crate::{FluidBoundary, FluidParams, FluidSolver, FluidState, MacGrid, SideCondition};
 use std::path::Path;
+use xper_fluid::{FluidBoundary, FluidParams, FluidSolver, FluidState, MacGrid, SideCondition};
 use xper_math::{Real, Vector};
 
-pub use xper_math::validation::Case;
+pub use crate::Case;
+pub use grains::{resting_grain, settling_convergence};
+
+mod grains;
 
 /// Largest velocity error of the Taylor-Green vortex on an `n x n` periodic grid of
 /// `[0, 2 pi]^2` at `t = 1` s with `nu = 0.05` m^2/s, relative to the amplitude `F(t)`.
@@ -270,7 +273,7 @@ pub fn projection_divergence(n: usize) -> Result<Case, String> {
 /// m^2/s, run with cell size `h` (m) to `end` (s); `C = 2 F / (rho U_mean^2 D)`,
 /// `U_mean = 0.2` m/s. Returns `(C_D, C_L)` at the end.
 pub fn schaefer_turek_coefficients(h: Real, end: Real) -> Result<(Real, Real), String> {
-    use crate::{ImmersedDisk, InflowProfile};
+    use xper_fluid::{ImmersedDisk, InflowProfile};
     let boundary = FluidBoundary {
         left: SideCondition::Inflow {
             profile: InflowProfile::Parabolic { max_speed: 0.3 },

@@ -2,7 +2,7 @@
 //! compares one measured number with its reference. The test suite asserts every case; `xper
 //! validate` writes them all to VALIDATION.md.
 
-use crate::CliError;
+use crate::{Case, RunError as CliError};
 use xper_bodies::{Body, BodySet};
 use xper_laws::{InteractionLaw, LawTable, SignoriniCoulomb};
 use xper_math::{Real, Vector};
@@ -11,28 +11,6 @@ use xper_simulation::rigid::build::world_from_scene;
 use xper_solver::{ConvergenceNorm, NlgsParams};
 
 const G: Real = 9.81;
-
-/// One validation case: a measured value against a reference, with its tolerance.
-#[derive(Clone, Debug)]
-pub struct Case {
-    /// What is tested.
-    pub name: &'static str,
-    /// The reference and where it comes from.
-    pub reference: String,
-    /// The measured value, as printed.
-    pub measured: String,
-    /// The error compared with the tolerance.
-    pub error: Real,
-    /// Largest acceptable error.
-    pub tolerance: Real,
-}
-
-impl Case {
-    /// Whether the error is within the tolerance.
-    pub fn passed(&self) -> bool {
-        self.error <= self.tolerance
-    }
-}
 
 /// A tight solver: these cases compare with exact solutions, not with LMGC90's tolerance.
 fn params(dt: Real, gravity: Vector) -> StepParams {
@@ -110,7 +88,7 @@ fn slide_on_incline(slope: Real, mu: Real, steps: usize) -> Result<(Real, Real, 
 fn incline_cases() -> Result<Vec<Case>, CliError> {
     let (x, lift, rot) = slide_on_incline(0.3, 0.4, 400)?;
     let stick = Case {
-        name: "block on an incline, tan(0.3 rad) = 0.309 <= mu = 0.4: sticks",
+        name: "block on an incline, tan(0.3 rad) = 0.309 <= mu = 0.4: sticks".into(),
         reference: "no motion".into(),
         measured: format!(
             "travel {x:.3e} m, lift {lift:.3e} m, rotation {rot:.3e} rad after 0.4 s"
@@ -123,7 +101,7 @@ fn incline_cases() -> Result<Vec<Case>, CliError> {
     let t = steps as Real * 1e-3;
     let exact = G * (slope.sin() - mu * slope.cos()) * t * t / 2.0;
     let slide = Case {
-        name: "block on an incline, tan(0.5 rad) = 0.546 > mu = 0.3: slides",
+        name: "block on an incline, tan(0.5 rad) = 0.546 > mu = 0.3: slides".into(),
         reference: format!("x = g (sin - mu cos) t^2 / 2 = {exact:.12} m at t = {t} s"),
         measured: format!("x = {x:.12} m (lift {lift:.1e} m, rotation {rot:.1e} rad)"),
         error: ((x - exact) / exact).abs().max(lift.abs()).max(rot.abs()),
@@ -159,14 +137,14 @@ fn drop_cases() -> Result<Vec<Case>, CliError> {
     let exact = m * G * height;
     Ok(vec![
         Case {
-            name: "disk dropped from 0.5 m on a wall, e = 0: no rebound",
+            name: "disk dropped from 0.5 m on a wall, e = 0: no rebound".into(),
             reference: "vertical velocity 0 after landing".into(),
             measured: format!("landed: {landed}, largest |v_y| after landing {rebound:.2e} m/s"),
             error: if landed { rebound } else { Real::INFINITY },
             tolerance: 1e-12,
         },
         Case {
-            name: "disk dropped from 0.5 m on a wall, e = 0: energy lost",
+            name: "disk dropped from 0.5 m on a wall, e = 0: energy lost".into(),
             reference: format!("m g H = {exact:.9} J/m"),
             measured: format!(
                 "{lost:.9} J/m (energy balance error {:.1e} J/m)",
@@ -213,7 +191,7 @@ fn cradle_cases() -> Result<Vec<Case>, CliError> {
     ] {
         let v = cradle(gap)?;
         cases.push(Case {
-            name,
+            name: name.into(),
             reference: format!(
                 "v / v0 = ({:.6}, {:.6}, {:.6})",
                 exact[0], exact[1], exact[2]
@@ -253,7 +231,7 @@ fn column_case() -> Result<Case, CliError> {
             .max(c.impulse[1].abs());
     }
     Ok(Case {
-        name: "column of 10 disks at rest on a wall",
+        name: "column of 10 disks at rest on a wall".into(),
         reference: "force below the k-th disk from the top = k m g".into(),
         measured: format!(
             "{} contacts, largest relative force error {error:.1e}",
@@ -323,14 +301,14 @@ fn deposit_case(count: usize, steps: usize, accelerated: bool) -> Result<Vec<Cas
     };
     Ok(vec![
         Case {
-            name: overlaps,
+            name: overlaps.into(),
             reference: format!("no overlap beyond the projection tolerance {tolerance:.1e} m"),
             measured: format!("{count} disks, {steps} steps, {sweeps}: largest overlap {overlap:.2e} m; {non_converged} non-converged steps; {total_sweeps} sweeps in all"),
             error: overlap,
             tolerance,
         },
         Case {
-            name: decays,
+            name: decays.into(),
             reference: "final kinetic energy below 1e-3 of its peak".into(),
             measured: format!("{:.2e} of the peak {peak:.3e} J/m", ke / peak),
             error: ke / peak,
@@ -348,137 +326,4 @@ pub fn all_cases(deposit_disks: usize, deposit_steps: usize) -> Result<Vec<Case>
     cases.extend(deposit_case(deposit_disks, deposit_steps, false)?);
     cases.extend(deposit_case(deposit_disks, deposit_steps, true)?);
     Ok(cases)
-}
-
-/// Runs every case at full resolution and writes the report; fails if a case fails. With
-/// `full`, also runs (or continues) the paper's fracture applications at its resolution
-/// ([`crate::validation_paper`]).
-pub fn write_report(path: &std::path::Path, full: bool) -> Result<(), CliError> {
-    let cases = all_cases(1000, 4000)?;
-    let mut md = String::from(
-        "# Validation\n\nRegenerated by `cargo run --release -p xper-cli -- validate` (the test suite runs the same\n\
-         cases, with a smaller deposit). Rigid bodies, Moreau-Jean theta = 0.5, NLGS.\n\n\
-         | case | reference | measured | error | tolerance | result |\n|---|---|---|---|---|---|\n",
-    );
-    for c in &cases {
-        push_case_row(
-            &mut md,
-            c.name,
-            &c.reference,
-            &c.measured,
-            c.error,
-            c.tolerance,
-        );
-    }
-    md.push_str(
-        "\nAlso asserted by `cargo test --workspace` (not numbers, so not in the table): `--resume` after a\n\
-         stop ends bit-identical to an uninterrupted run (`crates/xper-cli/tests/resume.rs`); malformed\n\
-         scenes give `file:line:column: field: reason` and exit code 2 (`crates/xper-cli/tests/bad_input.rs`,\n\
-         `crates/xper-scene/tests/`); random TOML never makes the parser panic (property tests); the grid\n\
-         broad phase finds exactly the pairs of a brute-force search (`crates/xper-geometry/tests/`); the\n\
-         exact 2D local solve satisfies Signorini-Coulomb on 10,000 random blocks (`xper-solver`).\n",
-    );
-    let fracture_failures =
-        fracture_section(&mut md)? + crate::validation_fluid::fluid_section(&mut md, full)?;
-    let paper_failures = crate::validation_paper::paper_section(&mut md, full)? + fracture_failures;
-    let suite_failures = suite_section(&mut md)? + paper_failures;
-    xper_io::write_atomic(path, md.as_bytes()).map_err(|e| CliError::Runtime(e.to_string()))?;
-    match cases.iter().filter(|c| !c.passed()).count() + suite_failures {
-        0 => Ok(()),
-        n => Err(CliError::Runtime(format!(
-            "{n} validation case(s) failed; see {}",
-            path.display()
-        ))),
-    }
-}
-
-/// The fracture engine's cases with exact answers (`xper_fracture::validation`, which the
-/// crate's tests assert too): appends their table to `md`, returns the number that failed.
-fn fracture_section(md: &mut String) -> Result<usize, CliError> {
-    let cases = xper_fracture::validation::all_cases().map_err(CliError::Runtime)?;
-    md.push_str(
-        "\n## Fracture: deformable elements and cohesive zones\n\n\
-         Exploded meshes (one body per triangle, a frictional cohesive zone on every interior \
-         edge, BRIEF.md section 3), theta-method, NLGS; the same cases are asserted by \
-         `cargo test -p xper-fracture` (`crates/xper-fracture/src/validation.rs`).\n\n\
-         | case | reference | measured | error | tolerance | result |\n|---|---|---|---|---|---|\n",
-    );
-    Ok(push_cases(md, &cases))
-}
-
-/// Appends the rows of `cases` to a validation table; returns how many failed.
-pub(crate) fn push_cases(md: &mut String, cases: &[xper_math::validation::Case]) -> usize {
-    for c in cases {
-        push_case_row(md, &c.name, &c.reference, &c.measured, c.error, c.tolerance);
-    }
-    cases.iter().filter(|c| !c.passed()).count()
-}
-
-/// Appends one case to a validation table and prints its verdict (pass when
-/// `error <= tolerance`, so a NaN error fails).
-fn push_case_row(
-    md: &mut String,
-    name: &str,
-    reference: &str,
-    measured: &str,
-    error: Real,
-    tolerance: Real,
-) {
-    let verdict = if error <= tolerance { "pass" } else { "FAIL" };
-    println!("{verdict}: {name} ({error:.2e} <= {tolerance:.0e})");
-    md.push_str(&format!(
-        "| {name} | {reference} | {measured} | {error:.2e} | {tolerance:.0e} | {verdict} |\n"
-    ));
-}
-
-/// The external problem suite (`../shared/fclib`, next to the repository): appends its table
-/// to `md` and returns the number of failed problems (0 with a note when the folder is absent).
-fn suite_section(md: &mut String) -> Result<usize, CliError> {
-    use crate::bench_solvers::{suite_files, validate_problem};
-    let dir = std::path::Path::new("../shared/fclib");
-    md.push_str(
-        "\n## External contact problems (`../shared/fclib/`, Siconos and LMGC90)\n\n\
-         The best of proximal Newton, NSGS and Newton on each problem, against the tolerance of the published\n\
-         comparisons (Acary, Bremond, Huber 2018) on the natural-map error scaled by |q|; the solution's\n\
-         Signorini-Coulomb conditions (impulse in the cone, u_N >= 0, r_N u_N = 0 and r_T . u_T = -mu r_N |u_T|,\n\
-         products relative to max|r| + max|u|) are checked by independent code against 10 |e|.\n\n",
-    );
-    if !dir.is_dir() {
-        md.push_str("Not run: `../shared/fclib` is absent.\n");
-        return Ok(0);
-    }
-    if !cfg!(feature = "hdf5") {
-        md.push_str("Built without the `hdf5` feature: the FCLib HDF5 problems were not run.\n\n");
-    }
-    md.push_str(
-        "| problem | dim | contacts | tolerance | best solver | error (/ abs q) | violations: impulse / velocity / products | allowed | result |\n\
-         |---|---|---|---|---|---|---|---|---|\n",
-    );
-    let mut failures = 0;
-    for path in suite_files(dir) {
-        let c = validate_problem(&path)?;
-        failures += (!c.passed) as usize;
-        println!(
-            "{}: {} ({:.2e} <= {:.0e})",
-            if c.passed { "pass" } else { "FAIL" },
-            c.problem,
-            c.error_q,
-            c.tolerance
-        );
-        md.push_str(&format!(
-            "| {} | {} | {} | {:.0e} | {} | {:.2e} | {:.1e} / {:.1e} / {:.1e} | {:.1e} | {} |\n",
-            c.problem,
-            c.dimension,
-            c.contacts,
-            c.tolerance,
-            c.solver,
-            c.error_q,
-            c.violations[0],
-            c.violations[1],
-            c.violations[2],
-            c.allowed,
-            if c.passed { "pass" } else { "FAIL" }
-        ));
-    }
-    Ok(failures)
 }

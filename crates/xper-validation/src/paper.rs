@@ -7,7 +7,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::CliError;
+use crate::RunError as CliError;
 use xper_simulation::fracture::outputs::FractureSummary;
 use xper_simulation::RunOptions;
 

@@ -4,10 +4,10 @@
 //! `|q|` scaling of Acary, Bremond, Huber (2018), every solver's error must equal the one
 //! shared function's, and the best solution must satisfy the Signorini-Coulomb conditions
 //! (sign, cone, complementarity, maximal dissipation), checked by code independent of the
-//! solvers and of the error measure (`xper_cli::bench_solvers::law_violations`).
+//! solvers and of the error measure (`xper_validation::suite::law_violations`).
 
 use std::path::Path;
-use xper_cli::bench_solvers::{suite_files, validate_problem};
+use xper_validation::suite::{suite_files, validate_problem};
 
 #[test]
 fn every_shared_problem_is_solved_to_the_published_tolerance() {
@@ -46,10 +46,10 @@ fn the_law_checker_catches_a_violation() {
     use xper_solver::{CsrMatrix, FrictionProblem};
     let w = CsrMatrix::from_dense_row_major(2, 2, &[1.0, 0.0, 0.0, 1.0]);
     let p = FrictionProblem::new(2, w, vec![-1.0, 0.0], vec![0.5]).unwrap();
-    let ok = xper_cli::bench_solvers::law_violations(&p, &[1.0, 0.0]);
+    let ok = xper_validation::suite::law_violations(&p, &[1.0, 0.0]);
     assert!(ok.iter().all(|&v| v < 1e-15), "{ok:?}");
-    let off_cone = xper_cli::bench_solvers::law_violations(&p, &[1.0, 0.7]);
+    let off_cone = xper_validation::suite::law_violations(&p, &[1.0, 0.7]);
     assert!(off_cone[0] > 0.19, "{off_cone:?}");
-    let penetrating = xper_cli::bench_solvers::law_violations(&p, &[0.5, 0.0]);
+    let penetrating = xper_validation::suite::law_violations(&p, &[0.5, 0.0]);
     assert!(penetrating[1] > 0.49, "{penetrating:?}");
 }

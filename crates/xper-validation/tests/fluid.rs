@@ -1,7 +1,7 @@
 //! The fluid validation cases at reduced resolution (the full ones run in `xper validate --full`).
 
 use std::path::PathBuf;
-use xper_fluid::validation::{self, Case};
+use xper_validation::fluid::{self as validation, Case};
 
 fn check(case: Case) {
     println!(
@@ -40,12 +40,12 @@ fn lid_driven_cavity_re100_matches_ghia() {
 
 #[test]
 fn resting_grain_stays_at_rest() {
-    check(xper_fluid::validation_grains::resting_grain().unwrap());
+    check(xper_validation::fluid::resting_grain().unwrap());
 }
 
 #[test]
 fn settling_velocity_converges_under_refinement() {
-    check(xper_fluid::validation_grains::settling_convergence(8).unwrap());
+    check(xper_validation::fluid::settling_convergence(8).unwrap());
 }
 
 /// 40 cells per diameter to t = 3 s (the drag is steady to 0.2 % by then); 20 cells per

@@ -3,11 +3,11 @@
 //! fixed): the traction follows the law (BRIEF.md section 3), the energy dissipated at full
 //! separation is w x length, unloading follows the damaged secant, and a broken interface is
 //! a unilateral contact with Coulomb friction. The scenarios and their parameters (m, s, Pa,
-//! J): [`xper_fracture::validation`].
+//! J): [`xper_validation::fracture`].
 
 mod common;
 
-use xper_fracture::validation;
+use xper_validation::fracture as validation;
 
 #[test]
 fn mode_one_follows_the_law_and_dissipates_w_times_length() {

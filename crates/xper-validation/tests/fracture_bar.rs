@@ -6,11 +6,11 @@
 //!   interfaces add their compliance to the bulk's:
 //!   `1 / E_eff = 1 / E + (1 + 1 / sqrt 2) / (C d)` in tension.
 //!
-//! The scenarios and their parameters: [`xper_fracture::validation`].
+//! The scenarios and their parameters: [`xper_validation::fracture`].
 
 mod common;
 
-use xper_fracture::validation;
+use xper_validation::fracture as validation;
 
 #[test]
 fn a_bar_pulled_apart_breaks_at_the_strength_and_balances_its_energy() {

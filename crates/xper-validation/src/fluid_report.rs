@@ -2,10 +2,10 @@
 //! `xper_fluid::validation_grains` (the crate's tests assert the reduced ones), at the reduced
 //! resolution or, with `--full`, the finest this machine runs in minutes.
 
-use crate::CliError;
+use crate::fluid::{self as validation, resting_grain, settling_convergence};
+use crate::Case;
+use crate::RunError as CliError;
 use std::path::Path;
-use xper_fluid::validation::{self, Case};
-use xper_fluid::validation_grains;
 
 /// Appends the fluid table to `md`; returns the number of failed cases.
 pub fn fluid_section(md: &mut String, full: bool) -> Result<usize, CliError> {
@@ -25,13 +25,13 @@ pub fn fluid_section(md: &mut String, full: bool) -> Result<usize, CliError> {
     if full {
         cases.push(validation::schaefer_turek(0.00125, 3.0).map_err(run)?);
     }
-    cases.push(validation_grains::resting_grain().map_err(run)?);
-    cases.push(validation_grains::settling_convergence(8).map_err(run)?);
+    cases.push(resting_grain().map_err(run)?);
+    cases.push(settling_convergence(8).map_err(run)?);
     md.push_str(&format!(
         "\n## Fluid: MAC Navier-Stokes, multigrid projection, immersed grains\n\n\
          Explicit Euler, central advection, incremental projection with the multigrid pressure solve to a \
          relative residual of 1e-8, direct forcing with the smoothed solid fraction (BRIEF.md section 4). \
-         {} The same cases at reduced resolution are asserted by `cargo test -p xper-fluid`. Ghia's \
+         {} The same cases at reduced resolution are asserted by `cargo test -p xper-validation`. Ghia's \
          values are compared at their 17 points per line by linear interpolation between faces. \
          The Schaefer-Turek drag at 20 cells per diameter is 6.06 (8.6 % high: the smoothed \
          interface thickens the body by about half a cell), at 40 cells per diameter 5.495 (1.5 % low), \
@@ -39,7 +39,7 @@ pub fn fluid_section(md: &mut String, full: bool) -> Result<usize, CliError> {
          | case | reference | measured | error | tolerance | result |\n|---|---|---|---|---|---|\n",
         if full { "Full resolution (`xper validate --full`)." } else { "Reduced resolution (`xper validate`; `--full` refines)." }
     ));
-    let failures = crate::validation::push_cases(md, &cases);
+    let failures = crate::report::push_cases(md, &cases);
     if !refs.exists() {
         md.push_str("\nThe lid-driven cavity was not run: `../shared/validation_refs/Ghia1982` is absent.\n");
     }

@@ -5,9 +5,9 @@
 //! - [`settling_convergence`]: the velocity of a disk settling in a channel, at a fixed time,
 //!   on three grids; its observed order of convergence.
 
-use crate::validation::Case;
-use crate::{CoupledState, CoupledStepper, FluidBoundary, FluidParams, FluidState, MacGrid};
+use crate::Case;
 use xper_bodies::{Body, BodySet};
+use xper_fluid::{CoupledState, CoupledStepper, FluidBoundary, FluidParams, FluidState, MacGrid};
 use xper_laws::{InteractionLaw, LawTable, SignoriniCoulomb};
 use xper_math::{Real, Vector};
 use xper_nscd::{StepParams, VelocitySolver, World};

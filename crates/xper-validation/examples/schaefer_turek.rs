@@ -9,7 +9,7 @@ fn main() {
         args.first().copied().unwrap_or(0.005),
         args.get(1).copied().unwrap_or(8.0),
     );
-    match xper_fluid::validation::schaefer_turek(h, end) {
+    match xper_validation::fluid::schaefer_turek(h, end) {
         Ok(case) => println!("{}: {} (error {:.3})", case.name, case.measured, case.error),
         Err(e) => eprintln!("{e}"),
     }

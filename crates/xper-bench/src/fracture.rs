@@ -9,9 +9,9 @@ use serde::{Deserialize, Serialize};
 use xper_fracture::{FractureModel, FractureStepper, InterfaceLaw};
 use xper_scene::MeshSource;
 
-use crate::bench::median;
-use crate::CliError;
+use crate::median;
 use xper_simulation::fracture::crack::{mesh_centre, midpoint};
+use xper_simulation::RunError as CliError;
 
 /// Prefix of the JSON files of fracture results in the results directory.
 pub const FILE_PREFIX: &str = "fracture-";

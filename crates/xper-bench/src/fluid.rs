@@ -2,7 +2,6 @@
 //! decade, smoother throughput), the whole fluid step with and without immersed grains, and
 //! the paper's two-grain scene; saved as `fluid.json`, reported in BENCHMARKS.md.
 
-use crate::CliError;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::time::Instant;
@@ -10,6 +9,7 @@ use xper_fluid::{FluidBoundary, FluidParams, FluidSolver, FluidState, ImmersedDi
 use xper_math::{Real, Vector};
 use xper_poisson::bench::{run_benchmark, BenchFigures};
 use xper_poisson::{Boundary, SideCondition as Pressure};
+use xper_simulation::RunError as CliError;
 
 /// File of the results in the benchmark directory.
 pub const RESULTS_FILE: &str = "fluid.json";

@@ -1,5 +1,5 @@
-//! The record of one validation comparison, shared by the validation modules of every engine
-//! (`xper_fracture::validation`, `xper_fluid::validation`) and the VALIDATION.md tables.
+//! The record of one validation comparison, shared by every physics' cases and the
+//! VALIDATION.md tables.
 
 /// One comparison of a measured value with its reference.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]

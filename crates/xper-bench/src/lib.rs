@@ -3,19 +3,23 @@
 //!
 //! Each scene runs in a child process of its own so that its peak memory is its own.
 
-use crate::CliError;
+pub mod fluid;
+pub mod fracture;
+pub mod solvers;
+
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 use xper_geometry::{ContactSet, Detector};
 use xper_nscd::MoreauJean;
 use xper_simulation::rigid::build::world_from_scene;
+use xper_simulation::RunError as CliError;
 
 /// Arguments of `xper bench`.
 #[derive(clap::Args)]
 pub struct BenchArgs {
     /// Scene files or directories holding scene.toml (default: scenes/box10k,
     /// scenes/box10k_anderson and scenes/box100k).
-    #[arg(long = "scene", value_parser = crate::scene_path_parser())]
+    #[arg(long = "scene", value_parser = scene_path_parser())]
     scenes: Vec<PathBuf>,
     /// Run at most this many steps of each scene (default: the scene's own count).
     #[arg(long)]
@@ -84,7 +88,7 @@ pub struct BenchResult {
 }
 
 /// Median of a sample (the upper one for an even count); NaN when empty.
-pub(crate) fn median(mut v: Vec<f64>) -> f64 {
+pub fn median(mut v: Vec<f64>) -> f64 {
     if v.is_empty() {
         return f64::NAN;
     }
@@ -198,8 +202,8 @@ pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
     if let Some(dir) = &args.fclib {
         std::fs::create_dir_all(&args.out)
             .map_err(|e| CliError::BadInput(format!("{}: {e}", args.out.display())))?;
-        let suite = crate::bench_solvers::bench_suite(dir, machine())?;
-        let file = args.out.join(crate::bench_solvers::RESULTS_FILE);
+        let suite = crate::solvers::bench_suite(dir, machine())?;
+        let file = args.out.join(crate::solvers::RESULTS_FILE);
         xper_io::write_json_atomic(&file, &suite).map_err(|e| CliError::Runtime(e.to_string()))?;
         if args.scenes.is_empty() {
             return write_report(&args.out, &args.report);
@@ -208,7 +212,7 @@ pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
     if args.fluid {
         std::fs::create_dir_all(&args.out)
             .map_err(|e| CliError::BadInput(format!("{}: {e}", args.out.display())))?;
-        crate::bench_fluid::bench_fluid(&args.out, machine())?;
+        crate::fluid::bench_fluid(&args.out, machine())?;
         if args.scenes.is_empty() {
             return write_report(&args.out, &args.report);
         }
@@ -232,10 +236,10 @@ pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
             xper_scene::AnyScene::Fracture(fracture) => {
                 // `bench_fracture::bench_one` builds its model from the file itself.
                 drop(fracture);
-                let result = crate::bench_fracture::bench_one(&scenes[0], args.steps, machine())?;
+                let result = crate::fracture::bench_one(&scenes[0], args.steps, machine())?;
                 let file = args.out.join(format!(
                     "{}{}.json",
-                    crate::bench_fracture::FILE_PREFIX,
+                    crate::fracture::FILE_PREFIX,
                     result.scene
                 ));
                 xper_io::write_json_atomic(&file, &result)
@@ -294,14 +298,14 @@ fn read_results<T: serde::de::DeserializeOwned>(
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| {
             let name = p.file_name().and_then(|n| n.to_str()).unwrap_or("");
-            let fracture = name.starts_with(crate::bench_fracture::FILE_PREFIX);
+            let fracture = name.starts_with(crate::fracture::FILE_PREFIX);
             name.ends_with(".json")
                 && match prefix {
                     Some(prefix) => name.starts_with(prefix),
                     None => {
                         !fracture
-                            && name != crate::bench_solvers::RESULTS_FILE
-                            && name != crate::bench_fluid::RESULTS_FILE
+                            && name != crate::solvers::RESULTS_FILE
+                            && name != crate::fluid::RESULTS_FILE
                     }
                 }
         })
@@ -382,18 +386,18 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
          | LMGC90 2025.rc1 (NLGS, stored Delassus loops) | 99 | 79 | ~10 | 21,700 | 25 | 20-25 | 260 | 0.04 / 0.43 |\n\
          | pymunk 7.3 (impulses, not NSCD) | 6.5 | - | 10 | - | - | - | - | 6 / 180 |\n",
     );
-    let fracture: Vec<crate::bench_fracture::FractureBenchResult> =
-        read_results(dir, Some(crate::bench_fracture::FILE_PREFIX))?;
+    let fracture: Vec<crate::fracture::FractureBenchResult> =
+        read_results(dir, Some(crate::fracture::FILE_PREFIX))?;
     if !fracture.is_empty() {
-        md.push_str(&crate::bench_fracture::markdown(&fracture));
+        md.push_str(&crate::fracture::markdown(&fracture));
     }
-    if let Some(suite) = std::fs::read_to_string(dir.join(crate::bench_solvers::RESULTS_FILE))
+    if let Some(suite) = std::fs::read_to_string(dir.join(crate::solvers::RESULTS_FILE))
         .ok()
         .and_then(|s| serde_json::from_str(&s).ok())
     {
-        md.push_str(&crate::bench_solvers::markdown(&suite));
+        md.push_str(&crate::solvers::markdown(&suite));
     }
-    let fluid_file = dir.join(crate::bench_fluid::RESULTS_FILE);
+    let fluid_file = dir.join(crate::fluid::RESULTS_FILE);
     if fluid_file.exists() {
         let text = std::fs::read_to_string(&fluid_file)
             .map_err(|e| CliError::Runtime(format!("{}: {e}", fluid_file.display())))?;
@@ -403,7 +407,7 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
                 fluid_file.display()
             ))
         })?;
-        md.push_str(&crate::bench_fluid::markdown(&fluid));
+        md.push_str(&crate::fluid::markdown(&fluid));
     }
     if let Ok(extra) = std::fs::read_to_string(dir.join("NOTES.md")) {
         md.push('\n');
@@ -412,6 +416,12 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
     xper_io::write_atomic(report, md.as_bytes()).map_err(|e| CliError::Runtime(e.to_string()))?;
     println!("wrote {}", report.display());
     Ok(())
+}
+
+/// A scene path argument: the path itself, or `DIR/scene.toml` for a directory.
+fn scene_path_parser() -> impl clap::builder::TypedValueParser<Value = PathBuf> {
+    use clap::builder::TypedValueParser;
+    clap::builder::PathBufValueParser::new().try_map(xper_simulation::scene_path)
 }
 
 #[cfg(test)]
