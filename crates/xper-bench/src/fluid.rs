@@ -8,7 +8,7 @@ use std::time::Instant;
 use xper_fluid::{FluidBoundary, FluidParams, FluidSolver, FluidState, ImmersedDisk, MacGrid};
 use xper_math::{Real, Vector};
 use xper_poisson::bench::{run_benchmark, BenchFigures};
-use xper_poisson::{Boundary, SideCondition as Pressure};
+use xper_poisson::{Boundary, PoissonSide as Pressure};
 use xper_simulation::RunError as CliError;
 
 /// File of the results in the benchmark directory.

@@ -39,7 +39,7 @@ use xper_fluid::{
 };
 use xper_math::{Real, Vector};
 use xper_nscd::World;
-use xper_poisson::{SolveError, SolveInfo, StripLayout, StripMultigrid};
+use xper_poisson::{MultigridError, MultigridInfo, StripLayout, StripMultigrid};
 
 /// The links of one block: halo rows with the neighbours, reductions over `comm`, the pressure
 /// by the strip multigrid.
@@ -89,7 +89,11 @@ impl<C: Communicator + ?Sized> BlockLinks for BlockComm<'_, C> {
         self.rows.comm.all_reduce_sum_max(sums, maxima);
     }
 
-    fn solve_pressure(&mut self, rhs: &[Real], phi: &mut [Real]) -> Result<SolveInfo, SolveError> {
+    fn solve_pressure(
+        &mut self,
+        rhs: &[Real],
+        phi: &mut [Real],
+    ) -> Result<MultigridInfo, MultigridError> {
         self.multigrid.solve(&mut self.rows, rhs, phi)
     }
 }

@@ -18,7 +18,7 @@ use xper_laws::LawTable;
 use xper_math::Vector;
 use xper_nscd::{StepParams, World};
 use xper_poisson::{
-    Boundary, GridShape, Multigrid, MultigridParams, SideCondition, SolveError, SolveInfo,
+    Boundary, GridShape, Multigrid, MultigridError, MultigridInfo, MultigridParams, PoissonSide,
     StripLayout, StripMultigrid,
 };
 
@@ -39,13 +39,13 @@ fn solve_in_strips(
     params: MultigridParams,
     rhs: &[f64],
     ranks: usize,
-) -> (Vec<f64>, Vec<Result<SolveInfo, SolveError>>) {
+) -> (Vec<f64>, Vec<Result<MultigridInfo, MultigridError>>) {
     let nx = shape.nx;
     let pieces = run_on_threads(ranks, |comm| {
         let layout = StripLayout::balanced(nx, shape.ny, ranks).unwrap();
         let rows = layout.rows(comm.rank());
         let mut solver = StripMultigrid::new(shape, boundary, params, layout, comm.rank()).unwrap();
-        let periodic = boundary.bottom == SideCondition::Periodic;
+        let periodic = boundary.bottom == PoissonSide::Periodic;
         let mut links = xper_domain::strips::StripComm {
             comm,
             neighbours: xper_domain::strips::strip_neighbours(comm.rank(), ranks, periodic),
@@ -63,7 +63,7 @@ fn solve_in_strips(
 /// a relative residual of 1e-12 agree to 1e-8 of the solution's size.
 #[test]
 fn the_strip_multigrid_on_several_processes_agrees_with_the_serial_multigrid() {
-    use SideCondition::{Neumann, Periodic};
+    use PoissonSide::{Neumann, Periodic};
     let boundaries = [
         Boundary::all(Neumann),
         Boundary::all(Periodic),
@@ -85,7 +85,7 @@ fn the_strip_multigrid_on_several_processes_agrees_with_the_serial_multigrid() {
         let size = expected.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for ranks in 1..=4 {
             let (phi, outcomes) = solve_in_strips(shape, boundary, params, &rhs, ranks);
-            let infos: Vec<SolveInfo> = outcomes.into_iter().map(Result::unwrap).collect();
+            let infos: Vec<MultigridInfo> = outcomes.into_iter().map(Result::unwrap).collect();
             let cycles = infos[0].cycles;
             assert!(infos.iter().all(|info| info.cycles == cycles));
             let difference = largest_difference(&phi, &expected);
@@ -108,7 +108,7 @@ fn the_strip_multigrid_on_several_processes_agrees_with_the_serial_multigrid() {
 /// row too shallow, or relaxed with a stale value, changes the bits.
 #[test]
 fn a_non_singular_strip_solve_gives_the_same_bits_on_1_to_8_processes() {
-    use SideCondition::{Dirichlet, Neumann, Periodic};
+    use PoissonSide::{Dirichlet, Neumann, Periodic};
     let open_top = Boundary::open_top();
     let periodic_x = Boundary {
         left: Periodic,
@@ -170,7 +170,7 @@ fn a_non_singular_strip_solve_gives_the_same_bits_on_1_to_8_processes() {
                 let (phi, outcomes) = solve_in_strips(shape, boundary, params, &rhs, ranks);
                 assert!(outcomes
                     .iter()
-                    .all(|o| matches!(o, Err(SolveError::NotConverged { .. }))));
+                    .all(|o| matches!(o, Err(MultigridError::NotConverged { .. }))));
                 phi
             };
             let one = solve_on(1);

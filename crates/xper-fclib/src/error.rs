@@ -33,7 +33,7 @@ impl fmt::Display for Position {
 
 /// What kind of failure a [`ReadError`] is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ErrorKind {
+pub enum ReadErrorKind {
     /// The operating system refused to read or write the file.
     Io,
     /// The content does not follow the format: missing, malformed or out-of-range data.
@@ -47,7 +47,7 @@ pub enum ErrorKind {
 }
 
 /// A file could not be read or written: the file, the position in it and the reason.
-/// The writers use it too (with [`ErrorKind::Io`] or [`ErrorKind::Unsupported`]).
+/// The writers use it too (with [`ReadErrorKind::Io`] or [`ReadErrorKind::Unsupported`]).
 ///
 /// Its `Display` reads like `path/to/file.dat: line 12, token 57: expected an integer, found "x"`.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -57,7 +57,7 @@ pub struct ReadError {
     /// Where in the file.
     pub position: Position,
     /// What went wrong.
-    pub kind: ErrorKind,
+    pub kind: ReadErrorKind,
     /// Why, in words.
     pub reason: String,
 }
@@ -67,7 +67,7 @@ impl ReadError {
     pub fn new(
         path: &Path,
         position: Position,
-        kind: ErrorKind,
+        kind: ReadErrorKind,
         reason: impl Into<String>,
     ) -> Self {
         ReadError {
@@ -79,13 +79,13 @@ impl ReadError {
     }
 
     /// An error about the file as a whole.
-    pub fn file(path: &Path, kind: ErrorKind, reason: impl Into<String>) -> Self {
+    pub fn file(path: &Path, kind: ReadErrorKind, reason: impl Into<String>) -> Self {
         Self::new(path, Position::File, kind, reason)
     }
 
     /// An input/output error.
     pub fn io(path: &Path, err: &std::io::Error) -> Self {
-        Self::file(path, ErrorKind::Io, err.to_string())
+        Self::file(path, ReadErrorKind::Io, err.to_string())
     }
 }
 

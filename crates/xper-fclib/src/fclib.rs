@@ -33,7 +33,7 @@
 //! The writers store matrices as CSR (`nz = -2`), the layout FCLib's own local files use,
 //! and write atomically: a temporary file in the same directory is renamed over the target.
 
-use crate::error::{ErrorKind, Position, ReadError};
+use crate::error::{Position, ReadError, ReadErrorKind};
 use crate::global::GlobalFrictionProblem;
 use crate::{sparse, write_atomically, Problem};
 use hdf5_metno as h5;
@@ -52,7 +52,7 @@ pub fn read_fclib(path: impl AsRef<Path>) -> Result<Problem, ReadError> {
     } else {
         Err(ReadError::file(
             path,
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             "neither /fclib_local nor /fclib_global is in the file",
         ))
     }
@@ -76,7 +76,7 @@ pub fn read_fclib_global(path: impl AsRef<Path>) -> Result<GlobalFrictionProblem
 pub fn write_fclib_local(path: impl AsRef<Path>, p: &FrictionProblem) -> Result<(), ReadError> {
     let path = path.as_ref();
     FrictionProblem::new(p.dim, p.w.clone(), p.q.clone(), p.mu.clone())
-        .map_err(|e| ReadError::file(path, ErrorKind::Invalid, e.0))?;
+        .map_err(|e| ReadError::file(path, ReadErrorKind::Invalid, e.0))?;
     write_atomically(path, |tmp| {
         let w = Writer { path };
         let file = h5::File::create(tmp).map_err(|e| w.err("/", e))?;
@@ -98,7 +98,7 @@ pub fn write_fclib_global(
 ) -> Result<(), ReadError> {
     let path = path.as_ref();
     p.validate()
-        .map_err(|e| ReadError::file(path, ErrorKind::Invalid, e.0))?;
+        .map_err(|e| ReadError::file(path, ReadErrorKind::Invalid, e.0))?;
     write_atomically(path, |tmp| {
         let w = Writer { path };
         let file = h5::File::create(tmp).map_err(|e| w.err("/", e))?;
@@ -125,7 +125,7 @@ fn open(path: &Path) -> Result<(h5::File, Reader<'_>), ReadError> {
     let file = h5::File::open(path).map_err(|e| {
         ReadError::file(
             path,
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             format!("not a readable HDF5 file: {e}"),
         )
     })?;
@@ -137,7 +137,7 @@ fn open(path: &Path) -> Result<(h5::File, Reader<'_>), ReadError> {
 }
 
 impl Reader<'_> {
-    fn err(&self, at: &str, kind: ErrorKind, reason: impl Into<String>) -> ReadError {
+    fn err(&self, at: &str, kind: ReadErrorKind, reason: impl Into<String>) -> ReadError {
         ReadError::new(self.path, Position::Dataset(at.to_string()), kind, reason)
     }
 
@@ -145,7 +145,7 @@ impl Reader<'_> {
         let name = at.rsplit('/').next().unwrap_or(at);
         parent
             .group(name)
-            .map_err(|e| self.err(at, ErrorKind::Format, format!("missing group: {e}")))
+            .map_err(|e| self.err(at, ReadErrorKind::Format, format!("missing group: {e}")))
     }
 
     /// A 1-D (or scalar) dataset, with its element type checked.
@@ -153,25 +153,25 @@ impl Reader<'_> {
         let name = at.rsplit('/').next().unwrap_or(at);
         let ds = g
             .dataset(name)
-            .map_err(|e| self.err(at, ErrorKind::Format, format!("missing dataset: {e}")))?;
+            .map_err(|e| self.err(at, ReadErrorKind::Format, format!("missing dataset: {e}")))?;
         if ds.ndim() > 1 {
             return Err(self.err(
                 at,
-                ErrorKind::Format,
+                ReadErrorKind::Format,
                 format!("{}-dimensional; 1-D expected", ds.ndim()),
             ));
         }
         if ds.size() > self.max_len {
             return Err(self.err(
                 at,
-                ErrorKind::Format,
+                ReadErrorKind::Format,
                 format!("{} elements: more than the file can hold", ds.size()),
             ));
         }
         let dtype = ds
             .dtype()
             .and_then(|t| t.to_descriptor())
-            .map_err(|e| self.err(at, ErrorKind::Format, format!("unreadable type: {e}")))?;
+            .map_err(|e| self.err(at, ReadErrorKind::Format, format!("unreadable type: {e}")))?;
         let ok = match dtype {
             TypeDescriptor::Integer(_) | TypeDescriptor::Unsigned(_) => true,
             TypeDescriptor::Float(_) => !integer,
@@ -181,7 +181,7 @@ impl Reader<'_> {
             let want = if integer { "integers" } else { "reals" };
             return Err(self.err(
                 at,
-                ErrorKind::Format,
+                ReadErrorKind::Format,
                 format!("holds {dtype}; {want} expected"),
             ));
         }
@@ -191,18 +191,18 @@ impl Reader<'_> {
     fn ints(&self, g: &h5::Group, at: &str) -> Result<Vec<i64>, ReadError> {
         let ds = self.dataset(g, at, true)?;
         ds.read_raw::<i64>()
-            .map_err(|e| self.err(at, ErrorKind::Format, format!("cannot read: {e}")))
+            .map_err(|e| self.err(at, ReadErrorKind::Format, format!("cannot read: {e}")))
     }
 
     fn reals(&self, g: &h5::Group, at: &str) -> Result<Vec<f64>, ReadError> {
         let ds = self.dataset(g, at, false)?;
         let v = ds
             .read_raw::<f64>()
-            .map_err(|e| self.err(at, ErrorKind::Format, format!("cannot read: {e}")))?;
+            .map_err(|e| self.err(at, ReadErrorKind::Format, format!("cannot read: {e}")))?;
         if let Some(k) = v.iter().position(|x| !x.is_finite()) {
             return Err(self.err(
                 at,
-                ErrorKind::Invalid,
+                ReadErrorKind::Invalid,
                 format!("entry {k} = {} is not finite", v[k]),
             ));
         }
@@ -214,7 +214,7 @@ impl Reader<'_> {
             [v] => Ok(*v),
             v => Err(self.err(
                 at,
-                ErrorKind::Format,
+                ReadErrorKind::Format,
                 format!("{} values; one expected", v.len()),
             )),
         }
@@ -226,7 +226,7 @@ impl Reader<'_> {
         match len {
             Some(n) if v.len() != n => Err(self.err(
                 at,
-                ErrorKind::Invalid,
+                ReadErrorKind::Invalid,
                 format!("{} entries; {n} expected", v.len()),
             )),
             _ => Ok(v),
@@ -238,7 +238,7 @@ impl Reader<'_> {
             d @ (2 | 3) => Ok(d as usize),
             d => Err(self.err(
                 at,
-                ErrorKind::Invalid,
+                ReadErrorKind::Invalid,
                 format!("spacedim = {d} is not 2 or 3"),
             )),
         }
@@ -249,7 +249,7 @@ impl Reader<'_> {
         if let Some(a) = mu.iter().position(|v| *v < 0.0) {
             return Err(self.err(
                 at,
-                ErrorKind::Invalid,
+                ReadErrorKind::Invalid,
                 format!("mu[{a}] = {} is negative", mu[a]),
             ));
         }
@@ -272,7 +272,7 @@ impl Reader<'_> {
         if (m, n) != (nrows as i64, ncols as i64) {
             return Err(self.err(
                 at,
-                ErrorKind::Invalid,
+                ReadErrorKind::Invalid,
                 format!("matrix is {m} x {n}; the vectors make it {nrows} x {ncols}"),
             ));
         }
@@ -288,7 +288,7 @@ impl Reader<'_> {
                 if p.len() < nz || i.len() < nz || x.len() < nz {
                     return Err(self.err(
                         at,
-                        ErrorKind::Format,
+                        ReadErrorKind::Format,
                         format!(
                             "triplet with nz = {nz} but p, i, x have {}, {}, {} entries",
                             p.len(),
@@ -302,12 +302,12 @@ impl Reader<'_> {
             nz => {
                 return Err(self.err(
                     &format!("{at}/nz"),
-                    ErrorKind::Format,
+                    ReadErrorKind::Format,
                     format!("nz = {nz}: -2 (CSR), -1 (CSC) or a count expected"),
                 ))
             }
         };
-        built.map_err(|reason| self.err(at, ErrorKind::Format, reason))
+        built.map_err(|reason| self.err(at, ReadErrorKind::Format, reason))
     }
 }
 
@@ -319,13 +319,14 @@ fn local(file: &h5::File, r: &Reader<'_>) -> Result<FrictionProblem, ReadError> 
     if q.len() % d != 0 {
         return Err(r.err(
             "/fclib_local/vectors/q",
-            ErrorKind::Invalid,
+            ReadErrorKind::Invalid,
             format!("{} entries: not a multiple of spacedim {d}", q.len()),
         ));
     }
     let mu = r.mu(&v, "/fclib_local/vectors/mu", q.len() / d)?;
     let w = r.matrix(&g, "/fclib_local/W", q.len(), q.len())?;
-    FrictionProblem::new(d, w, q, mu).map_err(|e| r.err("/fclib_local", ErrorKind::Invalid, e.0))
+    FrictionProblem::new(d, w, q, mu)
+        .map_err(|e| r.err("/fclib_local", ReadErrorKind::Invalid, e.0))
 }
 
 fn global(file: &h5::File, r: &Reader<'_>) -> Result<GlobalFrictionProblem, ReadError> {
@@ -337,7 +338,7 @@ fn global(file: &h5::File, r: &Reader<'_>) -> Result<GlobalFrictionProblem, Read
     if w.len() % d != 0 {
         return Err(r.err(
             "/fclib_global/vectors/w",
-            ErrorKind::Invalid,
+            ReadErrorKind::Invalid,
             format!("{} entries: not a multiple of spacedim {d}", w.len()),
         ));
     }
@@ -346,7 +347,7 @@ fn global(file: &h5::File, r: &Reader<'_>) -> Result<GlobalFrictionProblem, Read
     let m = sparse::complete_symmetric_triangle(m);
     let h = r.matrix(&g, "/fclib_global/H", f.len(), w.len())?;
     GlobalFrictionProblem::new(d, m, h, f, w, mu)
-        .map_err(|e| r.err("/fclib_global", ErrorKind::Invalid, e.0))
+        .map_err(|e| r.err("/fclib_global", ReadErrorKind::Invalid, e.0))
 }
 
 /// Writes datasets, naming the target file (not the temporary one) in errors.
@@ -359,7 +360,7 @@ impl Writer<'_> {
         ReadError::new(
             self.path,
             Position::Dataset(at.to_string()),
-            ErrorKind::Io,
+            ReadErrorKind::Io,
             e.to_string(),
         )
     }
@@ -378,7 +379,7 @@ impl Writer<'_> {
                 ReadError::new(
                     self.path,
                     Position::Dataset(at.to_string()),
-                    ErrorKind::Unsupported,
+                    ReadErrorKind::Unsupported,
                     "a value exceeds FCLib's int32 range",
                 )
             })?;

@@ -31,7 +31,7 @@ mod global;
 pub mod siconos;
 mod sparse;
 
-pub use error::{ErrorKind, Position, ReadError};
+pub use error::{Position, ReadError, ReadErrorKind};
 #[cfg(feature = "hdf5")]
 pub use fclib::{
     read_fclib, read_fclib_global, read_fclib_local, write_fclib_global, write_fclib_local,
@@ -120,7 +120,7 @@ pub fn read_problem(path: impl AsRef<Path>) -> Result<Problem, ReadError> {
         Some("dat") => read_siconos(path),
         _ => Err(ReadError::file(
             path,
-            ErrorKind::Unsupported,
+            ReadErrorKind::Unsupported,
             "unknown extension: .hdf5 or .h5 (FCLib) or .dat (Siconos) expected",
         )),
     }
@@ -135,7 +135,7 @@ fn read_hdf5(path: &Path) -> Result<Problem, ReadError> {
 fn read_hdf5(path: &Path) -> Result<Problem, ReadError> {
     Err(ReadError::file(
         path,
-        ErrorKind::Unsupported,
+        ReadErrorKind::Unsupported,
         "built without HDF5 support: rebuild with --features hdf5",
     ))
 }
@@ -151,7 +151,7 @@ pub(crate) fn write_atomically(
     static COUNTER: AtomicUsize = AtomicUsize::new(0);
     let name = path
         .file_name()
-        .ok_or_else(|| ReadError::file(path, ErrorKind::Io, "not a file path"))?;
+        .ok_or_else(|| ReadError::file(path, ReadErrorKind::Io, "not a file path"))?;
     let tmp = path.with_file_name(format!(
         ".{}.tmp-{}-{}",
         name.to_string_lossy(),

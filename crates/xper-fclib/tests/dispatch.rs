@@ -1,6 +1,6 @@
 //! `read_problem` picks the reader by extension.
 
-use xper_fclib::{read_problem, ErrorKind, Position};
+use xper_fclib::{read_problem, Position, ReadErrorKind};
 
 #[test]
 fn unknown_extensions_are_refused() {
@@ -8,7 +8,7 @@ fn unknown_extensions_are_refused() {
         let e = read_problem(name).unwrap_err();
         assert_eq!(
             (e.kind, &e.position),
-            (ErrorKind::Unsupported, &Position::File),
+            (ReadErrorKind::Unsupported, &Position::File),
             "{e}"
         );
         assert!(
@@ -24,7 +24,7 @@ fn unknown_extensions_are_refused() {
 fn hdf5_files_need_the_feature() {
     for name in ["dump.hdf5", "dump.H5"] {
         let e = read_problem(name).unwrap_err();
-        assert_eq!(e.kind, ErrorKind::Unsupported);
+        assert_eq!(e.kind, ReadErrorKind::Unsupported);
         assert_eq!(
             e.to_string(),
             format!("{name}: built without HDF5 support: rebuild with --features hdf5")
@@ -36,11 +36,11 @@ fn hdf5_files_need_the_feature() {
 #[test]
 fn hdf5_files_go_to_the_fclib_reader() {
     let e = read_problem("no-such-dump.H5").unwrap_err();
-    assert_eq!(e.kind, ErrorKind::Io, "{e}");
+    assert_eq!(e.kind, ReadErrorKind::Io, "{e}");
 }
 
 #[test]
 fn dat_files_go_to_the_siconos_reader() {
     let e = read_problem("no-such-problem.DAT").unwrap_err();
-    assert_eq!(e.kind, ErrorKind::Io, "{e}");
+    assert_eq!(e.kind, ReadErrorKind::Io, "{e}");
 }

@@ -10,8 +10,8 @@ use hdf5_metno as h5;
 use std::path::Path;
 use xper_fclib::fclib::{read_fclib_global, read_fclib_local};
 use xper_fclib::{
-    read_problem, write_fclib_global, write_fclib_local, CsrMatrix, ErrorKind, FrictionProblem,
-    GlobalFrictionProblem, Position, Problem, ReadError,
+    read_problem, write_fclib_global, write_fclib_local, CsrMatrix, FrictionProblem,
+    GlobalFrictionProblem, Position, Problem, ReadError, ReadErrorKind,
 };
 
 fn small_local() -> FrictionProblem {
@@ -127,12 +127,15 @@ fn writing_replaces_atomically_and_failures_leave_nothing() {
     // A missing directory: an error naming the target, and no file anywhere.
     let bad = tmp.path("no/such/dir/dump.hdf5");
     let e = write_fclib_local(&bad, &small_local()).unwrap_err();
-    assert_eq!((e.kind, e.path.as_path()), (ErrorKind::Io, bad.as_path()));
+    assert_eq!(
+        (e.kind, e.path.as_path()),
+        (ReadErrorKind::Io, bad.as_path())
+    );
     // An inconsistent problem is refused, and the previous file stays.
     let mut broken = small_local();
     broken.mu.push(0.1);
     let e = write_fclib_local(&path, &broken).unwrap_err();
-    assert_eq!(e.kind, ErrorKind::Invalid, "{e}");
+    assert_eq!(e.kind, ReadErrorKind::Invalid, "{e}");
     assert_eq!(read_fclib_local(&path).unwrap(), small_local());
     let left: Vec<_> = std::fs::read_dir(&tmp.0).unwrap().collect();
     assert_eq!(left.len(), 1);
@@ -159,7 +162,7 @@ fn replace<T: h5::H5Type>(f: &h5::File, at: &str, data: &[T]) {
 /// A change made to a valid file.
 type Edit = Box<dyn FnOnce(&h5::File)>;
 
-fn expect_err(path: &Path, dataset: &str, kind: ErrorKind, words: &str) -> ReadError {
+fn expect_err(path: &Path, dataset: &str, kind: ReadErrorKind, words: &str) -> ReadError {
     let e = read_problem(path).expect_err(dataset);
     assert_eq!(e.path, path);
     assert_eq!(e.position, Position::Dataset(dataset.into()), "{e}");
@@ -175,75 +178,75 @@ fn expect_err(path: &Path, dataset: &str, kind: ErrorKind, words: &str) -> ReadE
 #[test]
 fn malformed_datasets_are_named_in_the_error() {
     let tmp = TempDir::new("malformed");
-    let cases: Vec<(&str, Edit, &str, ErrorKind, &str)> = vec![
+    let cases: Vec<(&str, Edit, &str, ReadErrorKind, &str)> = vec![
         (
             "index",
             Box::new(|f| replace(f, "fclib_local/W/i", &[0i32, 1, 2, 3, 0, 4, 5, 9, 5])),
             "/fclib_local/W",
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             "outside 0..6",
         ),
         (
             "negative-index",
             Box::new(|f| replace(f, "fclib_local/W/i", &[0i32, 1, 2, 3, 0, 4, 5, -1, 5])),
             "/fclib_local/W",
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             "= -1",
         ),
         (
             "pointers",
             Box::new(|f| replace(f, "fclib_local/W/p", &[0i32, 2, 3, 4, 6, 8])),
             "/fclib_local/W",
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             "6 + 1 expected",
         ),
         (
             "decreasing",
             Box::new(|f| replace(f, "fclib_local/W/p", &[0i32, 2, 3, 2, 6, 8, 9])),
             "/fclib_local/W",
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             "decrease",
         ),
         (
             "nz",
             Box::new(|f| replace(f, "fclib_local/W/nz", &[-3i32])),
             "/fclib_local/W/nz",
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             "nz = -3",
         ),
         (
             "rows",
             Box::new(|f| replace(f, "fclib_local/W/m", &[7i32])),
             "/fclib_local/W",
-            ErrorKind::Invalid,
+            ReadErrorKind::Invalid,
             "7 x 6",
         ),
         (
             "q-length",
             Box::new(|f| replace(f, "fclib_local/vectors/q", &[1.0f64; 7])),
             "/fclib_local/vectors/q",
-            ErrorKind::Invalid,
+            ReadErrorKind::Invalid,
             "not a multiple",
         ),
         (
             "mu-length",
             Box::new(|f| replace(f, "fclib_local/vectors/mu", &[0.1f64; 3])),
             "/fclib_local/vectors/mu",
-            ErrorKind::Invalid,
+            ReadErrorKind::Invalid,
             "3 entries; 2 expected",
         ),
         (
             "mu-negative",
             Box::new(|f| replace(f, "fclib_local/vectors/mu", &[0.1f64, -0.2])),
             "/fclib_local/vectors/mu",
-            ErrorKind::Invalid,
+            ReadErrorKind::Invalid,
             "mu[1] = -0.2",
         ),
         (
             "mu-nan",
             Box::new(|f| replace(f, "fclib_local/vectors/mu", &[f64::NAN, 0.2])),
             "/fclib_local/vectors/mu",
-            ErrorKind::Invalid,
+            ReadErrorKind::Invalid,
             "not finite",
         ),
         (
@@ -256,35 +259,35 @@ fn malformed_datasets_are_named_in_the_error() {
                 )
             }),
             "/fclib_local/W/x",
-            ErrorKind::Invalid,
+            ReadErrorKind::Invalid,
             "entry 3 = inf",
         ),
         (
             "spacedim",
             Box::new(|f| replace(f, "fclib_local/spacedim", &[4i32])),
             "/fclib_local/spacedim",
-            ErrorKind::Invalid,
+            ReadErrorKind::Invalid,
             "spacedim = 4",
         ),
         (
             "scalar",
             Box::new(|f| replace(f, "fclib_local/spacedim", &[3i32, 3])),
             "/fclib_local/spacedim",
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             "2 values; one expected",
         ),
         (
             "float-index",
             Box::new(|f| replace(f, "fclib_local/W/i", &[0.0f64; 9])),
             "/fclib_local/W/i",
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             "integers expected",
         ),
         (
             "missing",
             Box::new(|f| f.group("fclib_local/vectors").unwrap().unlink("q").unwrap()),
             "/fclib_local/vectors/q",
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             "missing dataset",
         ),
     ];
@@ -308,7 +311,7 @@ fn malformed_datasets_are_named_in_the_error() {
     expect_err(
         &path,
         "/fclib_global/H",
-        ErrorKind::Format,
+        ReadErrorKind::Format,
         "column index[1] = 3 is outside 0..3",
     );
 }
@@ -332,13 +335,16 @@ fn truncated_and_garbage_files_are_errors() {
             std::fs::write(&path, &bytes[..cut]).unwrap();
             let e = read_problem(&path).expect_err(&format!("{} cut at {cut}", src.display()));
             assert_eq!(e.path, path);
-            assert!(matches!(e.kind, ErrorKind::Format), "{e}");
+            assert!(matches!(e.kind, ReadErrorKind::Format), "{e}");
         }
     }
     let garbage = tmp.path("garbage.h5");
     std::fs::write(&garbage, b"\x89HDF\r\n\x1a\nnot really an HDF5 file at all").unwrap();
     let e = read_problem(&garbage).unwrap_err();
-    assert_eq!((e.kind, &e.position), (ErrorKind::Format, &Position::File));
+    assert_eq!(
+        (e.kind, &e.position),
+        (ReadErrorKind::Format, &Position::File)
+    );
     assert!(e.reason.contains("not a readable HDF5 file"), "{e}");
     // A valid HDF5 file without FCLib groups.
     let empty = tmp.path("empty.hdf5");

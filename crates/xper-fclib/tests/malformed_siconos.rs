@@ -7,7 +7,8 @@ mod common;
 use common::{shared_dir, TempDir};
 use std::path::Path;
 use xper_fclib::{
-    parse_siconos, read_problem, read_siconos, ErrorKind, Position, Problem, ReadError, SiconosKind,
+    parse_siconos, read_problem, read_siconos, Position, Problem, ReadError, ReadErrorKind,
+    SiconosKind,
 };
 
 fn parse(text: &str, kind: SiconosKind) -> Result<Problem, ReadError> {
@@ -20,7 +21,7 @@ fn fails(
     text: &str,
     kind: SiconosKind,
     line: usize,
-    err_kind: ErrorKind,
+    err_kind: ReadErrorKind,
     words: &str,
 ) -> ReadError {
     let e = parse(text, kind).expect_err(text);
@@ -64,7 +65,7 @@ fn minimal_files_read_as_written() {
         global,
         SiconosKind::Local,
         1,
-        ErrorKind::Format,
+        ReadErrorKind::Format,
         "unexpected data",
     );
     // CSparse triplet and CSC, and a sparse-block matrix, all giving the same W.
@@ -104,7 +105,7 @@ fn truncated_copies_of_the_shared_files_are_errors_at_the_end() {
             std::fs::write(&path, &bytes[..cut]).unwrap();
             let e = read_siconos(&path).expect_err(&format!("{name} cut at {cut} accepted"));
             assert_eq!(e.path, path);
-            assert_eq!(e.kind, ErrorKind::Format, "{e}");
+            assert_eq!(e.kind, ReadErrorKind::Format, "{e}");
             let Position::Token { index, line } = e.position else {
                 panic!("{e}")
             };
@@ -134,37 +135,46 @@ fn garbage_is_rejected_with_a_reason() {
     let bin = tmp.path("binary.dat");
     std::fs::write(&bin, [0x89u8, b'H', b'D', b'F', 0xff, 0xfe, 0]).unwrap();
     let e = read_siconos(&bin).unwrap_err();
-    assert_eq!((e.kind, &e.position), (ErrorKind::Format, &Position::File));
+    assert_eq!(
+        (e.kind, &e.position),
+        (ReadErrorKind::Format, &Position::File)
+    );
     assert!(e.reason.contains("not a text file"), "{e}");
     let e = read_problem(tmp.path("missing.dat")).unwrap_err();
-    assert_eq!(e.kind, ErrorKind::Io, "{e}");
-    fails("", SiconosKind::Auto, 1, ErrorKind::Format, "ends early");
+    assert_eq!(e.kind, ReadErrorKind::Io, "{e}");
+    fails(
+        "",
+        SiconosKind::Auto,
+        1,
+        ReadErrorKind::Format,
+        "ends early",
+    );
     fails(
         "hello world",
         SiconosKind::Auto,
         1,
-        ErrorKind::Format,
+        ReadErrorKind::Format,
         "expected an integer (dimension d)",
     );
     fails(
         "2\n1\n0\n2\n2\n2 2\n4 x 1 3\n-1 0.5\n0.3\n",
         SiconosKind::Auto,
         7,
-        ErrorKind::Format,
+        ReadErrorKind::Format,
         "\"x\"",
     );
     fails(
         &format!("{LOCAL_DENSE}1 2\n"),
         SiconosKind::Auto,
         10,
-        ErrorKind::Format,
+        ReadErrorKind::Format,
         "unexpected data",
     );
     fails(
         &format!("{LOCAL_DENSE}end\n"),
         SiconosKind::Auto,
         10,
-        ErrorKind::Format,
+        ReadErrorKind::Format,
         "\"end\"",
     );
 }
@@ -175,7 +185,7 @@ fn wrong_sizes_are_rejected() {
         "4 1 0 2 2",
         SiconosKind::Auto,
         1,
-        ErrorKind::Invalid,
+        ReadErrorKind::Invalid,
         "not 2 or 3",
     );
     // Huge counts are refused before any allocation.
@@ -183,14 +193,14 @@ fn wrong_sizes_are_rejected() {
         "2 99999999999 0 2 2",
         SiconosKind::Auto,
         1,
-        ErrorKind::Format,
+        ReadErrorKind::Format,
         "outside 0..=",
     );
     fails(
         "2 1 0 2 99999999999",
         SiconosKind::Auto,
         1,
-        ErrorKind::Format,
+        ReadErrorKind::Format,
         "outside 0..=",
     );
     // Dense size line disagreeing with the header.
@@ -198,7 +208,7 @@ fn wrong_sizes_are_rejected() {
         "2\n1\n0\n2\n2\n2\t3\n4 1 1 3\n",
         SiconosKind::Auto,
         6,
-        ErrorKind::Format,
+        ReadErrorKind::Format,
         "dense column count",
     );
     // Non-square first matrix.
@@ -206,7 +216,7 @@ fn wrong_sizes_are_rejected() {
         "2 1 0 2 1 2 1 4 1  -1 0.5 0.3",
         SiconosKind::Auto,
         1,
-        ErrorKind::Invalid,
+        ReadErrorKind::Invalid,
         "square",
     );
     // W of 2 x 2 for 2 contacts: as local, a size error; by content, read as global.
@@ -215,14 +225,14 @@ fn wrong_sizes_are_rejected() {
         text,
         SiconosKind::Local,
         4,
-        ErrorKind::Invalid,
+        ReadErrorKind::Invalid,
         "need 4 x 4",
     );
     let e = fails(
         text,
         SiconosKind::Auto,
         8,
-        ErrorKind::Format,
+        ReadErrorKind::Format,
         "storage code of H",
     );
     assert!(
@@ -235,7 +245,7 @@ fn wrong_sizes_are_rejected() {
         "2 1 0 2 2 2 2 4 1 1 3 -1",
         SiconosKind::Auto,
         1,
-        ErrorKind::Format,
+        ReadErrorKind::Format,
         "q needs 2 values",
     );
     // H of the wrong size in a global file.
@@ -244,7 +254,7 @@ fn wrong_sizes_are_rejected() {
         global,
         SiconosKind::Global,
         1,
-        ErrorKind::Invalid,
+        ReadErrorKind::Invalid,
         "H is 2 x 1",
     );
 }
@@ -255,28 +265,28 @@ fn bad_values_are_rejected_at_their_token() {
         "2 1 0 2 2 2 2 4 1 1 3\n-1 0.5\n-0.3\n",
         SiconosKind::Auto,
         3,
-        ErrorKind::Invalid,
+        ReadErrorKind::Invalid,
         "mu[0] = -0.3",
     );
     fails(
         "2 1 0 2 2 2 2 4 1 1 3\n-1 0.5\nnan\n",
         SiconosKind::Auto,
         3,
-        ErrorKind::Invalid,
+        ReadErrorKind::Invalid,
         "mu[0] = NaN",
     );
     fails(
         "2 1 0 2 2 2 2 4 1 1 3\n-1 inf\n0.3\n",
         SiconosKind::Auto,
         2,
-        ErrorKind::Invalid,
+        ReadErrorKind::Invalid,
         "q[1] = inf",
     );
     fails(
         "2 1 0 2 2 2 2 4 NaN 1 3\n-1 0\n0.3\n",
         SiconosKind::Auto,
         1,
-        ErrorKind::Invalid,
+        ReadErrorKind::Invalid,
         "not finite",
     );
 }
@@ -311,7 +321,7 @@ fn sparse_block_structure_is_checked() {
         ),
     ];
     for (text, words) in bad {
-        fails(text, SiconosKind::Local, 1, ErrorKind::Format, words);
+        fails(text, SiconosKind::Local, 1, ReadErrorKind::Format, words);
     }
 }
 
@@ -333,9 +343,9 @@ fn csparse_indices_and_counts_are_checked() {
     ];
     for (text, line, words) in &cases {
         let kind = if words.contains("origin") {
-            ErrorKind::Unsupported
+            ReadErrorKind::Unsupported
         } else {
-            ErrorKind::Format
+            ReadErrorKind::Format
         };
         fails(text, SiconosKind::Local, *line, kind, words);
     }
@@ -344,7 +354,7 @@ fn csparse_indices_and_counts_are_checked() {
         triplet,
         SiconosKind::Local,
         5,
-        ErrorKind::Format,
+        ReadErrorKind::Format,
         "column of entry 1",
     );
 }

@@ -15,7 +15,7 @@
 
 use crate::grid::MacGrid;
 use xper_math::Real;
-use xper_poisson::{Multigrid, SolveError, SolveInfo};
+use xper_poisson::{Multigrid, MultigridError, MultigridInfo};
 
 /// Ghost rows a block reads below its first row.
 pub const HALO_BELOW: usize = 1;
@@ -40,7 +40,11 @@ pub trait BlockLinks {
     }
     /// Solves the pressure-correction equation of the whole grid; `rhs` and `phi` hold this
     /// block's cells (row-major, unpadded), `phi` the initial guess on entry.
-    fn solve_pressure(&mut self, rhs: &[Real], phi: &mut [Real]) -> Result<SolveInfo, SolveError>;
+    fn solve_pressure(
+        &mut self,
+        rhs: &[Real],
+        phi: &mut [Real],
+    ) -> Result<MultigridInfo, MultigridError>;
 }
 
 /// The whole grid on one process: no halo to exchange, reductions are the identity, the
@@ -54,7 +58,11 @@ impl BlockLinks for WholeGrid {
     fn exchange_halo(&mut self, _grid: &MacGrid, _fields: &mut [&mut [Real]]) {}
     fn sum(&mut self, _values: &mut [Real]) {}
     fn max(&mut self, _values: &mut [Real]) {}
-    fn solve_pressure(&mut self, rhs: &[Real], phi: &mut [Real]) -> Result<SolveInfo, SolveError> {
+    fn solve_pressure(
+        &mut self,
+        rhs: &[Real],
+        phi: &mut [Real],
+    ) -> Result<MultigridInfo, MultigridError> {
         self.multigrid.solve(rhs, phi)
     }
 }

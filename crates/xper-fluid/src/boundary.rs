@@ -10,7 +10,7 @@
 use crate::grid::MacGrid;
 use serde::{Deserialize, Serialize};
 use xper_math::{Real, DIM};
-use xper_poisson::{Boundary, SideCondition as PressureCondition};
+use xper_poisson::{Boundary, PoissonSide as PressureCondition};
 
 /// Normal velocity profile of an inflow side.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

@@ -13,7 +13,7 @@ use crate::blocks::BlockLinks;
 use crate::boundary::FluidBoundary;
 use crate::grid::MacGrid;
 use xper_math::{Real, DIM};
-use xper_poisson::{SolveError, SolveInfo};
+use xper_poisson::{MultigridError, MultigridInfo};
 
 /// Writes the divergence of every cell into `out` (row-major, unpadded) and returns the sum of
 /// its squares.
@@ -49,7 +49,7 @@ pub struct Projection {
 #[derive(Clone, Copy, Debug)]
 pub struct ProjectionInfo {
     /// The pressure solve.
-    pub solve: SolveInfo,
+    pub solve: MultigridInfo,
     /// This block's sums of the squared divergence before and after the correction (1/s^2;
     /// the grid's norms are the roots of their sums over the blocks, which the caller reduces
     /// together with its other sums).
@@ -80,7 +80,7 @@ impl Projection {
         u: &mut [Vec<Real>; DIM],
         p: &mut [Real],
         phi: &mut [Real],
-    ) -> Result<ProjectionInfo, SolveError> {
+    ) -> Result<ProjectionInfo, MultigridError> {
         let mut squares = [divergence(grid, u, &mut self.rhs), 0.0];
         let scale = density / dt;
         for r in &mut self.rhs {

@@ -12,7 +12,7 @@ use crate::projection::{exchange_velocity_and_pressure, Projection};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 use xper_math::{Real, Vector, DIM};
-use xper_poisson::{GridShape, Multigrid, MultigridParams, SolveError, SolveInfo};
+use xper_poisson::{GridShape, Multigrid, MultigridError, MultigridInfo, MultigridParams};
 
 /// The parameters of the pressure multigrid of `params` over the whole `grid`.
 pub fn pressure_multigrid(
@@ -224,7 +224,7 @@ pub struct FluidStepReport {
     /// Time at the end of the step (s).
     pub time: Real,
     /// The pressure solve.
-    pub pressure: SolveInfo,
+    pub pressure: MultigridInfo,
     /// Norm of the divergence before and after the projection (1/s).
     pub divergence: [Real; 2],
     /// Largest velocity component after the step (m/s).
@@ -243,7 +243,7 @@ pub enum FluidError {
     /// Parameters or grid refused.
     Setup(String),
     /// The pressure solve failed.
-    Pressure(SolveError),
+    Pressure(MultigridError),
     /// The velocity became NaN or infinite.
     NonFinite {
         /// Step that produced it.

@@ -5,7 +5,7 @@ use std::fmt;
 
 /// What kind of failure a [`MeshError`] reports, for callers that branch on it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum ErrorKind {
+pub enum MeshErrorKind {
     /// The file could not be read from disk.
     Io,
     /// The file is not a well-formed Gmsh MSH 4.1 file (truncated, wrong version, corrupt).
@@ -36,12 +36,12 @@ pub struct MeshError {
     /// Why it failed, in words.
     pub reason: String,
     /// The family of the failure.
-    pub kind: ErrorKind,
+    pub kind: MeshErrorKind,
 }
 
 impl MeshError {
     /// A new error without a place.
-    pub fn new(kind: ErrorKind, origin: impl Into<String>, reason: impl Into<String>) -> Self {
+    pub fn new(kind: MeshErrorKind, origin: impl Into<String>, reason: impl Into<String>) -> Self {
         MeshError {
             origin: origin.into(),
             place: None,
@@ -63,12 +63,12 @@ impl MeshError {
         self
     }
 
-    /// An [`ErrorKind::Invalid`] error about the mesh itself.
+    /// An [`MeshErrorKind::Invalid`] error about the mesh itself.
     pub(crate) fn invalid(place: impl Into<String>, reason: impl Into<String>) -> Self {
-        MeshError::new(ErrorKind::Invalid, "mesh", reason).at(place)
+        MeshError::new(MeshErrorKind::Invalid, "mesh", reason).at(place)
     }
 
-    /// An [`ErrorKind::Selection`] error for an unknown name, listing the known ones.
+    /// An [`MeshErrorKind::Selection`] error for an unknown name, listing the known ones.
     pub(crate) fn unknown_name<'a>(
         what: &str,
         name: &str,
@@ -81,7 +81,7 @@ impl MeshError {
             known.join(", ")
         };
         MeshError::new(
-            ErrorKind::Selection,
+            MeshErrorKind::Selection,
             "mesh",
             format!("unknown {what} `{name}` (known: {list})"),
         )

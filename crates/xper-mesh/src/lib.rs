@@ -25,7 +25,7 @@ mod msh;
 mod select;
 mod topology;
 
-pub use error::{ErrorKind, MeshError};
+pub use error::{MeshError, MeshErrorKind};
 pub use generate::{
     double_edge_notched, rectangle_with_inclusions, NotchedSpec, RectangleSpec, MAX_AREA_FACTOR,
     MAX_TRIANGLES, MIN_ANGLE_DEGREES,

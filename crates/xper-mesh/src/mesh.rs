@@ -87,7 +87,7 @@ impl Mesh {
     /// Builds a mesh from nodes (m), triangles, their region indices and the regions, with no
     /// edge or node set. Clockwise triangles are turned counter-clockwise (two nodes swapped).
     ///
-    /// Errors (kind [`ErrorKind::Invalid`](crate::ErrorKind::Invalid), origin `mesh`): a
+    /// Errors (kind [`MeshErrorKind::Invalid`](crate::MeshErrorKind::Invalid), origin `mesh`): a
     /// non-finite coordinate, a node index out of range, a triangle with a repeated node or a
     /// (near) zero area, a region index out of range, a length mismatch between `triangles`
     /// and `triangle_region`, an edge shared by more than two triangles.

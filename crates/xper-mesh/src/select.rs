@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{ErrorKind, MeshError};
+use crate::error::{MeshError, MeshErrorKind};
 use crate::mesh::Mesh;
 
 /// A way to pick nodes of a mesh.
@@ -29,7 +29,7 @@ pub enum NodeSelector {
 }
 
 fn selector_error(reason: String) -> MeshError {
-    MeshError::new(ErrorKind::Selection, "node selector", reason)
+    MeshError::new(MeshErrorKind::Selection, "node selector", reason)
 }
 
 fn finite(p: &[f64]) -> bool {

@@ -3,8 +3,8 @@
 //! Bounds checked: min angle >= MIN_ANGLE_DEGREES - 0.5 degree; longest edge <= 1.5 h.
 
 use xper_mesh::{
-    double_edge_notched, rectangle_with_inclusions, ErrorKind, Mesh, NotchedSpec, RectangleSpec,
-    MIN_ANGLE_DEGREES,
+    double_edge_notched, rectangle_with_inclusions, Mesh, MeshErrorKind, NotchedSpec,
+    RectangleSpec, MIN_ANGLE_DEGREES,
 };
 
 const ANGLE_MARGIN: f64 = 0.5;
@@ -311,7 +311,7 @@ fn spec_error(result: Result<Mesh, xper_mesh::MeshError>, origin: &str, words: &
     let Err(err) = result else {
         panic!("accepted a spec that should fail with `{words}`");
     };
-    assert_eq!(err.kind, ErrorKind::Spec, "{err}");
+    assert_eq!(err.kind, MeshErrorKind::Spec, "{err}");
     let text = err.to_string();
     assert!(text.starts_with(origin), "{text}");
     assert!(text.contains(words), "`{text}` lacks `{words}`");

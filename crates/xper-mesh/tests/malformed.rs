@@ -2,7 +2,7 @@
 
 use std::path::{Path, PathBuf};
 
-use xper_mesh::{parse_msh, read_msh, ErrorKind, MeshError};
+use xper_mesh::{parse_msh, read_msh, MeshError, MeshErrorKind};
 
 fn data(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -12,7 +12,7 @@ fn data(name: &str) -> PathBuf {
 
 /// Reads `name` from `tests/data`, expects an error of `kind` whose message names the file
 /// and contains `words`; returns it.
-fn rejected(name: &str, kind: ErrorKind, words: &str) -> MeshError {
+fn rejected(name: &str, kind: MeshErrorKind, words: &str) -> MeshError {
     let path = data(name);
     let err = read_msh(&path).expect_err(name);
     let text = err.to_string();
@@ -33,7 +33,7 @@ fn read_bytes(tag: &str, bytes: &[u8]) -> (PathBuf, Result<xper_mesh::Mesh, Mesh
 
 #[test]
 fn version_2_2_asks_for_a_conversion() {
-    let err = rejected("v22.msh", ErrorKind::Unsupported, "gmsh -format msh41");
+    let err = rejected("v22.msh", MeshErrorKind::Unsupported, "gmsh -format msh41");
     assert!(err.reason.contains("2.2"), "{err}");
     assert_eq!(err.place.as_deref(), Some("line 2 ($MeshFormat)"));
 }
@@ -42,7 +42,7 @@ fn version_2_2_asks_for_a_conversion() {
 fn quadrangles_are_refused() {
     let err = rejected(
         "quads.msh",
-        ErrorKind::Unsupported,
+        MeshErrorKind::Unsupported,
         "only 3-node triangles are supported",
     );
     assert!(err.place.unwrap().contains("element"));
@@ -52,14 +52,14 @@ fn quadrangles_are_refused() {
 fn second_order_triangles_are_refused() {
     rejected(
         "second_order.msh",
-        ErrorKind::Unsupported,
+        MeshErrorKind::Unsupported,
         "only 3-node triangles are supported",
     );
 }
 
 #[test]
 fn non_planar_nodes_are_refused() {
-    let err = rejected("nonplanar.msh", ErrorKind::Unsupported, "z = 1");
+    let err = rejected("nonplanar.msh", MeshErrorKind::Unsupported, "z = 1");
     assert!(err.place.unwrap().contains("node"));
 }
 
@@ -67,7 +67,7 @@ fn non_planar_nodes_are_refused() {
 fn a_line_off_the_triangles_is_refused() {
     rejected(
         "stray_line.msh",
-        ErrorKind::Invalid,
+        MeshErrorKind::Invalid,
         "not a node of any triangle",
     );
 }
@@ -75,14 +75,14 @@ fn a_line_off_the_triangles_is_refused() {
 #[test]
 fn missing_and_empty_files() {
     let err = read_msh(Path::new("/nonexistent/dir/none.msh")).unwrap_err();
-    assert_eq!(err.kind, ErrorKind::Io);
+    assert_eq!(err.kind, MeshErrorKind::Io);
     assert!(err
         .to_string()
         .starts_with("/nonexistent/dir/none.msh: cannot read"));
 
     let (path, result) = read_bytes("empty", b"");
     let err = result.unwrap_err();
-    assert_eq!(err.kind, ErrorKind::Format);
+    assert_eq!(err.kind, MeshErrorKind::Format);
     assert_eq!(
         err.to_string(),
         format!(
@@ -125,7 +125,7 @@ fn truncated_files_name_the_place() {
     let bytes = std::fs::read(data("square_inclusion_ascii.msh")).unwrap();
     let (path, result) = read_bytes("half", &bytes[..bytes.len() / 2]);
     let err = result.unwrap_err();
-    assert_eq!(err.kind, ErrorKind::Format, "{err}");
+    assert_eq!(err.kind, MeshErrorKind::Format, "{err}");
     assert!(err.to_string().starts_with(&path.display().to_string()));
     assert!(
         err.place.as_deref().unwrap_or("").starts_with("line "),
@@ -140,7 +140,7 @@ fn corrupt_node_line_is_located() {
     let at = lines.iter().position(|l| *l == "$Nodes").unwrap() + 4;
     lines[at] = "0 zero 0";
     let err = parse_msh(lines.join("\n").as_bytes(), "corrupt.msh").unwrap_err();
-    assert_eq!(err.kind, ErrorKind::Format);
+    assert_eq!(err.kind, MeshErrorKind::Format);
     assert!(err.to_string().starts_with("corrupt.msh: line"), "{err}");
     assert!(err.reason.contains("node"), "{err}");
 }
@@ -169,6 +169,6 @@ fn content_that_trips_the_parser_is_an_error() {
     // An empty $Nodes section: mshio computes `num_nodes - 1`, which overflows.
     let text = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n0 0 1 1\n$EndNodes\n";
     let err = parse_msh(text.as_bytes(), "zero.msh").unwrap_err();
-    assert_eq!(err.kind, ErrorKind::Format);
+    assert_eq!(err.kind, MeshErrorKind::Format);
     assert!(err.to_string().starts_with("zero.msh: "), "{err}");
 }

@@ -4,7 +4,7 @@ use std::collections::BTreeSet;
 use std::path::Path;
 
 use xper_mesh::{
-    read_msh, rectangle_with_inclusions, ErrorKind, Mesh, NodeSelector, RectangleSpec, Region,
+    read_msh, rectangle_with_inclusions, Mesh, MeshErrorKind, NodeSelector, RectangleSpec, Region,
 };
 
 fn one_region() -> Vec<Region> {
@@ -24,7 +24,7 @@ fn invalid(result: Result<Mesh, xper_mesh::MeshError>, words: &str) {
     let Err(err) = result else {
         panic!("accepted a mesh that should fail with `{words}`");
     };
-    assert_eq!(err.kind, ErrorKind::Invalid, "{err}");
+    assert_eq!(err.kind, MeshErrorKind::Invalid, "{err}");
     assert!(err.to_string().contains(words), "`{err}` lacks `{words}`");
 }
 
@@ -94,7 +94,7 @@ fn sets_are_checked_and_merged() {
     invalid(square().with_edge_set("", &[]), "non-empty name");
     invalid(mesh.clone().with_edge_set("bottom", &[]), "already exists");
     let err = mesh.edge_set("left").unwrap_err();
-    assert_eq!(err.kind, ErrorKind::Selection);
+    assert_eq!(err.kind, MeshErrorKind::Selection);
     assert!(
         err.to_string()
             .contains("unknown edge set `left` (known: bottom)"),
@@ -245,7 +245,7 @@ fn selectors() {
     let set = |name: &str| NodeSelector::Set(name.into());
     assert_eq!(mesh.select_nodes(&set("left")).unwrap(), vec![0, 3]);
     let err = mesh.select_nodes(&set("right")).unwrap_err();
-    assert_eq!(err.kind, ErrorKind::Selection);
+    assert_eq!(err.kind, MeshErrorKind::Selection);
     assert!(
         err.to_string()
             .contains("unknown node set `right` (known: left)"),

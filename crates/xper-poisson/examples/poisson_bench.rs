@@ -2,12 +2,12 @@
 //! `cargo run -p xper-poisson --release --example poisson_bench [-- nx ny]`.
 
 use xper_poisson::bench::{run_benchmark_with, BenchFigures};
-use xper_poisson::{Boundary, CycleType, MultigridParams, SideCondition};
+use xper_poisson::{Boundary, CycleType, MultigridParams, PoissonSide};
 
 fn families() -> [(&'static str, Boundary); 3] {
     [
-        ("neumann", Boundary::all(SideCondition::Neumann)),
-        ("periodic", Boundary::all(SideCondition::Periodic)),
+        ("neumann", Boundary::all(PoissonSide::Neumann)),
+        ("periodic", Boundary::all(PoissonSide::Periodic)),
         ("mixed", Boundary::open_top()),
     ]
 }

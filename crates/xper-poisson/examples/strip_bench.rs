@@ -5,7 +5,7 @@
 
 use std::time::Instant;
 use xper_poisson::{
-    Boundary, CountingLinks, GridShape, Multigrid, MultigridParams, SideCondition, StripLayout,
+    Boundary, CountingLinks, GridShape, Multigrid, MultigridParams, PoissonSide, StripLayout,
     StripMultigrid,
 };
 
@@ -52,7 +52,7 @@ fn main() {
     );
     for (nx, ny) in grids {
         for (name, boundary) in [
-            ("neumann", Boundary::all(SideCondition::Neumann)),
+            ("neumann", Boundary::all(PoissonSide::Neumann)),
             ("open top", Boundary::open_top()),
         ] {
             let shape = GridShape::square_cells(nx, ny, 1.0);

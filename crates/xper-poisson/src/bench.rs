@@ -1,6 +1,6 @@
 //! Figures of the solver on one grid: convergence, work and throughput.
 
-use crate::{Boundary, GridShape, Multigrid, MultigridParams, SolveError};
+use crate::{Boundary, GridShape, Multigrid, MultigridError, MultigridParams};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -93,7 +93,7 @@ pub fn run_benchmark_with(
         let result = mg.solve(&rhs, &mut phi);
         solve_seconds = solve_seconds.min(start.elapsed().as_secs_f64());
         info = Some(match result {
-            Ok(info) | Err(SolveError::NotConverged { info }) => info,
+            Ok(info) | Err(MultigridError::NotConverged { info }) => info,
             Err(e) => panic!("benchmark solve failed: {e}"),
         });
     }

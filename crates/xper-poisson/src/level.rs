@@ -9,7 +9,7 @@
 //! [`Level::fill_ghosts_x`] and [`Level::fill_ghosts_y`] only: a distributed version exchanges
 //! halos there instead.
 
-use crate::{Boundary, SideCondition};
+use crate::{Boundary, PoissonSide};
 
 /// Stencil coefficients of one row: `cx` between interior neighbours along x, `west` and
 /// `east` of the first and last cell, `south` and `north` of every cell of the row.
@@ -78,13 +78,13 @@ pub(crate) struct Level {
 
 /// The coefficient of a boundary face of a direction with `n` cells and interior
 /// coefficient `c`.
-fn face_coefficient(condition: SideCondition, c: f64, n: usize) -> f64 {
+fn face_coefficient(condition: PoissonSide, c: f64, n: usize) -> f64 {
     match condition {
-        SideCondition::Neumann => 0.0,
-        SideCondition::Dirichlet => 2.0 * c,
+        PoissonSide::Neumann => 0.0,
+        PoissonSide::Dirichlet => 2.0 * c,
         // With one cell the periodic neighbour is the cell itself: no coupling.
-        SideCondition::Periodic if n == 1 => 0.0,
-        SideCondition::Periodic => c,
+        PoissonSide::Periodic if n == 1 => 0.0,
+        PoissonSide::Periodic => c,
     }
 }
 
@@ -97,8 +97,8 @@ impl Level {
             ny,
             hx,
             hy,
-            periodic_x: boundary.left == SideCondition::Periodic,
-            periodic_y: boundary.bottom == SideCondition::Periodic,
+            periodic_x: boundary.left == PoissonSide::Periodic,
+            periodic_y: boundary.bottom == PoissonSide::Periodic,
             cx,
             cy,
             sides: [

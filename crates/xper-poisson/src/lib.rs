@@ -14,7 +14,7 @@
 //! cell beyond the face: Neumann `d phi / dn = 0` (ghost = interior), Dirichlet `phi = 0` on the
 //! face (ghost = -interior) or periodic (ghost = the cell on the opposite side). With no
 //! Dirichlet side the operator is singular (its kernel is the constants): the mean of `rhs` is
-//! removed before solving (reported as [`SolveInfo::removed_mean`]) and the zero-mean solution
+//! removed before solving (reported as [`MultigridInfo::removed_mean`]) and the zero-mean solution
 //! is returned; the caller need not pass a zero-mean rhs.
 //!
 //! The operator is the usual one (negative semi-definite): for a pressure correction
@@ -48,7 +48,7 @@
 //!
 //! # Work units
 //!
-//! [`SolveInfo::work_units`] counts passes over the cells, each scaled by the cells of its level
+//! [`MultigridInfo::work_units`] counts passes over the cells, each scaled by the cells of its level
 //! over those of the finest grid: a smoothing sweep counts 1, a residual evaluation 1 (also when
 //! fused with a sweep), a restriction 0.5, a prolongation with correction 0.5; on the finest
 //! grid, copying the rhs and initial guess in counts 1, copying the answer out 0.5 (1 with the
@@ -100,7 +100,7 @@ use std::fmt;
 
 /// The homogeneous condition on one side of the rectangle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-pub enum SideCondition {
+pub enum PoissonSide {
     /// `d phi / dn = 0` on the face (ghost = interior).
     Neumann,
     /// `phi = 0` on the face (ghost = -interior).
@@ -113,18 +113,18 @@ pub enum SideCondition {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 pub struct Boundary {
     /// Side `x = 0`.
-    pub left: SideCondition,
+    pub left: PoissonSide,
     /// Side `x = nx hx`.
-    pub right: SideCondition,
+    pub right: PoissonSide,
     /// Side `y = 0`.
-    pub bottom: SideCondition,
+    pub bottom: PoissonSide,
     /// Side `y = ny hy`.
-    pub top: SideCondition,
+    pub top: PoissonSide,
 }
 
 impl Boundary {
     /// The same condition on every side.
-    pub fn all(condition: SideCondition) -> Self {
+    pub fn all(condition: PoissonSide) -> Self {
         Boundary {
             left: condition,
             right: condition,
@@ -137,8 +137,8 @@ impl Boundary {
     /// top.
     pub fn open_top() -> Self {
         Boundary {
-            top: SideCondition::Dirichlet,
-            ..Boundary::all(SideCondition::Neumann)
+            top: PoissonSide::Dirichlet,
+            ..Boundary::all(PoissonSide::Neumann)
         }
     }
 
@@ -146,11 +146,11 @@ impl Boundary {
     pub fn is_singular(&self) -> bool {
         [self.left, self.right, self.bottom, self.top]
             .iter()
-            .all(|&c| c != SideCondition::Dirichlet)
+            .all(|&c| c != PoissonSide::Dirichlet)
     }
 
     /// The conditions of axis 0 (left, right) or 1 (bottom, top).
-    pub fn axis(&self, axis: usize) -> [SideCondition; 2] {
+    pub fn axis(&self, axis: usize) -> [PoissonSide; 2] {
         if axis == 0 {
             [self.left, self.right]
         } else {
@@ -239,7 +239,7 @@ impl Default for MultigridParams {
 
 /// What a solve did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct SolveInfo {
+pub struct MultigridInfo {
     /// Cycles performed.
     pub cycles: u32,
     /// Final `||rhs - Lap phi||_2 / ||rhs||_2` (0 when the rhs is zero).
@@ -258,11 +258,11 @@ pub struct SolveInfo {
 
 /// A solve that failed.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum SolveError {
+pub enum MultigridError {
     /// The tolerance was not reached in `max_cycles` cycles; `phi` holds the last iterate.
     NotConverged {
         /// The state at the last cycle.
-        info: SolveInfo,
+        info: MultigridInfo,
     },
     /// A residual became NaN or infinite (cycle 0: the rhs or the initial guess).
     NonFinite {
@@ -278,25 +278,25 @@ pub enum SolveError {
     },
 }
 
-impl fmt::Display for SolveError {
+impl fmt::Display for MultigridError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            SolveError::NotConverged { info } => write!(
+            MultigridError::NotConverged { info } => write!(
                 f,
                 "multigrid did not converge in {} cycles (relative residual {:.3e})",
                 info.cycles, info.relative_residual
             ),
-            SolveError::NonFinite { cycle } => {
+            MultigridError::NonFinite { cycle } => {
                 write!(f, "non-finite residual after multigrid cycle {cycle}")
             }
-            SolveError::SizeMismatch { expected, got } => {
+            MultigridError::SizeMismatch { expected, got } => {
                 write!(f, "expected {expected} values (nx ny), got {got}")
             }
         }
     }
 }
 
-impl std::error::Error for SolveError {}
+impl std::error::Error for MultigridError {}
 
 /// Why a solver cannot be built.
 #[derive(Clone, Debug, PartialEq)]

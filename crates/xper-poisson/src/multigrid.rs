@@ -4,8 +4,8 @@ use crate::coarse::CoarseSolver;
 use crate::level::{Level, RowSink};
 use crate::transfer::Transfer;
 use crate::{
-    operator, Boundary, CycleType, GridShape, MultigridParams, SetupError, SideCondition,
-    SolveError, SolveInfo,
+    operator, Boundary, CycleType, GridShape, MultigridError, MultigridInfo, MultigridParams,
+    PoissonSide, SetupError,
 };
 
 /// Largest coarsest grid the dense factorisation accepts (128 MiB of factor).
@@ -81,7 +81,7 @@ pub(crate) fn validate(
     }
     for axis in 0..2 {
         let [a, b] = boundary.axis(axis);
-        if (a == SideCondition::Periodic) != (b == SideCondition::Periodic) {
+        if (a == PoissonSide::Periodic) != (b == PoissonSide::Periodic) {
             return Err(SetupError::OneSidedPeriodic { axis });
         }
     }
@@ -221,16 +221,16 @@ impl Multigrid {
     /// solution on exit.
     ///
     /// Without a Dirichlet side the mean of `rhs` is removed first
-    /// ([`SolveInfo::removed_mean`]), residuals are those of the mean-free rhs, and the
+    /// ([`MultigridInfo::removed_mean`]), residuals are those of the mean-free rhs, and the
     /// returned `phi` has zero mean. A zero (mean-free) rhs gives `phi = 0` without cycles.
-    /// On [`SolveError::NotConverged`] `phi` holds the last iterate; on
-    /// [`SolveError::NonFinite`] and [`SolveError::SizeMismatch`] it is unchanged.
-    pub fn solve(&mut self, rhs: &[f64], phi: &mut [f64]) -> Result<SolveInfo, SolveError> {
+    /// On [`MultigridError::NotConverged`] `phi` holds the last iterate; on
+    /// [`MultigridError::NonFinite`] and [`MultigridError::SizeMismatch`] it is unchanged.
+    pub fn solve(&mut self, rhs: &[f64], phi: &mut [f64]) -> Result<MultigridInfo, MultigridError> {
         let (nx, ny) = (self.shape.nx, self.shape.ny);
         let expected = nx * ny;
         for got in [rhs.len(), phi.len()] {
             if got != expected {
-                return Err(SolveError::SizeMismatch { expected, got });
+                return Err(MultigridError::SizeMismatch { expected, got });
             }
         }
         let removed_mean = if self.singular {
@@ -254,9 +254,9 @@ impl Multigrid {
             fine.u[start..start + nx].copy_from_slice(&phi[nx * j..nx * (j + 1)]);
         }
         let rhs_norm = rhs_squares.sqrt();
-        let mut info = SolveInfo {
+        let mut info = MultigridInfo {
             removed_mean,
-            ..SolveInfo::default()
+            ..MultigridInfo::default()
         };
         if rhs_norm == 0.0 {
             phi.fill(0.0);
@@ -268,7 +268,7 @@ impl Multigrid {
         work.units += 2.0;
         let initial = squares.sqrt();
         if !initial.is_finite() {
-            return Err(SolveError::NonFinite { cycle: 0 });
+            return Err(MultigridError::NonFinite { cycle: 0 });
         }
         let target = self.params.relative_tolerance * rhs_norm;
         let mut residual = initial;
@@ -286,7 +286,7 @@ impl Multigrid {
             cycles += 1;
             residual = squares.sqrt();
             if !residual.is_finite() {
-                return Err(SolveError::NonFinite { cycle: cycles });
+                return Err(MultigridError::NonFinite { cycle: cycles });
             }
         }
         let fine = &self.levels[0];
@@ -321,7 +321,7 @@ impl Multigrid {
         };
         info.work_units = work.units;
         if residual > target {
-            Err(SolveError::NotConverged { info })
+            Err(MultigridError::NotConverged { info })
         } else {
             Ok(info)
         }

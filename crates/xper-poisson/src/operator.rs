@@ -1,7 +1,7 @@
 //! The 5-point Laplacian on unpadded row-major arrays, written directly from the ghost rules
 //! (independently of the solver's padded kernels, which the tests check against it).
 
-use crate::{Boundary, GridShape, SideCondition};
+use crate::{Boundary, GridShape, PoissonSide};
 
 /// `phi[neighbour] - phi[centre]` across one face: inside, periodic, or through a ghost.
 #[inline]
@@ -10,14 +10,14 @@ fn difference(
     centre: usize,
     neighbour: Option<usize>,
     wrap: usize,
-    side: SideCondition,
+    side: PoissonSide,
 ) -> f64 {
     let c = phi[centre];
     match (neighbour, side) {
         (Some(k), _) => phi[k] - c,
-        (None, SideCondition::Neumann) => 0.0,
-        (None, SideCondition::Dirichlet) => -2.0 * c,
-        (None, SideCondition::Periodic) => phi[wrap] - c,
+        (None, PoissonSide::Neumann) => 0.0,
+        (None, PoissonSide::Dirichlet) => -2.0 * c,
+        (None, PoissonSide::Periodic) => phi[wrap] - c,
     }
 }
 

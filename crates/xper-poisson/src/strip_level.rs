@@ -40,7 +40,7 @@
 mod smoothing;
 
 use crate::strips::RowExchange;
-use crate::{Boundary, MultigridParams, SideCondition};
+use crate::{Boundary, MultigridParams, PoissonSide};
 
 /// The ghost rows of a level for `params`: `2 s + 1` for the larger smoothing count `s`.
 pub fn ghost_rows(params: &MultigridParams) -> usize {
@@ -55,11 +55,11 @@ struct RowDiagonal {
     last: f64,
 }
 
-fn fold(condition: SideCondition) -> f64 {
+fn fold(condition: PoissonSide) -> f64 {
     match condition {
-        SideCondition::Neumann => 1.0,
-        SideCondition::Dirichlet => -1.0,
-        SideCondition::Periodic => 0.0,
+        PoissonSide::Neumann => 1.0,
+        PoissonSide::Dirichlet => -1.0,
+        PoissonSide::Periodic => 0.0,
     }
 }
 
@@ -121,7 +121,7 @@ impl StripLevel {
     ) -> Self {
         let [hx, hy] = spacing;
         let (cx, cy) = (1.0 / (hx * hx), 1.0 / (hy * hy));
-        let periodic_y = boundary.bottom == SideCondition::Periodic;
+        let periodic_y = boundary.bottom == PoissonSide::Periodic;
         let linked = [rows.start > 0 || periodic_y, rows.end < ny || periodic_y];
         let padded = (nx + 2) * (rows.len() + 2 * ghosts);
         let (s_west, s_east) = (fold(boundary.left), fold(boundary.right));
@@ -163,7 +163,7 @@ impl StripLevel {
             linked,
             u_current: 0,
             f_current: 0,
-            periodic_x: boundary.left == SideCondition::Periodic,
+            periodic_x: boundary.left == PoissonSide::Periodic,
             boundary,
         }
     }
@@ -255,7 +255,7 @@ impl StripLevel {
     /// with `reflect`, the boundary rule (`+-` the interior, for the bilinear prolongation).
     fn fill_ghost_columns(&mut self, reflect: bool, rows: std::ops::Range<isize>) {
         let (nx, w) = (self.nx, self.width());
-        let rule = |c: SideCondition| if reflect { fold(c) } else { 0.0 };
+        let rule = |c: PoissonSide| if reflect { fold(c) } else { 0.0 };
         let (s_left, s_right) = (rule(self.boundary.left), rule(self.boundary.right));
         for j in rows {
             let row = self.index(-1, j);

@@ -31,7 +31,8 @@ use crate::strip_hierarchy::{move_rows, plan_levels, Below, LevelPlan, Strips};
 use crate::strip_level::{ghost_rows, Combine, Field, StripLevel};
 use crate::strips::{AgglomeratedLinks, RowExchange, RowLinks, StripLayout, MIN_STRIP_ROWS};
 use crate::{
-    Boundary, CycleType, GridShape, Multigrid, MultigridParams, SetupError, SolveError, SolveInfo,
+    Boundary, CycleType, GridShape, Multigrid, MultigridError, MultigridInfo, MultigridParams,
+    SetupError,
 };
 
 /// A multigrid solver for the rows of one strip of the grid.
@@ -118,7 +119,7 @@ impl StripMultigrid {
             shape,
             params,
             singular: boundary.is_singular(),
-            periodic: boundary.bottom == crate::SideCondition::Periodic,
+            periodic: boundary.bottom == crate::PoissonSide::Periodic,
             plans,
             levels,
             stagings,
@@ -177,12 +178,12 @@ impl StripMultigrid {
         links: &mut dyn RowLinks,
         rhs: &[f64],
         phi: &mut [f64],
-    ) -> Result<SolveInfo, SolveError> {
+    ) -> Result<MultigridInfo, MultigridError> {
         let nx = self.shape.nx;
         let expected = nx * self.rows().len();
         for got in [rhs.len(), phi.len()] {
             if got != expected {
-                return Err(SolveError::SizeMismatch { expected, got });
+                return Err(MultigridError::SizeMismatch { expected, got });
             }
         }
         let fine = &mut self.levels[0];
@@ -215,9 +216,9 @@ impl StripMultigrid {
         // A root that keeps NaN (a difference of sums may round below zero).
         let root = |x: f64| if x < 0.0 { 0.0 } else { x.sqrt() };
         let rhs_norm = root(rhs_squares);
-        let mut info = SolveInfo {
+        let mut info = MultigridInfo {
             removed_mean,
-            ..SolveInfo::default()
+            ..MultigridInfo::default()
         };
         if rhs_norm == 0.0 {
             phi.fill(0.0);
@@ -225,7 +226,7 @@ impl StripMultigrid {
         }
         let initial = root(residual_squares);
         if !initial.is_finite() {
-            return Err(SolveError::NonFinite { cycle: 0 });
+            return Err(MultigridError::NonFinite { cycle: 0 });
         }
         let target = self.params.relative_tolerance * rhs_norm;
         let mut norm = initial;
@@ -242,7 +243,7 @@ impl StripMultigrid {
             norm = squares[0].sqrt();
             cycles += 1;
             if !norm.is_finite() {
-                return Err(SolveError::NonFinite { cycle: cycles });
+                return Err(MultigridError::NonFinite { cycle: cycles });
             }
         }
         let fine = &self.levels[0];
@@ -271,7 +272,7 @@ impl StripMultigrid {
         };
         info.work_units = work;
         if norm > target {
-            Err(SolveError::NotConverged { info })
+            Err(MultigridError::NotConverged { info })
         } else {
             Ok(info)
         }

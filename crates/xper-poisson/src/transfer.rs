@@ -13,7 +13,7 @@
 //!   negated mirror for Dirichlet, opposite cell for periodic) is folded into the weights.
 
 use crate::level::Level;
-use crate::SideCondition;
+use crate::PoissonSide;
 
 /// How a fine axis maps to the coarse one.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -33,7 +33,7 @@ type Pair = [(usize, f64); 2];
 struct AxisMap {
     kind: Kind,
     coarse: usize,
-    sides: [SideCondition; 2],
+    sides: [PoissonSide; 2],
     /// Per fine cell, where its value goes (restriction).
     restrict: Vec<Pair>,
     /// Per fine cell, where its value comes from (prolongation).
@@ -41,7 +41,7 @@ struct AxisMap {
 }
 
 impl AxisMap {
-    fn new(nf: usize, nc: usize, sides: [SideCondition; 2]) -> Self {
+    fn new(nf: usize, nc: usize, sides: [PoissonSide; 2]) -> Self {
         let kind = if nc == nf {
             Kind::Identity
         } else if nf == 2 * nc {
@@ -71,9 +71,9 @@ impl AxisMap {
                 return (index as usize, weight);
             };
             match side {
-                SideCondition::Neumann => (mirror as usize, weight),
-                SideCondition::Dirichlet => (mirror as usize, -weight),
-                SideCondition::Periodic => (wrap as usize, weight),
+                PoissonSide::Neumann => (mirror as usize, weight),
+                PoissonSide::Dirichlet => (mirror as usize, -weight),
+                PoissonSide::Periodic => (wrap as usize, weight),
             }
         };
         let prolong = (0..nf)
@@ -108,8 +108,8 @@ impl Transfer {
     pub fn new(
         fine: &Level,
         coarse: &Level,
-        x_sides: [SideCondition; 2],
-        y_sides: [SideCondition; 2],
+        x_sides: [PoissonSide; 2],
+        y_sides: [PoissonSide; 2],
     ) -> Self {
         Transfer {
             x: AxisMap::new(fine.nx, coarse.nx, x_sides),
@@ -173,9 +173,9 @@ impl Transfer {
                 }
                 Kind::Halve => {
                     let ghost = |side, inside: f64, opposite: f64| match side {
-                        SideCondition::Neumann => inside,
-                        SideCondition::Dirichlet => -inside,
-                        SideCondition::Periodic => opposite,
+                        PoissonSide::Neumann => inside,
+                        PoissonSide::Dirichlet => -inside,
+                        PoissonSide::Periodic => opposite,
                     };
                     line[0] = ghost(self.x.sides[0], line[1], line[nc]);
                     line[nc + 1] = ghost(self.x.sides[1], line[nc], line[1]);

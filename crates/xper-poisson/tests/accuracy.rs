@@ -2,9 +2,9 @@
 //! discretisation error) and a dense direct solve of the same discrete problem.
 
 use std::f64::consts::PI;
-use xper_poisson::{Boundary, GridShape, Multigrid, MultigridParams, SideCondition};
+use xper_poisson::{Boundary, GridShape, Multigrid, MultigridParams, PoissonSide};
 
-use SideCondition::{Dirichlet as D, Neumann as N, Periodic as P};
+use PoissonSide::{Dirichlet as D, Neumann as N, Periodic as P};
 
 fn unit_square(n: usize) -> GridShape {
     GridShape {

@@ -2,10 +2,10 @@
 //! odd and stretched grids, the singular case, warm starts.
 
 use xper_poisson::{
-    Boundary, CycleType, GridShape, Multigrid, MultigridParams, SideCondition, SolveInfo,
+    Boundary, CycleType, GridShape, Multigrid, MultigridInfo, MultigridParams, PoissonSide,
 };
 
-use SideCondition::{Dirichlet as D, Neumann as N, Periodic as P};
+use PoissonSide::{Dirichlet as D, Neumann as N, Periodic as P};
 
 fn families() -> [(&'static str, Boundary); 3] {
     [
@@ -36,7 +36,7 @@ fn random_rhs(n: usize, seed: u64) -> Vec<f64> {
         .collect()
 }
 
-fn solve(shape: GridShape, boundary: Boundary, params: MultigridParams) -> (SolveInfo, usize) {
+fn solve(shape: GridShape, boundary: Boundary, params: MultigridParams) -> (MultigridInfo, usize) {
     let mut mg = Multigrid::new(shape, boundary, params).expect("valid");
     let rhs = random_rhs(shape.cells(), 42);
     let mut phi = vec![0.0; shape.cells()];

@@ -1,10 +1,10 @@
 //! Bad input gives the right error variant, never a panic.
 
 use xper_poisson::{
-    Boundary, GridShape, Multigrid, MultigridParams, SetupError, SideCondition, SolveError,
+    Boundary, GridShape, Multigrid, MultigridError, MultigridParams, PoissonSide, SetupError,
 };
 
-use SideCondition::{Dirichlet as D, Neumann as N, Periodic as P};
+use PoissonSide::{Dirichlet as D, Neumann as N, Periodic as P};
 
 fn shape(nx: usize, ny: usize) -> GridShape {
     GridShape {
@@ -117,14 +117,14 @@ fn size_mismatch() {
     let mut short = vec![0.0; 23];
     assert_eq!(
         mg.solve(&[1.0; 25], &mut phi),
-        Err(SolveError::SizeMismatch {
+        Err(MultigridError::SizeMismatch {
             expected: 24,
             got: 25
         })
     );
     assert_eq!(
         mg.solve(&[1.0; 24], &mut short),
-        Err(SolveError::SizeMismatch {
+        Err(MultigridError::SizeMismatch {
             expected: 24,
             got: 23
         })
@@ -141,14 +141,14 @@ fn non_finite_input_and_non_convergence() {
     let mut phi = vec![0.0; 256];
     assert_eq!(
         mg.solve(&rhs, &mut phi),
-        Err(SolveError::NonFinite { cycle: 0 })
+        Err(MultigridError::NonFinite { cycle: 0 })
     );
     assert!(phi.iter().all(|&p| p == 0.0), "phi untouched");
     let mut bad_guess = vec![0.0; 256];
     bad_guess[3] = f64::INFINITY;
     assert_eq!(
         mg.solve(&[1.0; 256], &mut bad_guess),
-        Err(SolveError::NonFinite { cycle: 0 })
+        Err(MultigridError::NonFinite { cycle: 0 })
     );
     // One cycle cannot reach 1e-14: NotConverged carries the state and phi the iterate.
     let params = MultigridParams {
@@ -160,14 +160,14 @@ fn non_finite_input_and_non_convergence() {
     let rhs: Vec<f64> = (0..4096).map(|k| ((k * 37) % 11) as f64 - 5.0).collect();
     let mut phi = vec![0.0; 4096];
     match mg.solve(&rhs, &mut phi) {
-        Err(SolveError::NotConverged { info }) => {
+        Err(MultigridError::NotConverged { info }) => {
             assert_eq!(info.cycles, 1);
             assert!(
                 info.relative_residual > 1e-14 && info.relative_residual < 0.2,
                 "{info:?}"
             );
             assert!(phi.iter().any(|&p| p != 0.0));
-            assert!(SolveError::NotConverged { info }
+            assert!(MultigridError::NotConverged { info }
                 .to_string()
                 .contains("did not converge"));
         }

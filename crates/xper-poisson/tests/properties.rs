@@ -3,10 +3,10 @@
 //! tolerance.
 
 use proptest::prelude::*;
-use xper_poisson::{Boundary, CycleType, GridShape, Multigrid, MultigridParams, SideCondition};
+use xper_poisson::{Boundary, CycleType, GridShape, Multigrid, MultigridParams, PoissonSide};
 
-fn axis() -> impl Strategy<Value = [SideCondition; 2]> {
-    use SideCondition::{Dirichlet as D, Neumann as N, Periodic as P};
+fn axis() -> impl Strategy<Value = [PoissonSide; 2]> {
+    use PoissonSide::{Dirichlet as D, Neumann as N, Periodic as P};
     prop_oneof![
         Just([P, P]),
         Just([N, N]),

@@ -3,7 +3,7 @@
 use crate::read::{choose, ensure, int_in, Ctx, Got, Tbl};
 use crate::shared::{Groups, Materials};
 use crate::tree::Kind;
-use crate::types::{Acceleration, ConvergenceNorm, LawDesc, SolverKind, SolverSettings};
+use crate::types::{Acceleration, ConvergenceNorm, LawDesc, SolverSettings, VelocitySolverKind};
 
 /// The `[scene]` table; `None` fields were invalid (errors reported).
 pub(crate) struct Header {
@@ -156,9 +156,9 @@ pub(crate) fn solver(ctx: &mut Ctx, root: &Tbl) -> SolverSettings {
     let kind = t.string(ctx, "kind");
     if !kind.is_absent() {
         let kinds = [
-            ("nlgs", SolverKind::Nlgs),
-            ("newton", SolverKind::Newton),
-            ("proximal_newton", SolverKind::ProximalNewton),
+            ("nlgs", VelocitySolverKind::Nlgs),
+            ("newton", VelocitySolverKind::Newton),
+            ("proximal_newton", VelocitySolverKind::ProximalNewton),
         ];
         if let Some(k) = choose(ctx, kind.ok(), &t.field("kind"), "solver kind", &kinds) {
             s.kind = k;
@@ -193,7 +193,7 @@ pub(crate) fn solver(ctx: &mut Ctx, root: &Tbl) -> SolverSettings {
         ("maxm", ConvergenceNorm::Maxm),
         ("natural_map", ConvergenceNorm::NaturalMap),
     ];
-    if s.kind == SolverKind::Nlgs {
+    if s.kind == VelocitySolverKind::Nlgs {
         let norm = t.string(ctx, "norm").ok();
         if let Some(n) = choose(ctx, norm, &t.field("norm"), "norm", &norms) {
             s.norm = n;
@@ -215,9 +215,9 @@ pub(crate) fn solver(ctx: &mut Ctx, root: &Tbl) -> SolverSettings {
 }
 
 /// `acceleration` with its `anderson_*` parameters (NLGS only).
-fn acceleration(ctx: &mut Ctx, t: &Tbl, kind: SolverKind) -> Acceleration {
+fn acceleration(ctx: &mut Ctx, t: &Tbl, kind: VelocitySolverKind) -> Acceleration {
     const KEYS: [&str; 3] = ["acceleration", "anderson_depth", "anderson_period"];
-    if kind != SolverKind::Nlgs {
+    if kind != VelocitySolverKind::Nlgs {
         for key in KEYS {
             t.forbid(ctx, key, "applies to kind = \"nlgs\" only");
         }

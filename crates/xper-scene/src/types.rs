@@ -33,7 +33,7 @@ pub struct Scene {
 
 /// Which contact solver to use for the velocity problem of each step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-pub enum SolverKind {
+pub enum VelocitySolverKind {
     /// Non-linear Gauss-Seidel on the factorised Delassus operator (`"nlgs"`).
     Nlgs,
     /// Generalized Newton method on the assembled problem (`"newton"`).
@@ -61,7 +61,7 @@ pub use xper_solver::Acceleration;
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SolverSettings {
     /// Solver algorithm.
-    pub kind: SolverKind,
+    pub kind: VelocitySolverKind,
     /// Convergence tolerance, > 0: of `norm` for NLGS; of the natural-map error divided by
     /// `max(|q|, |r|, |u|)` (Siconos' scaling) for the Newton kinds.
     pub tolerance: f64,
@@ -84,11 +84,11 @@ pub struct SolverSettings {
 impl SolverSettings {
     /// The default iteration limit of a solver kind: 1000 NLGS sweeps, 200 Newton iterations,
     /// 100 proximal steps.
-    pub fn default_max_iterations(kind: SolverKind) -> u32 {
+    pub fn default_max_iterations(kind: VelocitySolverKind) -> u32 {
         match kind {
-            SolverKind::Nlgs => 1000,
-            SolverKind::Newton => 200,
-            SolverKind::ProximalNewton => 100,
+            VelocitySolverKind::Nlgs => 1000,
+            VelocitySolverKind::Newton => 200,
+            VelocitySolverKind::ProximalNewton => 100,
         }
     }
 }
@@ -98,7 +98,7 @@ impl Default for SolverSettings {
     /// relaxation 1, quad norm, position projection on.
     fn default() -> Self {
         Self {
-            kind: SolverKind::Nlgs,
+            kind: VelocitySolverKind::Nlgs,
             tolerance: 1.666e-4,
             max_iterations: 1000,
             check_every: 10,

@@ -4,8 +4,8 @@ use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
 use xper_scene::{
-    load_scene, Acceleration, ConvergenceNorm, Drive, ShapeDesc, SolverKind, SplitMix64,
-    TimeFunction,
+    load_scene, Acceleration, ConvergenceNorm, Drive, ShapeDesc, SplitMix64, TimeFunction,
+    VelocitySolverKind,
 };
 
 fn scene_path(name: &str) -> PathBuf {
@@ -147,7 +147,7 @@ fn box100k_scene() {
 fn newton_deposit_scene() {
     let s = load_scene(&scene_path("newton_deposit")).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(s.bodies.len(), 200 + 4);
-    assert_eq!(s.solver.kind, SolverKind::Newton);
+    assert_eq!(s.solver.kind, VelocitySolverKind::Newton);
     assert_eq!((s.solver.tolerance, s.solver.max_iterations), (1e-8, 50));
     assert_eq!(s.output.dump_problems, vec![400]);
     assert!(s.laws.iter().all(|l| l.friction == 0.0));

@@ -2,7 +2,7 @@
 
 mod common;
 use common::*;
-use xper_scene::{Acceleration, ConvergenceNorm, SolverKind, SolverSettings};
+use xper_scene::{Acceleration, ConvergenceNorm, SolverSettings, VelocitySolverKind};
 
 const DISK: &str = r#"[[bodies]]
 shape = "disk"
@@ -20,11 +20,16 @@ fn scene(rest: &str) -> String {
 fn solver_kinds_and_their_defaults() {
     let s = ok(&scene("")).solver;
     assert_eq!(s, SolverSettings::default());
-    assert_eq!((s.kind, s.max_iterations), (SolverKind::Nlgs, 1000));
+    assert_eq!((s.kind, s.max_iterations), (VelocitySolverKind::Nlgs, 1000));
     let s = ok(&scene("[solver]\nkind = \"newton\"\ntolerance = 1e-9\n")).solver;
     assert_eq!(
         (s.kind, s.tolerance, s.max_iterations, s.norm),
-        (SolverKind::Newton, 1e-9, 200, ConvergenceNorm::NaturalMap)
+        (
+            VelocitySolverKind::Newton,
+            1e-9,
+            200,
+            ConvergenceNorm::NaturalMap
+        )
     );
     let s = ok(&scene(
         "[solver]\nmax_iterations = 7\nkind = \"proximal_newton\"\ncheck_every = 2\n",
@@ -32,10 +37,13 @@ fn solver_kinds_and_their_defaults() {
     .solver;
     assert_eq!(
         (s.kind, s.max_iterations, s.check_every),
-        (SolverKind::ProximalNewton, 7, 2)
+        (VelocitySolverKind::ProximalNewton, 7, 2)
     );
     let s = ok(&scene("[solver]\nkind = \"nlgs\"\nnorm = \"maxm\"\n")).solver;
-    assert_eq!((s.kind, s.norm), (SolverKind::Nlgs, ConvergenceNorm::Maxm));
+    assert_eq!(
+        (s.kind, s.norm),
+        (VelocitySolverKind::Nlgs, ConvergenceNorm::Maxm)
+    );
 }
 
 #[test]

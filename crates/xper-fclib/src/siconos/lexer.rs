@@ -2,7 +2,7 @@
 //! that turn every surprise (end of file, bad number, out-of-range size) into a
 //! [`ReadError`] at the token concerned.
 
-use crate::error::{ErrorKind, Position, ReadError};
+use crate::error::{Position, ReadError, ReadErrorKind};
 use std::path::Path;
 
 /// One token: its text, 1-based index among all tokens, 1-based line.
@@ -91,7 +91,12 @@ impl<'a> Lexer<'a> {
     }
 
     /// An error at token `tok`.
-    pub fn error_at(&self, tok: &Tok<'_>, kind: ErrorKind, reason: impl Into<String>) -> ReadError {
+    pub fn error_at(
+        &self,
+        tok: &Tok<'_>,
+        kind: ReadErrorKind,
+        reason: impl Into<String>,
+    ) -> ReadError {
         ReadError::new(
             self.path,
             Position::Token {
@@ -104,7 +109,7 @@ impl<'a> Lexer<'a> {
     }
 
     /// An error at the next token (or just past the end of the text).
-    pub fn error_here(&self, kind: ErrorKind, reason: impl Into<String>) -> ReadError {
+    pub fn error_here(&self, kind: ReadErrorKind, reason: impl Into<String>) -> ReadError {
         let mut ahead = self.clone();
         let tok = ahead.next_tok().unwrap_or(Tok {
             text: "",
@@ -119,7 +124,7 @@ impl<'a> Lexer<'a> {
         match self.next_tok() {
             Some(t) => Ok(t),
             None => Err(self.error_here(
-                ErrorKind::Format,
+                ReadErrorKind::Format,
                 format!("the file ends early: expected {what}"),
             )),
         }
@@ -131,7 +136,7 @@ impl<'a> Lexer<'a> {
         if t.text != word {
             return Err(self.error_at(
                 &t,
-                ErrorKind::Format,
+                ReadErrorKind::Format,
                 format!("expected \"{word}\" ({context}), found \"{}\"", t.text),
             ));
         }
@@ -145,7 +150,7 @@ impl<'a> Lexer<'a> {
             Ok(v) => Ok((v, t)),
             Err(_) => Err(self.error_at(
                 &t,
-                ErrorKind::Format,
+                ReadErrorKind::Format,
                 format!("expected an integer ({what}), found \"{}\"", t.text),
             )),
         }
@@ -160,7 +165,7 @@ impl<'a> Lexer<'a> {
             .ok_or_else(|| {
                 self.error_at(
                     &t,
-                    ErrorKind::Format,
+                    ReadErrorKind::Format,
                     format!("{what} = {v} is outside 0..={max}"),
                 )
             })
@@ -175,7 +180,7 @@ impl<'a> Lexer<'a> {
             .ok_or_else(|| {
                 self.error_at(
                     &t,
-                    ErrorKind::Format,
+                    ReadErrorKind::Format,
                     format!("{what} = {v} is outside 0..{bound}"),
                 )
             })
@@ -195,12 +200,12 @@ impl<'a> Lexer<'a> {
             Ok(v) if v.is_finite() => Ok(v),
             Ok(v) => Err(self.error_at(
                 &t,
-                ErrorKind::Invalid,
+                ReadErrorKind::Invalid,
                 format!("{what} = {v} is not finite"),
             )),
             Err(_) => Err(self.error_at(
                 &t,
-                ErrorKind::Format,
+                ReadErrorKind::Format,
                 format!("expected a real number ({what}), found \"{}\"", t.text),
             )),
         }
@@ -210,7 +215,7 @@ impl<'a> Lexer<'a> {
     pub fn reals(&mut self, n: usize, what: &str) -> Result<Vec<f64>, ReadError> {
         if n > self.remaining() {
             return Err(self.error_here(
-                ErrorKind::Format,
+                ReadErrorKind::Format,
                 format!(
                     "{what} needs {n} values but only {} tokens are left in the file",
                     self.remaining()

@@ -2,7 +2,7 @@
 //! sizes, then the storage-specific payload. See the module docs of [`crate::siconos`].
 
 use super::lexer::Lexer;
-use crate::error::{ErrorKind, ReadError};
+use crate::error::{ReadError, ReadErrorKind};
 use crate::sparse;
 use xper_solver::CsrMatrix;
 
@@ -12,7 +12,7 @@ pub(crate) fn read_matrix(lx: &mut Lexer<'_>, name: &str) -> Result<CsrMatrix, R
     if !(0..=2).contains(&code) {
         return Err(lx.error_at(
             &code_tok,
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             format!("storage code of {name} is {code}; 0 (dense), 1 (sparse-block) or 2 (sparse) expected"),
         ));
     }
@@ -37,7 +37,7 @@ fn read_dense(
         if v != expected as i64 {
             return Err(lx.error_at(
                 &t,
-                ErrorKind::Format,
+                ReadErrorKind::Format,
                 format!("dense {what} count of {name} is {v} but the header said {expected}"),
             ));
         }
@@ -45,7 +45,7 @@ fn read_dense(
     let count = nrows.checked_mul(ncols).filter(|&c| c <= lx.remaining());
     let Some(count) = count else {
         return Err(lx.error_here(
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             format!(
                 "dense {name} of {nrows} x {ncols} needs more values than the {} tokens left",
                 lx.remaining()
@@ -70,7 +70,7 @@ fn block_sizes(
         if v <= prev as i64 || v > total as i64 {
             return Err(lx.error_at(
                 &t,
-                ErrorKind::Format,
+                ReadErrorKind::Format,
                 format!("{what}[{k}] = {v}: cumulative block sizes must increase from {prev} up to {total}"),
             ));
         }
@@ -78,7 +78,7 @@ fn block_sizes(
     }
     if ends.last().copied().unwrap_or(0) != total {
         return Err(lx.error_here(
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             format!(
                 "{what} ends at {} but the matrix has {total}",
                 ends.last().copied().unwrap_or(0)
@@ -110,7 +110,7 @@ fn read_sparse_block(
     let filled2 = lx.dimension(&format!("stored block count of {name}"))?;
     if filled1 == 0 || filled2 != nblocks {
         return Err(lx.error_here(
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             format!("{name}: {filled1} block-row pointers and {filled2} block columns for {nblocks} blocks"),
         ));
     }
@@ -122,7 +122,7 @@ fn read_sparse_block(
         if !first_ok || v < prev as i64 || v > nblocks as i64 {
             return Err(lx.error_at(
                 &t,
-                ErrorKind::Format,
+                ReadErrorKind::Format,
                 format!("block-row pointer {k} of {name} is {v}: pointers must start at 0 and increase up to {nblocks}"),
             ));
         }
@@ -130,7 +130,7 @@ fn read_sparse_block(
     }
     if row_ptr[filled1 - 1] != nblocks {
         return Err(lx.error_here(
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             format!(
                 "block-row pointers of {name} end at {} for {nblocks} blocks",
                 row_ptr[filled1 - 1]
@@ -157,7 +157,7 @@ fn read_sparse_block(
             if num != b as i64 {
                 return Err(lx.error_at(
                     &t,
-                    ErrorKind::Format,
+                    ReadErrorKind::Format,
                     format!("block {b} of {name} is numbered {num}"),
                 ));
             }
@@ -168,7 +168,7 @@ fn read_sparse_block(
         }
     }
     CsrMatrix::from_triplets(nrows, ncols, &entries)
-        .map_err(|e| lx.error_here(ErrorKind::Format, format!("{name}: {}", e.0)))
+        .map_err(|e| lx.error_here(ReadErrorKind::Format, format!("{name}: {}", e.0)))
 }
 
 /// Parses CSparse's `{m}-by-{n},` size token.
@@ -193,9 +193,9 @@ fn read_csparse(
         return Err(lx.error_at(
             &origin_tok,
             if origin == 3 {
-                ErrorKind::Unsupported
+                ReadErrorKind::Unsupported
             } else {
-                ErrorKind::Format
+                ReadErrorKind::Format
             },
             format!("sparse origin of {name} is {origin}; 1 (triplet) or 2 (CSC) expected"),
         ));
@@ -204,7 +204,7 @@ fn read_csparse(
     if t.text != "CSparse" {
         return Err(lx.error_at(
             &t,
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             format!(
                 "expected the \"CSparse Version ...\" line of {name}, found \"{}\"",
                 t.text
@@ -217,7 +217,7 @@ fn read_csparse(
     if triplet != (origin == 1) {
         return Err(lx.error_at(
             &first,
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             format!(
                 "sparse origin {origin} of {name} does not match its layout (\"{}\")",
                 first.text
@@ -232,7 +232,7 @@ fn read_csparse(
     let (m, n) = parse_by(by.text).ok_or_else(|| {
         lx.error_at(
             &by,
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             format!(
                 "expected \"{{m}}-by-{{n}},\" for {name}, found \"{}\"",
                 by.text
@@ -242,7 +242,7 @@ fn read_csparse(
     if (m, n) != (nrows, ncols) {
         return Err(lx.error_at(
             &by,
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             format!("{name} is {m} x {n} here but {nrows} x {ncols} in its header"),
         ));
     }
@@ -268,7 +268,7 @@ fn read_csparse(
     let nnz = nnz.filter(|&v| v <= lx.total()).ok_or_else(|| {
         lx.error_at(
             &t,
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             format!("expected \"{{nnz}},\" for {name}, found \"{}\"", t.text),
         )
     })?;
@@ -281,7 +281,7 @@ fn read_csparse(
         if cj != j as i64 {
             return Err(lx.error_at(
                 &t,
-                ErrorKind::Format,
+                ReadErrorKind::Format,
                 format!("column {cj} of {name} where {j} was expected"),
             ));
         }
@@ -291,7 +291,7 @@ fn read_csparse(
         if start != entries.len() as i64 {
             return Err(lx.error_at(
                 &t,
-                ErrorKind::Format,
+                ReadErrorKind::Format,
                 format!(
                     "column {j} of {name} starts at {start}, not {}",
                     entries.len()
@@ -303,7 +303,7 @@ fn read_csparse(
         if end < start - 1 || end >= nnz as i64 {
             return Err(lx.error_at(
                 &t,
-                ErrorKind::Format,
+                ReadErrorKind::Format,
                 format!(
                     "column {j} of {name} ends at {end}: outside {}..{nnz}",
                     start - 1
@@ -318,7 +318,7 @@ fn read_csparse(
     }
     if entries.len() != nnz {
         return Err(lx.error_here(
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             format!("{name} has {} entries but announced {nnz}", entries.len()),
         ));
     }

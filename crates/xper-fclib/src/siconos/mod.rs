@@ -57,7 +57,7 @@
 mod lexer;
 mod matrix;
 
-use crate::error::{ErrorKind, Position, ReadError};
+use crate::error::{Position, ReadError, ReadErrorKind};
 use crate::global::GlobalFrictionProblem;
 use crate::Problem;
 use lexer::Lexer;
@@ -89,7 +89,7 @@ pub fn read_siconos_as(path: impl AsRef<Path>, kind: SiconosKind) -> Result<Prob
     let text = std::str::from_utf8(&bytes).map_err(|e| {
         ReadError::file(
             path,
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             format!("not a text file: invalid UTF-8 at byte {}", e.valid_up_to()),
         )
     })?;
@@ -103,7 +103,7 @@ pub fn parse_siconos(text: &str, path: &Path, kind: SiconosKind) -> Result<Probl
     if d != 2 && d != 3 {
         return Err(lx.error_at(
             &t,
-            ErrorKind::Invalid,
+            ReadErrorKind::Invalid,
             format!("dimension d = {d} is not 2 or 3"),
         ));
     }
@@ -181,13 +181,13 @@ pub fn parse_siconos(text: &str, path: &Path, kind: SiconosKind) -> Result<Probl
 /// A size error, at the row count of the matrix header `header` when known.
 fn size_error(lx: &Lexer<'_>, header: Option<lexer::Tok<'_>>, reason: String) -> ReadError {
     match header {
-        Some(t) => lx.error_at(&t, ErrorKind::Invalid, reason),
-        None => lx.error_here(ErrorKind::Invalid, reason),
+        Some(t) => lx.error_at(&t, ReadErrorKind::Invalid, reason),
+        None => lx.error_here(ReadErrorKind::Invalid, reason),
     }
 }
 
 fn invalid(path: &Path, reason: String) -> ReadError {
-    ReadError::new(path, Position::File, ErrorKind::Invalid, reason)
+    ReadError::new(path, Position::File, ReadErrorKind::Invalid, reason)
 }
 
 /// Whether the next tokens are `code n k` with `code` a storage code: the header of `H`.
@@ -201,7 +201,7 @@ fn looks_like_matrix_header(lx: &Lexer<'_>, n: usize, k: usize) -> bool {
 fn read_mu(lx: &mut Lexer<'_>, nc: usize) -> Result<Vec<f64>, ReadError> {
     if nc > lx.remaining() {
         return Err(lx.error_here(
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             format!(
                 "mu needs {nc} values but only {} tokens are left in the file",
                 lx.remaining()
@@ -215,7 +215,7 @@ fn read_mu(lx: &mut Lexer<'_>, nc: usize) -> Result<Vec<f64>, ReadError> {
         if !(v.is_finite() && v >= 0.0) {
             return Err(lx.error_at(
                 &here[0],
-                ErrorKind::Invalid,
+                ReadErrorKind::Invalid,
                 format!("mu[{a}] = {v} is not a finite non-negative number"),
             ));
         }
@@ -237,7 +237,7 @@ fn check_end(lx: &Lexer<'_>) -> Result<(), ReadError> {
     } else {
         Err(lx.error_at(
             &rest[0],
-            ErrorKind::Format,
+            ReadErrorKind::Format,
             format!("unexpected data after the problem: \"{}\"", rest[0].text),
         ))
     }

@@ -25,7 +25,7 @@ use spade::{
     AngleLimit, ConstrainedDelaunayTriangulation, Point2, RefinementParameters, Triangulation,
 };
 
-use crate::error::{ErrorKind, MeshError};
+use crate::error::{MeshError, MeshErrorKind};
 use crate::select::distance_to_segment;
 
 /// Smallest interior angle (degrees) the refinement asks for (spade's default). Ruppert's
@@ -122,7 +122,7 @@ pub(crate) fn positive(origin: &str, field: &str, value: f64) -> Result<(), Mesh
         Ok(())
     } else {
         Err(MeshError::new(
-            ErrorKind::Spec,
+            MeshErrorKind::Spec,
             origin,
             format!("must be finite and positive, got {value}"),
         )
@@ -135,7 +135,7 @@ pub(crate) fn check_count(origin: &str, area: f64, h: f64) -> Result<(), MeshErr
     let estimate = area / (MAX_AREA_FACTOR * h * h) * 2.0;
     if estimate > MAX_TRIANGLES {
         return Err(MeshError::new(
-            ErrorKind::Spec,
+            MeshErrorKind::Spec,
             origin,
             format!(
                 "element size {h} m would give about {estimate:.2e} triangles \
@@ -165,7 +165,7 @@ pub(crate) fn triangulate(
     inside: impl Fn([f64; 2]) -> bool,
     lines: &[Line],
 ) -> Result<RawMesh, MeshError> {
-    let fail = |reason: String| MeshError::new(ErrorKind::Spec, origin, reason);
+    let fail = |reason: String| MeshError::new(MeshErrorKind::Spec, origin, reason);
     let points: Vec<Point2<f64>> = pslg
         .points
         .iter()

@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 
 use super::symmetric::point_symmetric;
 use super::{check_count, finish_mesh, positive, triangulate, Line, Pslg};
-use crate::error::{ErrorKind, MeshError};
+use crate::error::{MeshError, MeshErrorKind};
 use crate::mesh::{Mesh, Region};
 
 const ORIGIN: &str = "double_edge_notched";
@@ -36,7 +36,7 @@ pub struct NotchedSpec {
 /// `left_lower` and `left_upper` (the left edge below and above the notch), `right_lower`,
 /// `right_upper`, `notch_left` and `notch_right` (the three faces of each notch).
 ///
-/// Errors (kind [`ErrorKind::Spec`]): a non-positive or non-finite size, notches that would
+/// Errors (kind [`MeshErrorKind::Spec`]): a non-positive or non-finite size, notches that would
 /// meet or cut the square apart, an element size giving more than
 /// [`MAX_TRIANGLES`](super::MAX_TRIANGLES).
 pub fn double_edge_notched(spec: &NotchedSpec) -> Result<Mesh, MeshError> {
@@ -52,7 +52,7 @@ pub fn double_edge_notched(spec: &NotchedSpec) -> Result<Mesh, MeshError> {
     positive(ORIGIN, "element_size", h)?;
     if 2.0 * d >= s {
         return Err(MeshError::new(
-            ErrorKind::Spec,
+            MeshErrorKind::Spec,
             ORIGIN,
             format!("two notches {d} m deep would meet in a square of side {s} m"),
         )
@@ -60,7 +60,7 @@ pub fn double_edge_notched(spec: &NotchedSpec) -> Result<Mesh, MeshError> {
     }
     if nw >= s {
         return Err(MeshError::new(
-            ErrorKind::Spec,
+            MeshErrorKind::Spec,
             ORIGIN,
             format!("a notch {nw} m wide would cut the square of side {s} m"),
         )

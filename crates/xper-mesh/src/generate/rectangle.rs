@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::{check_count, finish_mesh, positive, triangulate, Line, Pslg};
-use crate::error::{ErrorKind, MeshError};
+use crate::error::{MeshError, MeshErrorKind};
 use crate::mesh::{Mesh, Region};
 
 const ORIGIN: &str = "rectangle_with_inclusions";
@@ -28,7 +28,7 @@ pub struct RectangleSpec {
 }
 
 fn spec_error(place: impl Into<String>, reason: impl Into<String>) -> MeshError {
-    MeshError::new(ErrorKind::Spec, ORIGIN, reason).at(place)
+    MeshError::new(MeshErrorKind::Spec, ORIGIN, reason).at(place)
 }
 
 /// Whether the segment `a`-`b` meets the closed box `[xmin, ymin, xmax, ymax]`, by
@@ -125,7 +125,7 @@ fn check(spec: &RectangleSpec) -> Result<(), MeshError> {
 /// outlines of the inclusions) and `precrack` (the mesh edges on the pre-crack segment, whose
 /// interfaces start broken); the last two are empty when there is nothing to put in them.
 ///
-/// Errors (kind [`ErrorKind::Spec`]): a non-positive or non-finite size, an inclusion not
+/// Errors (kind [`MeshErrorKind::Spec`]): a non-positive or non-finite size, an inclusion not
 /// strictly inside or overlapping another, a pre-crack outside, along a side or meeting an
 /// inclusion, an element size giving more than [`MAX_TRIANGLES`](super::MAX_TRIANGLES).
 pub fn rectangle_with_inclusions(spec: &RectangleSpec) -> Result<Mesh, MeshError> {

@@ -19,7 +19,7 @@ use std::collections::HashSet;
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
 use super::{snap, Line, RawMesh};
-use crate::error::{ErrorKind, MeshError};
+use crate::error::{MeshError, MeshErrorKind};
 use crate::select::distance_to_segment;
 
 /// Distance (in element sizes) between the seam and the nearest kept node on either side.
@@ -38,7 +38,7 @@ pub(crate) fn point_symmetric(
     lines: &[Line],
     inside: impl Fn([f64; 2]) -> bool,
 ) -> Result<RawMesh, MeshError> {
-    let fail = |reason: String| MeshError::new(ErrorKind::Spec, origin, reason);
+    let fail = |reason: String| MeshError::new(MeshErrorKind::Spec, origin, reason);
     // Work in coordinates centred on `centre`, where the half-turn is an exact negation.
     let centred = |p: [f64; 2]| [p[0] - centre[0], p[1] - centre[1]];
     let kept: Vec<[f64; 2]> = (raw.nodes.iter())

@@ -7,7 +7,7 @@
 
 use std::collections::HashMap;
 
-use crate::error::{ErrorKind, MeshError};
+use crate::error::{MeshError, MeshErrorKind};
 
 /// What the `$MeshFormat` header says.
 pub(crate) struct Header {
@@ -16,7 +16,7 @@ pub(crate) struct Header {
 }
 
 fn format_error(origin: &str, place: impl Into<String>, reason: impl Into<String>) -> MeshError {
-    MeshError::new(ErrorKind::Format, origin, reason).at(place)
+    MeshError::new(MeshErrorKind::Format, origin, reason).at(place)
 }
 
 /// The 1-based line of byte `offset` in `bytes`.
@@ -55,7 +55,7 @@ fn trim(line: &[u8]) -> &[u8] {
 pub(crate) fn check_header(bytes: &[u8], origin: &str) -> Result<Header, MeshError> {
     if bytes.iter().all(u8::is_ascii_whitespace) {
         return Err(MeshError::new(
-            ErrorKind::Format,
+            MeshErrorKind::Format,
             origin,
             "empty file (a Gmsh MSH file starts with $MeshFormat)",
         ));
@@ -87,7 +87,7 @@ pub(crate) fn check_header(bytes: &[u8], origin: &str) -> Result<Header, MeshErr
             ""
         };
         return Err(MeshError::new(
-            ErrorKind::Unsupported,
+            MeshErrorKind::Unsupported,
             origin,
             format!(
                 "MSH format version {} is not supported, only 4.1{hint}",

@@ -11,7 +11,7 @@ use std::path::Path;
 
 use mshio::{ElementType, MshFile, MshParserError};
 
-use crate::error::{ErrorKind, MeshError};
+use crate::error::{MeshError, MeshErrorKind};
 use crate::mesh::{is_degenerate, Mesh, Region};
 
 /// A `|z|` larger than this factor times the diameter of the triangles' nodes is not planar.
@@ -38,7 +38,7 @@ const PLANARITY: f64 = 1e-9;
 pub fn read_msh(path: &Path) -> Result<Mesh, MeshError> {
     let origin = path.display().to_string();
     let bytes = std::fs::read(path)
-        .map_err(|e| MeshError::new(ErrorKind::Io, &origin, format!("cannot read: {e}")))?;
+        .map_err(|e| MeshError::new(MeshErrorKind::Io, &origin, format!("cannot read: {e}")))?;
     parse_msh(&bytes, &origin)
 }
 
@@ -54,7 +54,7 @@ pub fn parse_msh(bytes: &[u8], origin: &str) -> Result<Mesh, MeshError> {
         Ok(result) => result?,
         Err(_) => {
             return Err(MeshError::new(
-                ErrorKind::Format,
+                MeshErrorKind::Format,
                 origin,
                 "the MSH parser (mshio) stopped on malformed content",
             ))
@@ -69,7 +69,7 @@ fn translate(err: &MshParserError<&[u8]>, bytes: &[u8], origin: &str, binary: bo
     let trace = err.filtered_backtrace();
     let Some((rest, _)) = trace.first() else {
         return MeshError::new(
-            ErrorKind::Format,
+            MeshErrorKind::Format,
             origin,
             "malformed or truncated content (the MSH parser gave no detail)",
         );
@@ -89,7 +89,8 @@ fn translate(err: &MshParserError<&[u8]>, bytes: &[u8], origin: &str, binary: bo
     if !last_line.is_some_and(|l| l.trim_ascii().starts_with(b"$End")) {
         reason = format!("{reason}; the file does not end with an $End line (truncated?)");
     }
-    MeshError::new(ErrorKind::Format, origin, reason).at(header::place_of(bytes, offset, binary))
+    MeshError::new(MeshErrorKind::Format, origin, reason)
+        .at(header::place_of(bytes, offset, binary))
 }
 
 /// Physical groups of one dimension: physical tag -> members.
@@ -133,7 +134,7 @@ fn convert(
             for (tag, n) in tags.into_iter().zip(&block.nodes) {
                 if coords.insert(tag, [n.x, n.y, n.z]).is_some() {
                     return Err(err(
-                        ErrorKind::Format,
+                        MeshErrorKind::Format,
                         format!("$Nodes, node {tag}"),
                         "node tag defined twice".into(),
                     ));
@@ -169,7 +170,7 @@ fn convert(
             2 => {
                 if block.element_type != ElementType::Tri3 {
                     return Err(err(
-                        ErrorKind::Unsupported,
+                        MeshErrorKind::Unsupported,
                         place,
                         format!(
                             "only 3-node triangles are supported, found {:?} elements",
@@ -182,7 +183,7 @@ fn convert(
                     (true, [g]) => *g,
                     (true, []) => {
                         return Err(err(
-                            ErrorKind::Unsupported,
+                            MeshErrorKind::Unsupported,
                             place,
                             "these triangles belong to no 2D physical group while other surfaces do: \
                              add the surface to a physical group"
@@ -191,7 +192,7 @@ fn convert(
                     }
                     (true, many) => {
                         return Err(err(
-                            ErrorKind::Unsupported,
+                            MeshErrorKind::Unsupported,
                             place,
                             format!("the surface belongs to several 2D physical groups {many:?}: a triangle needs one region"),
                         ))
@@ -205,7 +206,7 @@ fn convert(
             1 if !groups.is_empty() => {
                 if block.element_type != ElementType::Lin2 {
                     return Err(err(
-                        ErrorKind::Unsupported,
+                        MeshErrorKind::Unsupported,
                         place,
                         format!("only 2-node lines are supported in 1D physical groups, found {:?} elements", block.element_type),
                     ));
@@ -227,7 +228,7 @@ fn convert(
                 }
             }
             3 => return Err(err(
-                ErrorKind::Unsupported,
+                MeshErrorKind::Unsupported,
                 place,
                 "3D elements are not supported: the mesh must be 2D (triangles in the plane z = 0)"
                     .into(),
@@ -237,7 +238,7 @@ fn convert(
     }
     if triangles.is_empty() {
         return Err(MeshError::new(
-            ErrorKind::Format,
+            MeshErrorKind::Format,
             origin,
             "no triangles (element type 2) in the file",
         ));
@@ -256,7 +257,7 @@ fn convert(
                 .find(|t| t.0.contains(&tag))
                 .map_or(0, |t| t.1);
             return Err(err(
-                ErrorKind::Format,
+                MeshErrorKind::Format,
                 format!("$Elements, element {t}"),
                 format!("node {tag} is not in the $Nodes section"),
             ));
@@ -290,7 +291,7 @@ fn convert(
     for (i, r) in regions.iter().enumerate() {
         if regions[..i].iter().any(|q| q.name == r.name) {
             return Err(err(
-                ErrorKind::Unsupported,
+                MeshErrorKind::Unsupported,
                 "$PhysicalNames".into(),
                 format!("two 2D physical groups are both named `{}`", r.name),
             ));
@@ -304,7 +305,7 @@ fn convert(
         let [a, b, c] = t.map(|n| xy[n as usize]);
         if is_degenerate(a, b, c) {
             return Err(err(
-                ErrorKind::Invalid,
+                MeshErrorKind::Invalid,
                 format!("$Elements, element {element}"),
                 format!("degenerate triangle (zero area), nodes {tags:?}"),
             ));
@@ -324,7 +325,7 @@ fn convert(
     let node_of = |tag: u64, element: u64, what: &str| {
         index.get(&tag).copied().ok_or_else(|| {
             err(
-                ErrorKind::Invalid,
+                MeshErrorKind::Invalid,
                 format!("$Elements, element {element}"),
                 format!("{what} uses node {tag}, which is not a node of any triangle"),
             )
@@ -372,7 +373,7 @@ fn convert(
 fn check_coordinates(nodes: &[[f64; 3]], tags: &[u64], origin: &str) -> Result<(), MeshError> {
     if let Some(i) = nodes.iter().position(|p| p.iter().any(|v| !v.is_finite())) {
         return Err(MeshError::new(
-            ErrorKind::Invalid,
+            MeshErrorKind::Invalid,
             origin,
             format!("non-finite coordinate {:?}", nodes[i]),
         )
@@ -388,7 +389,7 @@ fn check_coordinates(nodes: &[[f64; 3]], tags: &[u64], origin: &str) -> Result<(
     let diameter = ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2)).sqrt();
     match nodes.iter().position(|p| p[2].abs() > PLANARITY * diameter) {
         Some(i) => Err(MeshError::new(
-            ErrorKind::Unsupported,
+            MeshErrorKind::Unsupported,
             origin,
             format!(
                 "z = {} is not zero: only planar meshes in the plane z = 0 are supported",

@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::strips::OneStrip;
-use crate::SideCondition::{Dirichlet, Neumann, Periodic};
+use crate::PoissonSide::{Dirichlet, Neumann, Periodic};
 
 use crate::bench::random_values as random_rhs;
 use crate::strips::CountingLinks;

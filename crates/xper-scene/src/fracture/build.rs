@@ -145,7 +145,7 @@ impl FractureScene {
                 };
                 let place = (m.keys.iter().find(|(k, _)| *k == key)).map_or(&m.place, |(_, p)| p);
                 let msg = match (&m.source, e.kind) {
-                    (MeshSource::File(_), xper_mesh::ErrorKind::Io) => {
+                    (MeshSource::File(_), xper_mesh::MeshErrorKind::Io) => {
                         format!("mesh file: {e}")
                     }
                     (MeshSource::File(_), _) => format!("bad mesh file: {e}"),

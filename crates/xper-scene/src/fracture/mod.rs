@@ -18,7 +18,7 @@ use xper_solver::NlgsParams;
 use crate::read::{choose, ensure, Ctx, Got, Tbl};
 use crate::sections;
 use crate::tree::{Kind, Pos};
-use crate::types::{ConvergenceNorm, OutputSettings, SolverKind};
+use crate::types::{ConvergenceNorm, OutputSettings, VelocitySolverKind};
 use types::{
     EdgeSetRef, FractureScene, InterfaceDesc, InterfaceLawDesc, Place, RegionDesc, Stiffness,
 };
@@ -142,7 +142,7 @@ pub(crate) fn fracture_scene(ctx: &mut Ctx, root: &Tbl, file: &Path) -> Option<F
 fn nlgs(ctx: &mut Ctx, root: &Tbl) -> NlgsParams {
     let s = sections::solver(ctx, root);
     if let Some(t) = quiet_table(root, "solver") {
-        if s.kind != SolverKind::Nlgs {
+        if s.kind != VelocitySolverKind::Nlgs {
             if let Some(n) = t.get("kind") {
                 ctx.err(
                     n.pos,

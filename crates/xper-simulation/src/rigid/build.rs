@@ -22,9 +22,9 @@ fn drive(d: &xper_scene::Drive) -> Drive {
 /// tolerance on the natural-map error under Siconos' scaling `max(|q|, |r|, |u|)`.
 pub fn velocity_solver(settings: &xper_scene::SolverSettings) -> VelocitySolver {
     let kind = match settings.kind {
-        xper_scene::SolverKind::Nlgs => return VelocitySolver::Nlgs,
-        xper_scene::SolverKind::Newton => SolverKind::Newton,
-        xper_scene::SolverKind::ProximalNewton => SolverKind::ProximalNewton,
+        xper_scene::VelocitySolverKind::Nlgs => return VelocitySolver::Nlgs,
+        xper_scene::VelocitySolverKind::Newton => SolverKind::Newton,
+        xper_scene::VelocitySolverKind::ProximalNewton => SolverKind::ProximalNewton,
     };
     VelocitySolver::Assembled(SolverParams {
         tolerance: settings.tolerance,

@@ -140,11 +140,11 @@ impl SeriesFigures {
 }
 
 /// The name of a solver kind in summaries.
-pub fn solver_name(kind: xper_scene::SolverKind) -> &'static str {
+pub fn solver_name(kind: xper_scene::VelocitySolverKind) -> &'static str {
     match kind {
-        xper_scene::SolverKind::Nlgs => "nlgs",
-        xper_scene::SolverKind::Newton => "newton",
-        xper_scene::SolverKind::ProximalNewton => "proximal_newton",
+        xper_scene::VelocitySolverKind::Nlgs => "nlgs",
+        xper_scene::VelocitySolverKind::Newton => "newton",
+        xper_scene::VelocitySolverKind::ProximalNewton => "proximal_newton",
     }
 }
 

@@ -41,7 +41,7 @@ pub fn check_distributable(
     if !distributed {
         return Ok(());
     }
-    if scene.solver.kind != xper_scene::SolverKind::Nlgs {
+    if scene.solver.kind != xper_scene::VelocitySolverKind::Nlgs {
         return Err(RunError::BadInput(format!(
             "{}: [solver] kind: a distributed run solves by NLGS only (the assembled solvers are \
              not distributed)",
