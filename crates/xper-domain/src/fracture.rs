@@ -18,11 +18,11 @@
 //! 3. **Gather** (for outputs and checkpoints): owners send their elements' and interfaces'
 //!    states to rank 0, which holds the whole model.
 
-use crate::communicator::Communicator;
-use crate::interface::InterfaceMap;
+use crate::comm::Communicator;
+use crate::nscdd::interface::InterfaceMap;
 use crate::nscdd::solve_with_split_masses;
 use crate::partition::Bisection;
-use crate::stepper::RankLoad;
+use crate::rigid::stepper::RankLoad;
 use xper_fracture::{
     ElementContactOperator, FractureEnergy, FractureModel, FractureStepError, FractureStepReport,
     FractureStepper, InterfaceSolve, PointState,

@@ -17,33 +17,24 @@
 //! threads of one process (tests, no MPI needed), `MpiCommunicator` (cargo feature `mpi`) over
 //! Open MPI. The algorithms are tested on the first and run unchanged on the second.
 
-pub mod communicator;
-mod distributed_bisection;
+pub mod comm;
 #[cfg(any(test, feature = "fixtures"))]
 pub mod fixtures;
 pub mod fluid;
 pub mod fracture;
-pub mod interface;
-mod local_bodies;
-#[cfg(feature = "mpi")]
-pub mod mpi_communicator;
 pub mod nscdd;
 pub mod partition;
-pub mod shared_solve;
-pub mod split;
-pub mod stepper;
-pub mod strips;
-mod threads;
+pub mod rigid;
 
-pub use communicator::{CommStats, Communicator, SingleProcess};
+#[cfg(feature = "mpi")]
+pub use comm::mpi::MpiCommunicator;
+pub use comm::threads::{run_on_threads, ThreadCommunicator};
+pub use comm::{CommStats, Communicator, SingleProcess};
 pub use fluid::DistributedFluid;
 pub use fracture::DistributedFracture;
-pub use interface::InterfaceMap;
-#[cfg(feature = "mpi")]
-pub use mpi_communicator::MpiCommunicator;
+pub use nscdd::interface::InterfaceMap;
+pub use nscdd::split::{contact_owner, split_problem, LocalProblem};
 pub use nscdd::{distributed_nlgs, solve_with_split_masses, BodyVelocities, SplitMasses};
 pub use partition::Bisection;
-pub use shared_solve::SharedNlgs;
-pub use split::{contact_owner, split_problem, LocalProblem};
-pub use stepper::{DistributedParams, DistributedStepper, RankLoad};
-pub use threads::{run_on_threads, ThreadCommunicator};
+pub use rigid::shared_solve::SharedNlgs;
+pub use rigid::stepper::{DistributedParams, DistributedStepper, RankLoad};

@@ -6,7 +6,7 @@
 //! the copies' velocities is the velocity the whole body gets from the impulses of all its
 //! contacts (Visseq et al., Comput. Mech. 49 (2012) 709, section 3).
 
-use crate::communicator::{exchange_by_rank, Communicator};
+use crate::comm::{exchange_by_rank, Communicator};
 use xper_nscd::SolverBody;
 
 /// The shared bodies of one process and the processes it shares them with.
@@ -26,7 +26,7 @@ impl InterfaceMap {
     /// rank must hold the bodies it owns; ids are below 2^53. With `among`, the messages go to
     /// those ranks only: they must include every owner of a copy held here and every holder of
     /// a copy of a body owned here (the partition's neighbours, see
-    /// [`crate::communicator::exchange_by_rank`]); else to every rank.
+    /// [`crate::comm::exchange_by_rank`]); else to every rank.
     pub fn build<C: Communicator + ?Sized>(
         comm: &C,
         global_ids: &[u64],

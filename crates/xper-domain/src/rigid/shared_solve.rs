@@ -6,8 +6,8 @@
 //! among their copies, [`crate::distributed_nlgs`] solves, and the operator gets its own masses and
 //! Delassus blocks back (copied, not recomputed, so they keep their bits).
 
-use crate::communicator::Communicator;
-use crate::interface::InterfaceMap;
+use crate::comm::Communicator;
+use crate::nscdd::interface::InterfaceMap;
 use crate::nscdd::solve_with_split_masses;
 use xper_math::Real;
 use xper_nscd::{ContactSolve, RigidContactOperator};

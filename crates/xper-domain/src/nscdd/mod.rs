@@ -27,8 +27,11 @@
 //! Visseq et al., Comput. Mech. 49 (2012) 709; Renouf, Dubois and Alart, J. Comput. Appl.
 //! Math. 168 (2004) 375.
 
-use crate::communicator::Communicator;
-use crate::interface::InterfaceMap;
+pub mod interface;
+pub mod split;
+
+use crate::comm::Communicator;
+use crate::nscdd::interface::InterfaceMap;
 use xper_nscd::RigidContactOperator;
 use xper_solver::{
     natural_map_error, AndersonMixer, Block2, CohesiveTerm, ContactOperator, NlgsParams,

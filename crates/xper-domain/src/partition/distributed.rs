@@ -8,7 +8,7 @@
 //! cuts, all nodes of the level together. A re-partition thus costs `O(log P)` rounds of small
 //! collectives instead of gathering every state on every process.
 
-use crate::communicator::Communicator;
+use crate::comm::Communicator;
 use crate::partition::{Bisection, Node};
 use std::collections::HashMap;
 use xper_math::{Real, Vector, DIM};

@@ -7,7 +7,7 @@
 //! copies; [`split_problem`] builds the same local problem from a whole one, which is how the
 //! decomposition is tested against the undivided solve.
 
-use crate::interface::InterfaceMap;
+use crate::nscdd::interface::InterfaceMap;
 use xper_nscd::{RigidContactOperator, RigidProblem, SolverBody};
 
 /// One process's part of a [`RigidProblem`].

@@ -1,5 +1,10 @@
 //! What the distributed algorithms need from a group of processes.
 
+pub mod halo;
+#[cfg(feature = "mpi")]
+pub mod mpi;
+pub mod threads;
+
 use std::time::Duration;
 
 /// Traffic and time spent communicating, per process.

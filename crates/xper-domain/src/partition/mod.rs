@@ -4,6 +4,8 @@
 //! cuts are kept, so any point (a body that moved, a fluid cell) finds its part in
 //! O(log parts).
 
+mod distributed;
+
 use xper_math::{Real, Vector, DIM};
 
 /// A node of the bisection tree.

@@ -31,10 +31,10 @@
 //! world on rank 0 for outputs and checkpoints, which are therefore those of a serial run, and a
 //! checkpoint written with any number of processes resumes with any other.
 
-use crate::communicator::{exchange_by_rank, Communicator};
-use crate::local_bodies;
+use crate::comm::{exchange_by_rank, Communicator};
 use crate::partition::{in_box, Bisection};
-use crate::shared_solve::SharedNlgs;
+use crate::rigid::local_bodies;
+use crate::rigid::shared_solve::SharedNlgs;
 use xper_bodies::{BodySet, Ownership};
 use xper_geometry::{Contact, ContactKey, ContactRow, ContactSet};
 use xper_math::{Real, Vector};

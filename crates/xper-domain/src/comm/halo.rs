@@ -1,7 +1,7 @@
 //! Rows exchanged between the horizontal strips of a grid, one strip per process (strip `s` on
 //! rank `s`): the links of the distributed pressure multigrid ([`xper_poisson::RowLinks`]).
 
-use crate::communicator::Communicator;
+use crate::comm::Communicator;
 use xper_poisson::{RowExchange, RowLinks};
 
 /// The neighbours of strip `rank` among `size` strips: below and above, wrapping around when

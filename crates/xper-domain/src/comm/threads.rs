@@ -1,7 +1,7 @@
 //! Ranks as threads of one process, linked by one channel per ordered pair of ranks: the
 //! distributed algorithms run and are tested without MPI.
 
-use crate::communicator::{CommStats, Communicator};
+use crate::comm::{CommStats, Communicator};
 use std::cell::Cell;
 use std::sync::mpsc::{channel, Receiver, Sender};
 use std::time::Instant;

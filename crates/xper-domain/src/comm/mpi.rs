@@ -1,6 +1,6 @@
 //! [`Communicator`] over MPI (Open MPI through rsmpi; cargo feature `mpi`).
 
-use crate::communicator::{CommStats, Communicator};
+use crate::comm::{CommStats, Communicator};
 use mpi::request::WaitGuard;
 use mpi::topology::SimpleCommunicator;
 use mpi::traits::{Communicator as _, CommunicatorCollectives, Destination, Source};
