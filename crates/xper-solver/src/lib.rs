@@ -33,6 +33,7 @@ mod operator;
 mod problem;
 pub mod proximal;
 mod solve;
+mod sweeps;
 
 pub use alart_curnier::LocalParams;
 pub use anderson::{Acceleration, AndersonMixer};
@@ -42,8 +43,7 @@ pub use lemke::{lemke, LemkeParams};
 pub use local::solve_one_contact;
 pub use newton::{newton, NewtonParams, RhoStrategy};
 pub use nlgs::{
-    check_contact_sizes, nlgs, nlgs_with_cohesion, ConvergenceNorm, NlgsParams, NlgsSweeper,
-    SolveError, SolveInfo,
+    check_contact_sizes, ConvergenceNorm, NlgsParams, NlgsSweeper, SolveError, SolveInfo,
 };
 pub use nsgs::{nsgs, NsgsParams};
 pub use operator::{Block2, ContactOperator, DenseProblem};
@@ -53,3 +53,4 @@ pub use problem::{
 };
 pub use proximal::{proximal_newton, ProximalParams};
 pub use solve::{solve, solve_timed, ErrorScaling, SolveReport, SolverKind, SolverParams};
+pub use sweeps::{nlgs, nlgs_with_cohesion, sweep_until_converged, OneProcess, SweepExchange};

@@ -137,64 +137,10 @@ impl std::fmt::Display for SolveError {
 
 impl std::error::Error for SolveError {}
 
-/// Solves the problem of `op` by NLGS.
-///
-/// `op` must be in the state of zero impulses; `impulses` holds the warm start on entry and the
-/// solution on exit (and `op` is left consistent with it). `normal_shift[a]` is added to the
-/// normal velocity in the Signorini condition.
-pub fn nlgs<O: ContactOperator>(
-    op: &mut O,
-    mu: &[f64],
-    normal_shift: &[f64],
-    impulses: &mut [[f64; 2]],
-    params: &NlgsParams,
-) -> Result<SolveInfo, SolveError> {
-    nlgs_with_cohesion(op, mu, normal_shift, &[], impulses, params)
-}
-
-/// [`nlgs`] where contact `a`'s impulse has the adhesive part `cohesion[a]` (see
-/// [`CohesiveTerm`]); `cohesion` is empty (no adhesion anywhere) or has one term per contact.
-/// `impulses` are the total impulses, adhesive part included.
-pub fn nlgs_with_cohesion<O: ContactOperator>(
-    op: &mut O,
-    mu: &[f64],
-    normal_shift: &[f64],
-    cohesion: &[CohesiveTerm],
-    impulses: &mut [[f64; 2]],
-    params: &NlgsParams,
-) -> Result<SolveInfo, SolveError> {
-    let sweeper = NlgsSweeper::new(op, mu, normal_shift, cohesion, impulses, params)?;
-    let mut info = SolveInfo::default();
-    if op.contact_count() == 0 {
-        info.converged = true;
-        return Ok(info);
-    }
-    let mut anderson = AndersonMixer::for_params(params, impulses);
-    for sweep in 1..=params.max_iterations {
-        let check = sweep % params.check_every == 0 || sweep == params.max_iterations;
-        let mut acc = NormAccumulator::default();
-        sweeper.sweep_accumulating(op, impulses, check.then_some(&mut acc));
-        if check
-            && info.record_check(sweep, &acc, params, || {
-                scaled_natural_map_error(op, mu, normal_shift, impulses, sweeper.q_norm())
-            })
-        {
-            return Ok(info);
-        }
-        if let Some(mixer) = anderson.as_mut() {
-            if mixer.mixes_after(sweep, params.max_iterations) {
-                sweeper.accelerate(op, impulses, mixer, |_| {});
-            }
-        }
-    }
-    info.iterations = params.max_iterations;
-    Ok(info)
-}
-
 /// What NLGS prepares once per solve (checked data, proximal weights of singular blocks,
 /// factorised cohesive contacts) and one Gauss-Seidel sweep over the contacts. [`nlgs`] loops
 /// the sweep with its convergence checks; a domain-decomposition solver interleaves sweeps
-/// with exchanges between processes.
+/// with exchanges between processes; both loop it with [`crate::sweep_until_converged`].
 pub struct NlgsSweeper<'a> {
     mu: &'a [f64],
     normal_shift: &'a [f64],
@@ -323,6 +269,16 @@ impl<'a> NlgsSweeper<'a> {
             factors,
             q_norm: q_norm2.sqrt(),
         })
+    }
+
+    /// Friction coefficient of each contact.
+    pub fn mu(&self) -> &[f64] {
+        self.mu
+    }
+
+    /// Shift of each contact's normal velocity in the Signorini condition.
+    pub fn normal_shift(&self) -> &[f64] {
+        self.normal_shift
     }
 
     /// `|q + shift|` at zero impulses, the scale of the natural-map error.

@@ -34,8 +34,8 @@ use crate::comm::Communicator;
 use crate::nscdd::interface::InterfaceMap;
 use xper_nscd::RigidContactOperator;
 use xper_solver::{
-    natural_map_error, AndersonMixer, Block2, CohesiveTerm, ContactOperator, NlgsParams,
-    NlgsSweeper, NormAccumulator, SolveError, SolveInfo,
+    natural_map_error, sweep_until_converged, Block2, CohesiveTerm, ContactOperator, NlgsParams,
+    NlgsSweeper, NormAccumulator, SolveError, SolveInfo, SweepExchange,
 };
 
 /// A contact operator whose bodies each carry a velocity of `DOFS` components: what the glue
@@ -279,39 +279,71 @@ fn solve_interface_first<C: Communicator + ?Sized, O: BodyVelocities>(
     let (q_norm, contacts) = (totals[0].sqrt(), totals[1]);
     let mut glue = Glue::new(interface, comm.rank(), O::DOFS);
     glue.apply(comm, op, interface);
-    let mut info = SolveInfo::default();
     if contacts == 0.0 {
-        info.converged = true;
-        return Ok(info);
-    }
-    let mut anderson = AndersonMixer::for_params(params, impulses);
-    for sweep in 1..=params.max_iterations {
-        let check = sweep % params.check_every == 0 || sweep == params.max_iterations;
-        let mut acc = NormAccumulator::default();
-        let n = impulses.len();
-        let (edge, inner) = (0..interface_rows, interface_rows..n);
-        sweeper.sweep_part_accumulating(op, impulses, edge, check.then_some(&mut acc));
-        glue.apply_overlapped(comm, op, interface, &mut |op: &mut O| {
-            sweeper.sweep_part_accumulating(op, impulses, inner.clone(), check.then_some(&mut acc))
+        return Ok(SolveInfo {
+            converged: true,
+            ..SolveInfo::default()
         });
-        if check {
-            let global = global_norms(comm, &acc);
-            let error = || global_error(comm, op, mu, normal_shift, impulses, q_norm);
-            if info.record_check(sweep, &global, params, error) {
-                return Ok(info);
-            }
-        }
-        if let Some(mixer) = anderson.as_mut() {
-            if mixer.mixes_after(sweep, params.max_iterations) {
-                // Coefficients from the sums over all contacts; the mixed impulses change the
-                // copies of shared bodies, glued again as after a sweep.
-                sweeper.accelerate(op, impulses, mixer, |sums| comm.all_reduce_sum(sums));
-                glue.apply(comm, op, interface);
-            }
-        }
     }
-    info.iterations = params.max_iterations;
-    Ok(info)
+    let mut exchange = InterfaceExchange {
+        comm,
+        interface,
+        glue,
+        interface_rows,
+        q_norm,
+    };
+    Ok(sweep_until_converged(
+        &sweeper,
+        op,
+        impulses,
+        params,
+        &mut exchange,
+    ))
+}
+
+/// The exchange of a sweep between processes: the rows touching shared bodies swept first,
+/// the shared velocities glued while the inner rows are swept; norms and mixing sums reduced
+/// over all processes.
+struct InterfaceExchange<'a, C: ?Sized> {
+    comm: &'a C,
+    interface: &'a InterfaceMap,
+    glue: Glue,
+    /// The first rows, those touching a shared body.
+    interface_rows: usize,
+    /// `|q + shift|` over all processes.
+    q_norm: f64,
+}
+
+impl<C: Communicator + ?Sized, O: BodyVelocities> SweepExchange<O> for InterfaceExchange<'_, C> {
+    fn sweep(
+        &mut self,
+        sweeper: &NlgsSweeper,
+        op: &mut O,
+        impulses: &mut [[f64; 2]],
+        mut acc: Option<&mut NormAccumulator>,
+    ) {
+        let n = impulses.len();
+        let (edge, inner) = (0..self.interface_rows, self.interface_rows..n);
+        sweeper.sweep_part_accumulating(op, impulses, edge, acc.as_deref_mut());
+        self.glue
+            .apply_overlapped(self.comm, op, self.interface, &mut |op: &mut O| {
+                sweeper.sweep_part_accumulating(op, impulses, inner.clone(), acc.as_deref_mut())
+            });
+    }
+    fn reduce_norms(&mut self, acc: &NormAccumulator) -> NormAccumulator {
+        global_norms(self.comm, acc)
+    }
+    fn reduce_sums(&mut self, sums: &mut [f64]) {
+        self.comm.all_reduce_sum(sums);
+    }
+    fn natural_map_error(&mut self, sweeper: &NlgsSweeper, op: &O, impulses: &[[f64; 2]]) -> f64 {
+        let (mu, shift) = (sweeper.mu(), sweeper.normal_shift());
+        global_error(self.comm, op, mu, shift, impulses, self.q_norm)
+    }
+    /// The mixed impulses change the copies of shared bodies: glued again as after a sweep.
+    fn after_mixing(&mut self, op: &mut O) {
+        self.glue.apply(self.comm, op, self.interface);
+    }
 }
 
 /// [`distributed_nlgs`] on `op` with the masses of its interface bodies split among their
