@@ -25,10 +25,10 @@ use crate::partition::Bisection;
 use crate::rigid::stepper::RankLoad;
 use xper_fracture::{
     ElementContactOperator, FractureEnergy, FractureModel, FractureStepError, FractureStepReport,
-    FractureStepper, InterfaceSolve, PointState,
+    FractureStepper, PointState,
 };
 use xper_math::Vector;
-use xper_solver::{CohesiveTerm, NlgsParams, SolveError, SolveInfo};
+use xper_solver::{CohesiveTerm, ContactSolve, NlgsParams, SolveError, SolveInfo};
 
 /// A fracture model stepped by the processes of `comm`.
 pub struct DistributedFracture<'c, C: Communicator + ?Sized> {
@@ -224,14 +224,14 @@ fn unpack(message: &[f64], whole: &mut FractureModel) {
     }
 }
 
-/// [`InterfaceSolve`] by NSCDD ([`solve_with_split_masses`]: the shared elements' masses split,
+/// [`ContactSolve`] of fracture steps by NSCDD ([`solve_with_split_masses`]: the shared elements' masses split,
 /// then restored bit for bit with their rows' Delassus blocks); sums by all-reduce.
 struct SharedInterfaceNlgs<'c, C: Communicator + ?Sized> {
     comm: &'c C,
     interface: InterfaceMap,
 }
 
-impl<C: Communicator + ?Sized> InterfaceSolve for SharedInterfaceNlgs<'_, C> {
+impl<C: Communicator + ?Sized> ContactSolve<ElementContactOperator> for SharedInterfaceNlgs<'_, C> {
     fn solve(
         &mut self,
         op: &mut ElementContactOperator,
@@ -255,5 +255,11 @@ impl<C: Communicator + ?Sized> InterfaceSolve for SharedInterfaceNlgs<'_, C> {
 
     fn sum(&mut self, values: &mut [f64]) {
         self.comm.all_reduce_sum(values);
+    }
+
+    fn max(&mut self, value: f64) -> f64 {
+        let mut v = [value];
+        self.comm.all_reduce_max(&mut v);
+        v[0]
     }
 }

@@ -17,7 +17,6 @@ mod interface;
 mod model;
 mod operator;
 mod part;
-mod solve;
 mod step;
 mod update;
 
@@ -27,7 +26,7 @@ pub use model::{
     InterfaceRule, MassMatrix, NodeLoad, PointState,
 };
 pub use operator::{ElementContactOperator, ElementWork, InterfaceRow};
-pub use solve::{InterfaceSolve, SerialInterfaceSolve};
+
 pub use step::{
     elastic_energy, stored_energy, FractureStepError, FractureStepReport, FractureStepper,
     LoadReading,

@@ -1,6 +1,6 @@
 //! A part of a model for one process of a distributed run: the elements it owns, copies
 //! (shadows) of the other processes' elements its interfaces touch, and the interfaces it
-//! owns. Stepped with a domain-decomposition [`crate::InterfaceSolve`], the parts together
+//! owns. Stepped with a domain-decomposition [`xper_solver::ContactSolve`], the parts together
 //! make the step of the whole model (Perales et al., EJCM 19, 2010: elements are bodies, so
 //! the non-smooth contact domain decomposition of rigid bodies applies unchanged).
 

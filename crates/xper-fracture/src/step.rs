@@ -25,7 +25,8 @@ use crate::dense::{masked_spd_inverse, mul_vec, Mat6};
 use crate::interface::cohesive;
 use crate::model::{FractureEnergy, FractureModel};
 use crate::operator::{ElementContactOperator, ElementWork, InterfaceRow};
-use crate::solve::{InterfaceSolve, SerialInterfaceSolve};
+use xper_solver::ContactSolve;
+use xper_solver::OneProcessSolve;
 
 /// Reading of one load over a step.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
@@ -123,17 +124,17 @@ impl FractureStepper {
 
     /// Advances the model by one step.
     pub fn step(&mut self, m: &mut FractureModel) -> Result<FractureStepReport, FractureStepError> {
-        self.step_with(m, &mut SerialInterfaceSolve)
+        self.step_with(m, &mut OneProcessSolve)
     }
 
     /// Advances the model by one step, the interface problem solved and the step's totals
-    /// summed by `solver`: [`SerialInterfaceSolve`] for a whole model, a domain-decomposition
+    /// summed by `solver`: [`OneProcessSolve`] for a whole model, a domain-decomposition
     /// solver for a part of one ([`FractureModel::part`]), whose report then holds the totals
     /// of the whole model.
     pub fn step_with(
         &mut self,
         m: &mut FractureModel,
-        solver: &mut dyn InterfaceSolve,
+        solver: &mut dyn ContactSolve<ElementContactOperator>,
     ) -> Result<FractureStepReport, FractureStepError> {
         let start = Instant::now();
         if m.step == 0 && !self.started {

@@ -3,8 +3,9 @@
 
 use crate::interface::cohesive;
 use crate::model::{FractureEnergy, FractureModel};
-use crate::solve::InterfaceSolve;
+use crate::operator::ElementContactOperator;
 use crate::step::{stored_energy, FractureStepper, LoadReading};
+use xper_solver::ContactSolve;
 
 /// Updates the interface points of `m` from the solved step in `stepper`.
 pub(crate) fn interfaces(stepper: &FractureStepper, m: &mut FractureModel) {
@@ -46,7 +47,7 @@ pub(crate) fn interfaces(stepper: &FractureStepper, m: &mut FractureModel) {
 }
 
 /// What a step reports of the whole model: this model's share summed over the processes
-/// sharing it ([`InterfaceSolve::sum`], one reduction per step).
+/// sharing it ([`ContactSolve::sum`], one reduction per step).
 pub(crate) struct StepTotals {
     pub contacts: usize,
     pub broken_points: usize,
@@ -63,7 +64,7 @@ impl StepTotals {
         m: &FractureModel,
         contacts: usize,
         load_sums: Vec<[f64; 6]>,
-        solver: &mut dyn InterfaceSolve,
+        solver: &mut dyn ContactSolve<ElementContactOperator>,
     ) -> Self {
         let e = m.energy;
         let mut values = vec![

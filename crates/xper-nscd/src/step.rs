@@ -85,7 +85,7 @@ impl MoreauJean {
     pub fn step_with(
         &mut self,
         world: &mut World,
-        solver: &mut dyn ContactSolve,
+        solver: &mut dyn ContactSolve<RigidContactOperator>,
     ) -> Result<StepReport, StepError> {
         if let VelocitySolver::Assembled(_) = world.params.solver {
             return Err(StepError::Solver(SolveError::Unsupported(
@@ -110,7 +110,7 @@ impl MoreauJean {
         world: &mut World,
         t_begin: Real,
         t_end: Real,
-        shared: Option<&mut dyn ContactSolve>,
+        shared: Option<&mut dyn ContactSolve<RigidContactOperator>>,
     ) -> Result<StepReport, StepError> {
         let start = Instant::now();
         let mut report = StepReport {
@@ -157,7 +157,7 @@ impl MoreauJean {
         report: &mut StepReport,
         t_begin: Real,
         t_end: Real,
-        mut shared: Option<&mut dyn ContactSolve>,
+        mut shared: Option<&mut dyn ContactSolve<RigidContactOperator>>,
     ) -> Result<(), StepError> {
         // Stage: solve.
         let t_solve = Instant::now();
@@ -391,7 +391,7 @@ impl MoreauJean {
         &mut self,
         world: &World,
         report: &mut StepReport,
-        shared: Option<&mut dyn ContactSolve>,
+        shared: Option<&mut dyn ContactSolve<RigidContactOperator>>,
     ) -> Result<(), StepError> {
         let assembled = match world.params.solver {
             VelocitySolver::Assembled(params) => Some(params),
@@ -409,7 +409,7 @@ impl MoreauJean {
         let (Some(params), Some(problem)) = (assembled, problem) else {
             let (op, mu, shift) = (&mut self.op, &self.mu, &self.shift);
             let info = match shared {
-                Some(s) => s.solve(op, mu, shift, &mut self.impulses, &world.params.nlgs),
+                Some(s) => s.solve(op, mu, shift, &[], &mut self.impulses, &world.params.nlgs),
                 None => nlgs(op, mu, shift, &mut self.impulses, &world.params.nlgs),
             }
             .map_err(StepError::Solver)?;
@@ -573,10 +573,10 @@ impl MoreauJean {
         &mut self,
         world: &mut World,
         mut deepest: Real,
-        mut shared: Option<&mut dyn ContactSolve>,
+        mut shared: Option<&mut dyn ContactSolve<RigidContactOperator>>,
     ) -> Result<(u32, Real), StepError> {
         if let Some(s) = reborrow(&mut shared) {
-            deepest = s.agree_max(deepest);
+            deepest = s.max(deepest);
         }
         if !(world.params.projection_tolerance).is_some_and(|tolerance| deepest > tolerance) {
             return Ok((0, deepest));
@@ -594,7 +594,7 @@ impl MoreauJean {
         };
         let (op, mu, shift) = (&mut self.op, &self.mu, &world.contacts.gaps);
         let info = match shared {
-            Some(s) => s.solve(op, mu, shift, &mut self.impulses, &params),
+            Some(s) => s.solve(op, mu, shift, &[], &mut self.impulses, &params),
             None => nlgs(op, mu, shift, &mut self.impulses, &params),
         }
         .map_err(StepError::Solver)?;

@@ -23,6 +23,7 @@
 pub mod alart_curnier;
 pub mod anderson;
 mod cohesive;
+mod contact_solve;
 mod error;
 pub mod lemke;
 mod local;
@@ -38,6 +39,7 @@ mod sweeps;
 pub use alart_curnier::LocalParams;
 pub use anderson::{Acceleration, AndersonMixer};
 pub use cohesive::{solve_one_cohesive_contact, CohesiveTerm, PreparedCohesiveContact};
+pub use contact_solve::{ContactSolve, OneProcessSolve};
 pub use error::{natural_map_error, project_on_cone, ConvergenceNorms, NormAccumulator};
 pub use lemke::{lemke, LemkeParams};
 pub use local::solve_one_contact;

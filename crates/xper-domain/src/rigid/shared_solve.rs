@@ -10,8 +10,8 @@ use crate::comm::Communicator;
 use crate::nscdd::interface::InterfaceMap;
 use crate::nscdd::solve_with_split_masses;
 use xper_math::Real;
-use xper_nscd::{ContactSolve, RigidContactOperator};
-use xper_solver::{NlgsParams, SolveError, SolveInfo};
+use xper_nscd::RigidContactOperator;
+use xper_solver::{CohesiveTerm, ContactSolve, NlgsParams, SolveError, SolveInfo};
 
 /// [`ContactSolve`] by NSCDD over a communicator, for a process whose local bodies (those of
 /// the operator, in order) have the global ids `ids`, the owners `owners` and may move
@@ -46,12 +46,13 @@ impl<'c, C: Communicator + ?Sized> SharedNlgs<'c, C> {
     }
 }
 
-impl<C: Communicator + ?Sized> ContactSolve for SharedNlgs<'_, C> {
+impl<C: Communicator + ?Sized> ContactSolve<RigidContactOperator> for SharedNlgs<'_, C> {
     fn solve(
         &mut self,
         op: &mut RigidContactOperator,
         mu: &[Real],
         shift: &[Real],
+        cohesion: &[CohesiveTerm],
         impulses: &mut [[Real; 2]],
         params: &NlgsParams,
     ) -> Result<SolveInfo, SolveError> {
@@ -69,10 +70,16 @@ impl<C: Communicator + ?Sized> ContactSolve for SharedNlgs<'_, C> {
         let among = self.neighbours.as_deref();
         let interface = InterfaceMap::build(self.comm, &self.ids, &self.owners, &shared, among);
         self.shared_bodies = interface.shared_count();
-        solve_with_split_masses(self.comm, op, &interface, mu, shift, &[], impulses, params)
+        solve_with_split_masses(
+            self.comm, op, &interface, mu, shift, cohesion, impulses, params,
+        )
     }
 
-    fn agree_max(&mut self, value: Real) -> Real {
+    fn sum(&mut self, values: &mut [f64]) {
+        self.comm.all_reduce_sum(values);
+    }
+
+    fn max(&mut self, value: Real) -> Real {
         let mut v = [value];
         self.comm.all_reduce_max(&mut v);
         v[0]
