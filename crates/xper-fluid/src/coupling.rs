@@ -89,18 +89,18 @@ pub struct CoupledStepper {
     immersed: Vec<usize>,
     disks: Vec<ImmersedDisk>,
     forces: Vec<[Real; DOFS]>,
-    largest_dt: Real,
     /// The whole grid's largest fluid speed (m/s) after the last step, with the step count of
     /// the fluid state it was measured on: the next step's time step needs no reduction.
     fluid_speed: Option<(u64, Real)>,
 }
 
 impl CoupledStepper {
-    /// A stepper for `state` (the disks of `state.world` are immersed); `params.dt_max` is the
-    /// largest step (the world's `dt` is overwritten by each step's).
+    /// A stepper for `state` (the disks of `state.world` are immersed). Each step's length is
+    /// chosen by [`FluidSolver::stable_dt_for`], at most `params.dt_max`, and handed to the
+    /// grains' step ([`MoreauJean::step_by`]), which keeps it in `world.params.dt`.
     pub fn new(params: &FluidParams, state: &CoupledState) -> Result<Self, FluidError> {
         let fluid = FluidSolver::new(state.fluid.grid, params)?;
-        Ok(Self::with_solver(fluid, state.fluid.grid, params, state))
+        Ok(Self::with_solver(fluid, state.fluid.grid, state))
     }
 
     /// A stepper for one block of a grid split among processes: `state.fluid` holds the
@@ -113,15 +113,10 @@ impl CoupledStepper {
         domain: MacGrid,
     ) -> Result<Self, FluidError> {
         let fluid = FluidSolver::new_block(state.fluid.grid, params)?;
-        Ok(Self::with_solver(fluid, domain, params, state))
+        Ok(Self::with_solver(fluid, domain, state))
     }
 
-    fn with_solver(
-        fluid: FluidSolver,
-        domain: MacGrid,
-        params: &FluidParams,
-        state: &CoupledState,
-    ) -> Self {
+    fn with_solver(fluid: FluidSolver, domain: MacGrid, state: &CoupledState) -> Self {
         let bodies = &state.world.bodies;
         let immersed = (0..bodies.len())
             .filter(|&b| matches!(bodies.shape[b], Shape::Disk { .. }))
@@ -133,7 +128,6 @@ impl CoupledStepper {
             immersed,
             disks: Vec::new(),
             forces: Vec::new(),
-            largest_dt: params.dt_max,
             fluid_speed: None,
         }
     }
@@ -230,10 +224,10 @@ impl CoupledStepper {
                 speed[0]
             }
         };
+        // At most `params.dt_max`, the scene's `dt`: the one bound on the step.
         let dt = self
             .fluid
-            .stable_dt_for(params, fluid_speed.max(grain_speed))
-            .min(self.largest_dt);
+            .stable_dt_for(params, fluid_speed.max(grain_speed));
 
         // Stage: fluid.
         let fluid = match links {
