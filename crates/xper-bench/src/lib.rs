@@ -41,7 +41,7 @@ pub struct BenchArgs {
     /// only these run.
     #[arg(long)]
     fluid: bool,
-    /// Run nothing: regenerate the report from the JSON results in `--out` (and its NOTES.md).
+    /// Run nothing: regenerate the report from the JSON results in `--out` (linking its NOTES.md).
     #[arg(long)]
     report_only: bool,
     /// Run exactly one scene in this process (used by the parent process).
@@ -409,9 +409,13 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
         })?;
         md.push_str(&crate::fluid::markdown(&fluid));
     }
-    if let Ok(extra) = std::fs::read_to_string(dir.join("NOTES.md")) {
-        md.push('\n');
-        md.push_str(&extra);
+    if dir.join("NOTES.md").exists() {
+        md.push_str(&format!(
+            "\n## Notes\n\nDistributed runs (strong scaling, the efficiency model), the memory and speed passes \
+             and how to read these figures: [{0}/NOTES.md]({0}/NOTES.md) (written by hand, not \
+             regenerated).\n",
+            dir.display()
+        ));
     }
     xper_io::write_atomic(report, md.as_bytes()).map_err(|e| CliError::Runtime(e.to_string()))?;
     println!("wrote {}", report.display());

@@ -13,11 +13,11 @@ use std::time::Instant;
 use xper_bodies::Ownership;
 use xper_geometry::Detector;
 use xper_laws::InteractionLaw;
-use xper_math::buffer::{refill, renew, renew_for};
+use xper_math::buffer::{renew, renew_for};
 use xper_math::{Real, DOFS};
-use xper_solver::{
-    nlgs, solve, ContactOperator, FrictionProblem, NlgsParams, ProblemError, SolveError,
-};
+use xper_solver::{nlgs, solve, ContactOperator, FrictionProblem, ProblemError, SolveError};
+
+mod project;
 
 /// A problem the assembly refused (inconsistent sizes: a bug, never the user's data).
 fn problem_error(e: ProblemError) -> StepError {
@@ -539,77 +539,5 @@ impl MoreauJean {
             }
         }
         Ok(())
-    }
-
-    /// Exchanges the operator's rows (the active contacts') with every contact's rows when
-    /// the active contacts are a subset; a second call restores them.
-    fn exchange_rows(&mut self) {
-        if self.active_is_subset {
-            std::mem::swap(&mut self.op.rows, &mut self.all_rows);
-        }
-    }
-
-    /// Replaces the gap of every contact by its linearised gap at the end of the step, and
-    /// returns the largest overlap among them; called before [`Self::update`], while the
-    /// bodies hold the velocities at the beginning of the step.
-    fn end_gaps(&mut self, world: &mut World) -> Real {
-        let (h, theta) = (world.params.dt, world.params.theta);
-        self.exchange_rows();
-        let mut deepest: Real = 0.0;
-        for (a, gap) in world.contacts.gaps.iter_mut().enumerate() {
-            let u_end = self.op.local_velocity(a)[0];
-            let u_begin = self.op.local_velocity_at(a, &world.bodies)[0];
-            *gap += h * ((1.0 - theta) * u_begin + theta * u_end);
-            deepest = deepest.max(-*gap);
-        }
-        self.exchange_rows();
-        deepest
-    }
-
-    /// Removes overlaps larger than the projection tolerance, from the end gaps that
-    /// [`Self::end_gaps`] left in the contacts and their largest overlap `deepest` on this
-    /// process: returns the sweeps used and the largest overlap before projection.
-    fn project(
-        &mut self,
-        world: &mut World,
-        mut deepest: Real,
-        mut shared: Option<&mut dyn ContactSolve<RigidContactOperator>>,
-    ) -> Result<(u32, Real), StepError> {
-        if let Some(s) = reborrow(&mut shared) {
-            deepest = s.max(deepest);
-        }
-        if !(world.params.projection_tolerance).is_some_and(|tolerance| deepest > tolerance) {
-            return Ok((0, deepest));
-        }
-        self.exchange_rows();
-        let n = self.op.rows.len();
-        for body in &mut self.op.bodies {
-            body.velocity = [0.0; DOFS];
-        }
-        refill(&mut self.mu, std::iter::repeat_n(0.0, n));
-        refill(&mut self.impulses, std::iter::repeat_n([0.0, 0.0], n));
-        let params = NlgsParams {
-            acceleration: xper_solver::Acceleration::None,
-            ..world.params.nlgs
-        };
-        let (op, mu, shift) = (&mut self.op, &self.mu, &world.contacts.gaps);
-        let info = match shared {
-            Some(s) => s.solve(op, mu, shift, &[], &mut self.impulses, &params),
-            None => nlgs(op, mu, shift, &mut self.impulses, &params),
-        }
-        .map_err(StepError::Solver)?;
-        let bodies = &mut world.bodies;
-        let gravity = world.params.gravity;
-        for (b, body) in self.op.bodies.iter().enumerate() {
-            if bodies.is_dynamic(b) && bodies.ownership[b] == Ownership::Owned {
-                world.energy.projection_work -=
-                    bodies.mass[b] * (gravity.x * body.velocity[0] + gravity.y * body.velocity[1]);
-            }
-            bodies.position[b].x += body.velocity[0];
-            bodies.position[b].y += body.velocity[1];
-            bodies.angle[b] += body.velocity[2];
-        }
-        self.exchange_rows();
-        Ok((info.iterations, deepest))
     }
 }

@@ -151,7 +151,7 @@ pub fn paper_section(md: &mut String, full: bool) -> Result<usize, CliError> {
          Run (or continued from their checkpoints) by `cargo run --release -p xper-cli -- validate \
          --full`, which takes hours; outputs in `validation-runs/<scene>/` (crack pattern, \
          series, VTK). A plain `xper validate` reports the runs found there as far as they went. \
-         Crack measures on the reference mesh, pre-cracks excluded (`crates/xper-cli/src/crack.rs`).\n\n\
+         Crack measures on the reference mesh, pre-cracks excluded (`crates/xper-simulation/src/fracture/crack.rs`).\n\n\
          | case | reference | measured | result |\n|---|---|---|---|\n",
     );
     let mut failures = 0;

@@ -36,6 +36,7 @@ pub fn write_report(path: &std::path::Path, full: bool) -> Result<(), CliError> 
         fracture_section(&mut md)? + crate::fluid_report::fluid_section(&mut md, full)?;
     let paper_failures = crate::paper::paper_section(&mut md, full)? + fracture_failures;
     let suite_failures = suite_section(&mut md)? + paper_failures;
+    let md = with_summary(&md);
     xper_io::write_atomic(path, md.as_bytes()).map_err(|e| CliError::Runtime(e.to_string()))?;
     match cases.iter().filter(|c| !c.passed()).count() + suite_failures {
         0 => Ok(()),
@@ -44,6 +45,77 @@ pub fn write_report(path: &std::path::Path, full: bool) -> Result<(), CliError> 
             path.display()
         ))),
     }
+}
+
+/// Title of the summary table that opens the report.
+const SUMMARY_HEADING: &str = "## Summary";
+
+/// `md` (a report without summary, or with one, which is replaced) opened by a table of its
+/// sections: rows passed, failed, and others. A row's verdict is its last cell: `pass`,
+/// `FAIL`, or anything else (a run's status, or a finding such as whether a paper run
+/// reproduces the paper's picture), counted as other, as the paper section itself does.
+pub fn with_summary(md: &str) -> String {
+    let md = strip_summary(md);
+    let mut sections: Vec<(String, [usize; 3])> = vec![("Rigid bodies".into(), [0; 3])];
+    let mut intro_end = None;
+    for (k, line) in md.lines().enumerate() {
+        if let Some(title) = line.strip_prefix("## ") {
+            sections.push((title.trim().to_string(), [0; 3]));
+        } else if line.starts_with('|') && !line.starts_with("|---") {
+            intro_end.get_or_insert(k);
+            let cells: Vec<&str> = line.trim_matches('|').split('|').map(str::trim).collect();
+            let verdict = cells.last().copied().unwrap_or("");
+            let tally = &mut sections.last_mut().expect("a section").1;
+            match verdict {
+                "pass" => tally[0] += 1,
+                "FAIL" => tally[1] += 1,
+                "result" | "allowed" => {}
+                _ if cells.len() > 2 && cells[1] == "dim" => {}
+                _ => tally[2] += 1,
+            }
+        }
+    }
+    let mut table = format!(
+        "{SUMMARY_HEADING}\n\n| section | passed | failed | other rows (runs, findings) |\n|---|---|---|---|\n"
+    );
+    for (title, [pass, fail, other]) in sections.iter().filter(|(_, t)| t.iter().sum::<usize>() > 0)
+    {
+        table.push_str(&format!("| {title} | {pass} | {fail} | {other} |\n"));
+    }
+    table.push('\n');
+    // Before the intro's first table: after the opening paragraph.
+    let lines: Vec<&str> = md.lines().collect();
+    let at = intro_end.unwrap_or(lines.len());
+    let mut out = lines[..at].join("\n");
+    out.push('\n');
+    out.push_str(&table);
+    out.push_str(&lines[at..].join("\n"));
+    out.push('\n');
+    out
+}
+
+/// `md` without the summary table [`with_summary`] put in.
+fn strip_summary(md: &str) -> String {
+    let Some(start) = md.find(&format!("{SUMMARY_HEADING}\n")) else {
+        return md.to_string();
+    };
+    let rest = &md[start..];
+    let end = rest
+        .find("\n\n|")
+        .and_then(|t| rest[t + 2..].find("\n\n").map(|e| t + 2 + e + 2))
+        .unwrap_or(rest.len());
+    format!("{}{}", &md[..start], &rest[end..])
+}
+
+/// Rewrites the summary of the report at `path` from its tables, running nothing (the
+/// paper-resolution runs behind it take hours and live outside the repository).
+pub fn rewrite_summary(path: &std::path::Path) -> Result<(), CliError> {
+    let md = std::fs::read_to_string(path)
+        .map_err(|e| CliError::BadInput(format!("{}: {e}", path.display())))?;
+    xper_io::write_atomic(path, with_summary(&md).as_bytes())
+        .map_err(|e| CliError::Runtime(e.to_string()))?;
+    println!("wrote {}", path.display());
+    Ok(())
 }
 
 /// The fracture engine's cases with exact answers (`xper_fracture::validation`, which the
@@ -135,4 +207,20 @@ fn suite_section(md: &mut String) -> Result<usize, CliError> {
         ));
     }
     Ok(failures)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::with_summary;
+
+    #[test]
+    fn the_summary_counts_each_section_and_is_replaced_not_repeated() {
+        let md = "# Validation\n\nIntro.\n\n| case | result |\n|---|---|\n| a | pass |\n| b | FAIL |\n\n\
+                  ## Fluid\n\n| case | result |\n|---|---|\n| c | pass |\n| d | - |\n";
+        let once = with_summary(md);
+        assert!(once.contains("| Rigid bodies | 1 | 1 | 0 |"), "{once}");
+        assert!(once.contains("| Fluid | 1 | 0 | 1 |"), "{once}");
+        assert!(once.find("## Summary").unwrap() < once.find("| a | pass |").unwrap());
+        assert_eq!(with_summary(&once), once);
+    }
 }
