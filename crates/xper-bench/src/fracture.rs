@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 use xper_fracture::{FractureModel, FractureStepper, InterfaceLaw};
 use xper_scene::MeshSource;
 
-use crate::median;
+use crate::stats::median;
 use xper_simulation::fracture::crack::{mesh_centre, midpoint};
 use xper_simulation::RunError as CliError;
 

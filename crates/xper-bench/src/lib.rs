@@ -6,6 +6,9 @@
 pub mod fluid;
 pub mod fracture;
 pub mod solvers;
+mod stats;
+
+use stats::median;
 
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -85,15 +88,6 @@ pub struct BenchResult {
     overlap_max_m: f64,
     overlapping_contacts: usize,
     wall_time_s: f64,
-}
-
-/// Median of a sample (the upper one for an even count); NaN when empty.
-pub fn median(mut v: Vec<f64>) -> f64 {
-    if v.is_empty() {
-        return f64::NAN;
-    }
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }
 
 fn percentile(sorted: &[f64], p: f64) -> f64 {

@@ -21,9 +21,9 @@ pub mod rigid;
 pub mod scene;
 pub mod simulation;
 
-pub use driver::{drive, run, run_on, OutputSchedule, RunOptions};
+pub use driver::{drive, run, run_on};
 pub use scene::LoadedScene;
-pub use simulation::{RunFacts, Simulation, StepFailure};
+pub use simulation::{OutputSchedule, RunFacts, RunOptions, Simulation, StepFailure};
 
 /// A failure with the exit code it maps to.
 #[derive(Debug)]

@@ -1,8 +1,8 @@
 //! A scene file read once and turned into the simulation of its kind.
 
 use crate::checkpoint::fnv1a;
-use crate::driver::{OutputSchedule, RunOptions};
 use crate::simulation::Simulation;
+use crate::simulation::{OutputSchedule, RunOptions};
 use crate::RunError;
 use std::path::Path;
 use xper_domain::Communicator;

@@ -10,8 +10,33 @@
 use crate::comparison::SerialComparison;
 use crate::ranks::RankSummary;
 use crate::RunError;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use xper_io::{PvdCollection, SeriesTable};
+
+/// Options of a run (`xper run`).
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    /// Scene file.
+    pub scene: PathBuf,
+    /// Output directory.
+    pub out: PathBuf,
+    /// Continue from the checkpoint in `out`.
+    pub resume: bool,
+    /// Stop (with a checkpoint) after this step, as if interrupted.
+    pub stop_at_step: Option<u64>,
+    /// After a distributed run, run the same steps on one process and report the parallel
+    /// efficiency and the largest position difference in `summary.json`.
+    pub compare_serial: bool,
+}
+
+/// How often a run writes its outputs (steps).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct OutputSchedule {
+    /// Steps between frames (the last step has one too).
+    pub frame_every: u64,
+    /// Steps between checkpoints (the end has one too).
+    pub checkpoint_every: u64,
+}
 
 /// A step that could not be done.
 #[derive(Debug)]

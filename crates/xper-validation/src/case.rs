@@ -22,3 +22,28 @@ impl Case {
         self.error <= self.tolerance
     }
 }
+
+/// Appends the rows of `cases` to a validation table; returns how many failed.
+pub(crate) fn push_cases(md: &mut String, cases: &[Case]) -> usize {
+    for c in cases {
+        push_case_row(md, &c.name, &c.reference, &c.measured, c.error, c.tolerance);
+    }
+    cases.iter().filter(|c| !c.passed()).count()
+}
+
+/// Appends one case to a validation table and prints its verdict (pass when
+/// `error <= tolerance`, so a NaN error fails).
+pub(crate) fn push_case_row(
+    md: &mut String,
+    name: &str,
+    reference: &str,
+    measured: &str,
+    error: f64,
+    tolerance: f64,
+) {
+    let verdict = if error <= tolerance { "pass" } else { "FAIL" };
+    println!("{verdict}: {name} ({error:.2e} <= {tolerance:.0e})");
+    md.push_str(&format!(
+        "| {name} | {reference} | {measured} | {error:.2e} | {tolerance:.0e} | {verdict} |\n"
+    ));
+}

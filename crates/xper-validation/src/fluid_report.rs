@@ -39,7 +39,7 @@ pub fn fluid_section(md: &mut String, full: bool) -> Result<usize, CliError> {
          | case | reference | measured | error | tolerance | result |\n|---|---|---|---|---|---|\n",
         if full { "Full resolution (`xper validate --full`)." } else { "Reduced resolution (`xper validate`; `--full` refines)." }
     ));
-    let failures = crate::report::push_cases(md, &cases);
+    let failures = crate::case::push_cases(md, &cases);
     if !refs.exists() {
         md.push_str("\nThe lid-driven cavity was not run: `../shared/validation_refs/Ghia1982` is absent.\n");
     }

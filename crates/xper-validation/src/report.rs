@@ -1,8 +1,8 @@
 //! VALIDATION.md: every case run and written as tables, one section per physics, and the
 //! external problem suite.
 
-use crate::{Case, RunError as CliError};
-use xper_math::Real;
+use crate::case::{push_case_row, push_cases};
+use crate::RunError as CliError;
 
 /// Runs every case at full resolution and writes the report; fails if a case fails. With
 /// `full`, also runs (or continues) the paper's fracture applications at its resolution
@@ -130,31 +130,6 @@ fn fracture_section(md: &mut String) -> Result<usize, CliError> {
          | case | reference | measured | error | tolerance | result |\n|---|---|---|---|---|---|\n",
     );
     Ok(push_cases(md, &cases))
-}
-
-/// Appends the rows of `cases` to a validation table; returns how many failed.
-pub(crate) fn push_cases(md: &mut String, cases: &[Case]) -> usize {
-    for c in cases {
-        push_case_row(md, &c.name, &c.reference, &c.measured, c.error, c.tolerance);
-    }
-    cases.iter().filter(|c| !c.passed()).count()
-}
-
-/// Appends one case to a validation table and prints its verdict (pass when
-/// `error <= tolerance`, so a NaN error fails).
-fn push_case_row(
-    md: &mut String,
-    name: &str,
-    reference: &str,
-    measured: &str,
-    error: Real,
-    tolerance: Real,
-) {
-    let verdict = if error <= tolerance { "pass" } else { "FAIL" };
-    println!("{verdict}: {name} ({error:.2e} <= {tolerance:.0e})");
-    md.push_str(&format!(
-        "| {name} | {reference} | {measured} | {error:.2e} | {tolerance:.0e} | {verdict} |\n"
-    ));
 }
 
 /// The external problem suite (`../shared/fclib`, next to the repository): appends its table

@@ -14,10 +14,10 @@ pub mod stepping;
 
 use crate::checkpoint::{checkpoint_bytes, read_checkpoint};
 use crate::comparison::SerialComparison;
-use crate::driver::RunOptions;
 use crate::outputs::io_err;
 use crate::ranks::RankSummary;
 use crate::rigid::frames::{bodies_grid, contacts_grid};
+use crate::simulation::RunOptions;
 use crate::simulation::{RunFacts, Simulation, StepFailure};
 use crate::RunError;
 use build::{coupled_state, fluid_params};

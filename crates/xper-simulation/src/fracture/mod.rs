@@ -11,9 +11,9 @@ pub mod outputs;
 pub mod stepping;
 
 use crate::comparison::SerialComparison;
-use crate::driver::RunOptions;
 use crate::outputs::io_err;
 use crate::ranks::RankSummary;
+use crate::simulation::RunOptions;
 use crate::simulation::{RunFacts, Simulation, StepFailure};
 use crate::RunError;
 use checkpoint::Checkpoint;

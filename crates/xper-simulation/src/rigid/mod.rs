@@ -9,9 +9,9 @@ pub mod stepping;
 
 use crate::checkpoint::{checkpoint_bytes, read_checkpoint};
 use crate::comparison::SerialComparison;
-use crate::driver::RunOptions;
 use crate::outputs::{create_output_dir, io_err};
 use crate::ranks::RankSummary;
+use crate::simulation::RunOptions;
 use crate::simulation::{RunFacts, Simulation, StepFailure};
 use crate::RunError;
 use build::{release_body_descriptions, world_from_scene};
