@@ -2,12 +2,12 @@
 //! decade, smoother throughput), the whole fluid step with and without immersed grains, and
 //! the paper's two-grain scene; saved as `fluid.json`, reported in BENCHMARKS.md.
 
+use crate::poisson::{run_benchmark, BenchFigures};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::time::Instant;
 use xper_fluid::{FluidBoundary, FluidParams, FluidSolver, FluidState, ImmersedDisk, MacGrid};
 use xper_math::{Real, Vector};
-use xper_poisson::bench::{run_benchmark, BenchFigures};
 use xper_poisson::{Boundary, PoissonSide as Pressure};
 use xper_simulation::RunError as CliError;
 

@@ -5,6 +5,7 @@
 
 pub mod fluid;
 pub mod fracture;
+pub mod poisson;
 pub mod solvers;
 mod stats;
 

@@ -216,7 +216,7 @@ fn measure(nx: usize, ny: usize, processes: usize) -> Result<serde_json::Value, 
         relative_tolerance: 1e-8,
         ..MultigridParams::default()
     };
-    let rhs = xper_poisson::bench::random_values(nx * ny, 5);
+    let rhs = xper_poisson::random::random_values(nx * ny, 5);
     let mut serial = Multigrid::new(shape, boundary, params).map_err(|e| e.to_string())?;
     let mut phi = vec![0.0; nx * ny];
     let mut serial_seconds = f64::INFINITY;

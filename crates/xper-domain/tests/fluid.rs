@@ -75,7 +75,7 @@ fn the_strip_multigrid_on_several_processes_agrees_with_the_serial_multigrid() {
         relative_tolerance: 1e-12,
         ..MultigridParams::default()
     };
-    let rhs = xper_poisson::bench::random_values(nx * ny, 12345);
+    let rhs = xper_poisson::random::random_values(nx * ny, 12345);
     for boundary in boundaries {
         let mut expected = vec![0.0; nx * ny];
         Multigrid::new(shape, boundary, params)
@@ -164,7 +164,7 @@ fn a_non_singular_strip_solve_gives_the_same_bits_on_1_to_8_processes() {
     ];
     for ((nx, ny), boundaries, params, processes) in cases {
         let shape = GridShape::square_cells(nx, ny, 1.0);
-        let rhs = xper_poisson::bench::random_values(nx * ny, 99);
+        let rhs = xper_poisson::random::random_values(nx * ny, 99);
         for boundary in boundaries {
             let solve_on = |ranks| {
                 let (phi, outcomes) = solve_in_strips(shape, boundary, params, &rhs, ranks);

@@ -11,7 +11,7 @@ use xper_poisson::{
 
 /// A random rhs with its mean removed (a solvable Neumann problem).
 fn random_rhs(n: usize) -> Vec<f64> {
-    let mut values = xper_poisson::bench::random_values(n, 11);
+    let mut values = xper_poisson::random::random_values(n, 11);
     let mean = values.iter().sum::<f64>() / n as f64;
     values.iter_mut().for_each(|v| *v -= mean);
     values

@@ -54,14 +54,15 @@
 //! grid, copying the rhs and initial guess in counts 1, copying the answer out 0.5 (1 with the
 //! mean removal of singular problems); the coarsest solve counts `2 N_c^2 / (8 N)` (its flops
 //! over those of a fine sweep). A V(2,1) cycle is thus about `5 * 4/3 + 1` units.
-//! [`mod@bench`] also reports a timed figure: the solve time over the time of one fine sweep.
+//! The benchmark (`xper_bench::poisson`) also reports a timed figure: the solve time over the
+//! time of one fine sweep.
 //!
 //! # Defaults and measured figures
 //!
 //! V(2,1) with red-black SOR `omega = 1.2` minimised the work per decade among V(1,1), V(2,1),
 //! V(1,2), V(2,2), F(1,1), F(2,1) and `omega` in 1..1.35 while keeping the asymptotic factor
 //! below 0.1 (V(1,1) reaches 0.10 to 0.12). On 512^2 and 1024^2, all-Neumann, doubly periodic
-//! and Neumann with a Dirichlet top (`examples/poisson_bench.rs`, one core): 6 cycles to 1e-8
+//! and Neumann with a Dirichlet top (`crates/xper-bench/examples/poisson_bench.rs`, one core): 6 cycles to 1e-8
 //! from a random rhs, mean factor 0.036, asymptotic factor 0.056 to 0.072, 5.6 to 5.7 counted
 //! (4.2 to 5.1 timed) work units per decade, about 8e8 smoothed cells per second, solves of
 //! 12 ms (512^2) and 55 ms (1024^2). Elongated and odd grids (64 x 640, 82 x 440, 80 x 320,
@@ -80,11 +81,11 @@
 //!   180-192: over-relaxation of the red-black smoother.
 #![warn(missing_docs)]
 
-pub mod bench;
 mod coarse;
 mod level;
 mod multigrid;
 mod operator;
+pub mod random;
 mod strip_hierarchy;
 mod strip_level;
 pub mod strip_multigrid;

@@ -397,14 +397,14 @@ impl Multigrid {
     /// The asymptotic convergence factor: the residual reduction of the last of `cycles`
     /// cycles on `Lap e = 0` from a random `e` (rescaled after each cycle), the error
     /// component that survives being the slowest one (benchmark support).
-    pub(crate) fn asymptotic_factor(&mut self, cycles: u32, state: &mut u64) -> f64 {
+    pub fn asymptotic_factor(&mut self, cycles: u32, state: &mut u64) -> f64 {
         let fine_cells = self.shape.cells() as f64;
         let fine = &mut self.levels[0];
         fine.f.fill(0.0);
         for j in 0..fine.ny {
             let start = fine.row_start(j);
             for u in &mut fine.u[start..start + fine.nx] {
-                *u = crate::bench::random(state);
+                *u = crate::random::random(state);
             }
         }
         let mut work = Work {
@@ -452,7 +452,7 @@ impl Multigrid {
 
     /// Times `sweeps` red-black sweeps on the finest level (benchmark support; the level's
     /// arrays are overwritten).
-    pub(crate) fn time_sweeps(&mut self, sweeps: u32) -> f64 {
+    pub fn time_sweeps(&mut self, sweeps: u32) -> f64 {
         let fine = &mut self.levels[0];
         let start = std::time::Instant::now();
         for _ in 0..sweeps {

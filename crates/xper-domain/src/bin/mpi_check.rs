@@ -148,7 +148,7 @@ fn pressure_matches_one_strip(comm: &MpiCommunicator) -> bool {
         max_cycles: 4,
         ..MultigridParams::default()
     };
-    let rhs = xper_poisson::bench::random_values(nx * ny, 7);
+    let rhs = xper_poisson::random::random_values(nx * ny, 7);
     let solve = |layout: StripLayout, strip: usize, links: &mut dyn xper_poisson::RowLinks| {
         let rows = layout.rows(strip);
         let mut solver = xper_poisson::StripMultigrid::new(shape, boundary, params, layout, strip)

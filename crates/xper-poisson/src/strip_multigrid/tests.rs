@@ -4,7 +4,7 @@ use super::*;
 use crate::strips::OneStrip;
 use crate::PoissonSide::{Dirichlet, Neumann, Periodic};
 
-use crate::bench::random_values as random_rhs;
+use crate::random::random_values as random_rhs;
 use crate::strips::CountingLinks;
 
 /// One strip holding the whole grid solves the same discrete problem as the serial

@@ -1,8 +1,10 @@
-//! Figures of the solver on one grid: convergence, work and throughput.
+//! Figures of the pressure multigrid (`xper_poisson`) on one grid: convergence, work and
+//! throughput.
 
-use crate::{Boundary, GridShape, Multigrid, MultigridError, MultigridParams};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
+use xper_poisson::random::random;
+use xper_poisson::{Boundary, GridShape, Multigrid, MultigridError, MultigridParams};
 
 /// Measured figures of one grid and boundary (default [`MultigridParams`], tolerance `1e-8`).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -33,23 +35,6 @@ pub struct BenchFigures {
     pub solve_seconds: f64,
     /// Cells per second of the whole solve.
     pub solve_cells_per_second: f64,
-}
-
-/// `n` reproducible uniform random numbers in `[-1, 1)` from `seed` (a right-hand side for
-/// tests and benchmarks).
-pub fn random_values(n: usize, seed: u64) -> Vec<f64> {
-    let mut state = seed;
-    (0..n).map(|_| random(&mut state)).collect()
-}
-
-/// A reproducible uniform random number in `[-1, 1)` (splitmix64).
-pub(crate) fn random(state: &mut u64) -> f64 {
-    *state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    let mut z = *state;
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^= z >> 31;
-    (z >> 11) as f64 / (1u64 << 52) as f64 - 1.0
 }
 
 /// Solves `Lap phi = rhs` with a random rhs (uniform in `[-1, 1)`, mean removed when

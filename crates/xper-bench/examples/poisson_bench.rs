@@ -1,7 +1,7 @@
-//! Prints the multigrid figures of `xper_poisson::bench` for the acceptance grids:
-//! `cargo run -p xper-poisson --release --example poisson_bench [-- nx ny]`.
+//! Prints the multigrid figures of `xper_bench::poisson` for the acceptance grids:
+//! `cargo run -p xper-bench --release --example poisson_bench [-- nx ny]`.
 
-use xper_poisson::bench::{run_benchmark_with, BenchFigures};
+use xper_bench::poisson::{run_benchmark_with, BenchFigures};
 use xper_poisson::{Boundary, CycleType, MultigridParams, PoissonSide};
 
 fn families() -> [(&'static str, Boundary); 3] {
