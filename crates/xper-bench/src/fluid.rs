@@ -9,7 +9,7 @@ use std::time::Instant;
 use xper_fluid::{FluidBoundary, FluidParams, FluidSolver, FluidState, ImmersedDisk, MacGrid};
 use xper_math::{Real, Vector};
 use xper_poisson::{Boundary, PoissonSide as Pressure};
-use xper_simulation::RunError as CliError;
+use xper_simulation::RunError;
 
 /// File of the results in the benchmark directory.
 pub const RESULTS_FILE: &str = "fluid.json";
@@ -39,12 +39,12 @@ pub struct FluidBench {
 
 /// Mean of `steps` lid-driven steps on `n x n` cells of a unit box, after 5 warm-up steps,
 /// with `grains` disks of 8 cells diameter on a lattice moving at 0.1 m/s.
-fn time_steps(n: usize, grains: usize, steps: usize) -> Result<StepFigures, CliError> {
+fn time_steps(n: usize, grains: usize, steps: usize) -> Result<StepFigures, RunError> {
     let boundary = FluidBoundary::lid_driven(1.0);
     let grid = MacGrid::square(n, 1.0);
     let params = FluidParams::new(1.0, 1e-3, boundary);
     let mut solver =
-        FluidSolver::new(grid, &params).map_err(|e| CliError::Runtime(e.to_string()))?;
+        FluidSolver::new(grid, &params).map_err(|e| RunError::Runtime(e.to_string()))?;
     let mut state = FluidState::at_rest(grid, &params.boundary);
     let side = (grains as f64).sqrt().ceil() as usize;
     let disks: Vec<ImmersedDisk> = (0..grains)
@@ -64,7 +64,7 @@ fn time_steps(n: usize, grains: usize, steps: usize) -> Result<StepFigures, CliE
         let start = Instant::now();
         let report = solver
             .step(&params, &mut state, dt, &disks)
-            .map_err(|e| CliError::Runtime(e.to_string()))?;
+            .map_err(|e| RunError::Runtime(e.to_string()))?;
         if k >= 5 {
             total += start.elapsed().as_secs_f64();
             projection += report.times[2];
@@ -84,7 +84,7 @@ fn time_steps(n: usize, grains: usize, steps: usize) -> Result<StepFigures, CliE
 }
 
 /// Runs the fluid benchmarks and writes `fluid.json` into `out`.
-pub fn bench_fluid(out: &Path, machine: String) -> Result<(), CliError> {
+pub fn bench_fluid(out: &Path, machine: String) -> Result<(), RunError> {
     let families = [
         ("Neumann (closed box)", Boundary::all(Pressure::Neumann)),
         ("periodic", Boundary::all(Pressure::Periodic)),
@@ -129,25 +129,25 @@ pub fn bench_fluid(out: &Path, machine: String) -> Result<(), CliError> {
         two_grains_steps: count,
     };
     xper_io::write_json_atomic(&out.join(RESULTS_FILE), &bench)
-        .map_err(|e| CliError::Runtime(e.to_string()))
+        .map_err(|e| RunError::Runtime(e.to_string()))
 }
 
 /// Runs the first `until` seconds of the two-grain scene without outputs.
-fn two_grains(scene: &Path, until: Real) -> Result<(f64, Real, u64), CliError> {
-    let scene = xper_scene::load_scene(scene).map_err(|e| CliError::BadInput(e.to_string()))?;
+fn two_grains(scene: &Path, until: Real) -> Result<(f64, Real, u64), RunError> {
+    let scene = xper_scene::load_scene(scene).map_err(|e| RunError::BadInput(e.to_string()))?;
     let desc = scene
         .fluid
         .as_ref()
-        .ok_or_else(|| CliError::BadInput("the two-grain scene has no [fluid]".into()))?;
+        .ok_or_else(|| RunError::BadInput("the two-grain scene has no [fluid]".into()))?;
     let params = xper_simulation::fluid::build::fluid_params(desc, scene.dt);
     let mut state = xper_simulation::fluid::build::coupled_state(&scene, desc, &params);
     let mut stepper = xper_fluid::CoupledStepper::new(&params, &state)
-        .map_err(|e| CliError::Runtime(e.to_string()))?;
+        .map_err(|e| RunError::Runtime(e.to_string()))?;
     let start = Instant::now();
     while state.world.time < until {
         stepper
             .step(&params, &mut state)
-            .map_err(|e| CliError::Runtime(e.to_string()))?;
+            .map_err(|e| RunError::Runtime(e.to_string()))?;
     }
     Ok((
         start.elapsed().as_secs_f64(),

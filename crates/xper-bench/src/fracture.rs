@@ -11,7 +11,7 @@ use xper_scene::MeshSource;
 
 use crate::stats::median;
 use xper_simulation::fracture::crack::{mesh_centre, midpoint};
-use xper_simulation::RunError as CliError;
+use xper_simulation::RunError;
 
 /// Prefix of the JSON files of fracture results in the results directory.
 pub const FILE_PREFIX: &str = "fracture-";
@@ -94,7 +94,7 @@ pub fn bench_one(
     path: &Path,
     steps: Option<u64>,
     machine: String,
-) -> Result<FractureBenchResult, CliError> {
+) -> Result<FractureBenchResult, RunError> {
     let built = Instant::now();
     let (scene, mut model) = xper_simulation::fracture::build::load_model(path)?;
     let build_time_s = built.elapsed().as_secs_f64();
@@ -113,7 +113,7 @@ pub fn bench_one(
     for _ in 0..steps {
         let r = stepper
             .step(&mut model)
-            .map_err(|e| CliError::Runtime(format!("{}: {e}", path.display())))?;
+            .map_err(|e| RunError::Runtime(format!("{}: {e}", path.display())))?;
         if r.step == 1 {
             points = r.contacts;
         }

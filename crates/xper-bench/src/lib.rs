@@ -16,7 +16,7 @@ use std::path::{Path, PathBuf};
 use xper_geometry::{ContactSet, Detector};
 use xper_nscd::MoreauJean;
 use xper_simulation::rigid::build::world_from_scene;
-use xper_simulation::RunError as CliError;
+use xper_simulation::RunError;
 
 /// Arguments of `xper bench`.
 #[derive(clap::Args)]
@@ -117,7 +117,7 @@ fn bench_one(
     path: &Path,
     steps: Option<u64>,
     settled: usize,
-) -> Result<BenchResult, CliError> {
+) -> Result<BenchResult, RunError> {
     let mut world = world_from_scene(&scene);
     xper_simulation::rigid::build::release_body_descriptions(&mut scene);
     let steps = steps.map_or(scene.steps, |s| s.min(scene.steps));
@@ -131,7 +131,7 @@ fn bench_one(
     for _ in 0..steps {
         let r = stepper
             .step(&mut world)
-            .map_err(|e| CliError::Runtime(format!("{}: {e}", path.display())))?;
+            .map_err(|e| RunError::Runtime(format!("{}: {e}", path.display())))?;
         total.push(r.times.total * 1e3);
         sweeps.push(r.iterations as f64);
         contacts.push(r.contacts as f64);
@@ -190,23 +190,23 @@ fn bench_one(
 }
 
 /// `xper bench`.
-pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
+pub fn bench(args: &BenchArgs) -> Result<(), RunError> {
     if args.report_only {
         return write_report(&args.out, &args.report);
     }
     if let Some(dir) = &args.fclib {
         std::fs::create_dir_all(&args.out)
-            .map_err(|e| CliError::BadInput(format!("{}: {e}", args.out.display())))?;
+            .map_err(|e| RunError::BadInput(format!("{}: {e}", args.out.display())))?;
         let suite = crate::solvers::bench_suite(dir, machine())?;
         let file = args.out.join(crate::solvers::RESULTS_FILE);
-        xper_io::write_json_atomic(&file, &suite).map_err(|e| CliError::Runtime(e.to_string()))?;
+        xper_io::write_json_atomic(&file, &suite).map_err(|e| RunError::Runtime(e.to_string()))?;
         if args.scenes.is_empty() {
             return write_report(&args.out, &args.report);
         }
     }
     if args.fluid {
         std::fs::create_dir_all(&args.out)
-            .map_err(|e| CliError::BadInput(format!("{}: {e}", args.out.display())))?;
+            .map_err(|e| RunError::BadInput(format!("{}: {e}", args.out.display())))?;
         crate::fluid::bench_fluid(&args.out, machine())?;
         if args.scenes.is_empty() {
             return write_report(&args.out, &args.report);
@@ -222,10 +222,10 @@ pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
         args.scenes.clone()
     };
     std::fs::create_dir_all(&args.out)
-        .map_err(|e| CliError::BadInput(format!("{}: {e}", args.out.display())))?;
+        .map_err(|e| RunError::BadInput(format!("{}: {e}", args.out.display())))?;
     if args.single {
         let any = xper_scene::load_any_scene(&scenes[0])
-            .map_err(|e| CliError::BadInput(e.to_string()))?;
+            .map_err(|e| RunError::BadInput(e.to_string()))?;
         let scene = match any {
             xper_scene::AnyScene::Rigid(scene) => scene,
             xper_scene::AnyScene::Fracture(fracture) => {
@@ -238,7 +238,7 @@ pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
                     result.scene
                 ));
                 xper_io::write_json_atomic(&file, &result)
-                    .map_err(|e| CliError::Runtime(e.to_string()))?;
+                    .map_err(|e| RunError::Runtime(e.to_string()))?;
                 println!(
                     "{}",
                     serde_json::to_string_pretty(&result).unwrap_or_default()
@@ -248,14 +248,14 @@ pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
         };
         let result = bench_one(scene, &scenes[0], args.steps, args.settled)?;
         let file = args.out.join(format!("{}.json", result.scene));
-        xper_io::write_json_atomic(&file, &result).map_err(|e| CliError::Runtime(e.to_string()))?;
+        xper_io::write_json_atomic(&file, &result).map_err(|e| RunError::Runtime(e.to_string()))?;
         println!(
             "{}",
             serde_json::to_string_pretty(&result).unwrap_or_default()
         );
         return Ok(());
     }
-    let exe = std::env::current_exe().map_err(|e| CliError::Runtime(e.to_string()))?;
+    let exe = std::env::current_exe().map_err(|e| RunError::Runtime(e.to_string()))?;
     for scene in &scenes {
         let mut cmd = std::process::Command::new(&exe);
         cmd.args([
@@ -271,9 +271,9 @@ pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
         if let Some(s) = args.steps {
             cmd.args(["--steps", &s.to_string()]);
         }
-        let status = cmd.status().map_err(|e| CliError::Runtime(e.to_string()))?;
+        let status = cmd.status().map_err(|e| RunError::Runtime(e.to_string()))?;
         if !status.success() {
-            return Err(CliError::Runtime(format!(
+            return Err(RunError::Runtime(format!(
                 "benchmark of {} failed ({status})",
                 scene.display()
             )));
@@ -287,9 +287,9 @@ pub fn bench(args: &BenchArgs) -> Result<(), CliError> {
 fn read_results<T: serde::de::DeserializeOwned>(
     dir: &Path,
     prefix: Option<&str>,
-) -> Result<Vec<T>, CliError> {
+) -> Result<Vec<T>, RunError> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(|e| CliError::Runtime(format!("{}: {e}", dir.display())))?
+        .map_err(|e| RunError::Runtime(format!("{}: {e}", dir.display())))?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| {
             let name = p.file_name().and_then(|n| n.to_str()).unwrap_or("");
@@ -310,9 +310,9 @@ fn read_results<T: serde::de::DeserializeOwned>(
         .iter()
         .map(|p| {
             let text = std::fs::read_to_string(p)
-                .map_err(|e| CliError::Runtime(format!("{}: {e}", p.display())))?;
+                .map_err(|e| RunError::Runtime(format!("{}: {e}", p.display())))?;
             serde_json::from_str(&text).map_err(|e| {
-                CliError::Runtime(format!(
+                RunError::Runtime(format!(
                     "{}: not a benchmark result of this version ({e}); re-run its benchmark \
                      or delete it",
                     p.display()
@@ -344,7 +344,7 @@ fn machines_line<'a>(rows: impl Iterator<Item = (&'a str, &'a str)>) -> String {
 }
 
 /// Regenerates the Markdown report from every JSON result in `dir`.
-fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
+fn write_report(dir: &Path, report: &Path) -> Result<(), RunError> {
     let mut results: Vec<BenchResult> = read_results(dir, None)?;
     results.sort_by_key(|r| r.bodies);
     let mut md = String::from(
@@ -395,9 +395,9 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
     let fluid_file = dir.join(crate::fluid::RESULTS_FILE);
     if fluid_file.exists() {
         let text = std::fs::read_to_string(&fluid_file)
-            .map_err(|e| CliError::Runtime(format!("{}: {e}", fluid_file.display())))?;
+            .map_err(|e| RunError::Runtime(format!("{}: {e}", fluid_file.display())))?;
         let fluid = serde_json::from_str(&text).map_err(|e| {
-            CliError::Runtime(format!(
+            RunError::Runtime(format!(
                 "{}: not a fluid benchmark result of this version ({e})",
                 fluid_file.display()
             ))
@@ -412,13 +412,14 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), CliError> {
             dir.display()
         ));
     }
-    xper_io::write_atomic(report, md.as_bytes()).map_err(|e| CliError::Runtime(e.to_string()))?;
+    xper_io::write_atomic(report, md.as_bytes()).map_err(|e| RunError::Runtime(e.to_string()))?;
     println!("wrote {}", report.display());
     Ok(())
 }
 
-/// A scene path argument: the path itself, or `DIR/scene.toml` for a directory.
-fn scene_path_parser() -> impl clap::builder::TypedValueParser<Value = PathBuf> {
+/// [`xper_simulation::scene_path`] as clap's parser of a scene argument: the path itself, or
+/// `DIR/scene.toml` for a directory.
+pub fn scene_path_parser() -> impl clap::builder::TypedValueParser<Value = PathBuf> {
     use clap::builder::TypedValueParser;
     clap::builder::PathBufValueParser::new().try_map(xper_simulation::scene_path)
 }

@@ -7,7 +7,7 @@
 
 use serde::{Deserialize, Serialize};
 use std::path::Path;
-use xper_simulation::RunError as CliError;
+use xper_simulation::RunError;
 use xper_solver::solve_timed;
 use xper_solver::ErrorScaling;
 use xper_validation::suite::{load_local, suite_files, suite_solvers, suite_tolerance};
@@ -66,10 +66,10 @@ fn published_fastest(name: &str) -> Option<f64> {
 }
 
 /// Runs every solver on every problem of `dir`.
-pub fn bench_suite(dir: &Path, machine: String) -> Result<SolverBench, CliError> {
+pub fn bench_suite(dir: &Path, machine: String) -> Result<SolverBench, RunError> {
     let files = suite_files(dir);
     if files.is_empty() {
-        return Err(CliError::BadInput(format!(
+        return Err(RunError::BadInput(format!(
             "{}: no problem files (.dat{}) found in its hdf5_3d_local, hdf5_3d_global or siconos_dat_2d folders",
             dir.display(),
             if cfg!(feature = "hdf5") { ", .hdf5" } else { "" }

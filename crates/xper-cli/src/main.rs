@@ -10,7 +10,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use xper_bench as bench;
-use xper_cli::{solve, CliError};
+use xper_cli::solve;
+use xper_simulation::RunError;
 use xper_simulation::RunOptions;
 
 /// Counts heap bytes, so that benchmarks report the memory a run's data needs exactly.
@@ -33,14 +34,14 @@ enum Command {
     /// Validate a scene file: exit 0, or print every error (file:line:column: field: reason) and exit 2.
     Check {
         /// Scene file (TOML), or a directory holding scene.toml.
-        #[arg(value_parser = xper_cli::scene_path_parser())]
+        #[arg(value_parser = xper_bench::scene_path_parser())]
         scene: PathBuf,
     },
     /// Run a scene and write result.pvd, frames/, series.csv, series.png, summary.json,
     /// checkpoint.bin (fracture scenes: also force_displacement.png and crack_pattern.png).
     Run {
         /// Scene file (TOML), or a directory holding scene.toml.
-        #[arg(value_parser = xper_cli::scene_path_parser())]
+        #[arg(value_parser = xper_bench::scene_path_parser())]
         scene: PathBuf,
         /// Output directory (created if needed).
         #[arg(long)]
@@ -131,11 +132,11 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(CliError::BadInput(message)) => {
+        Err(RunError::BadInput(message)) => {
             eprintln!("{message}");
             ExitCode::from(2)
         }
-        Err(CliError::Runtime(message)) => {
+        Err(RunError::Runtime(message)) => {
             eprintln!("error: {message}");
             ExitCode::from(1)
         }
@@ -145,7 +146,7 @@ fn main() -> ExitCode {
 /// `xper run`: under `mpirun` with more than one process (binary built with `--features mpi`)
 /// a distributed run, otherwise a run on this process.
 #[cfg(feature = "mpi")]
-fn run_maybe_distributed(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
+fn run_maybe_distributed(opts: &RunOptions, quiet: bool) -> Result<(), RunError> {
     let comm = xper_domain::MpiCommunicator::launched()
         .then(xper_domain::MpiCommunicator::init)
         .flatten();
@@ -155,7 +156,7 @@ fn run_maybe_distributed(opts: &RunOptions, quiet: bool) -> Result<(), CliError>
             // A failure every process met alike (bad input) ends them all normally; anything
             // else a process met alone would leave the others waiting: end them all.
             match (&result, xper_domain::Communicator::size(&comm)) {
-                (Err(CliError::Runtime(message)), n) if n > 1 => {
+                (Err(RunError::Runtime(message)), n) if n > 1 => {
                     xper_domain::Communicator::abort(&comm, message, 1)
                 }
                 _ => result,
@@ -167,7 +168,7 @@ fn run_maybe_distributed(opts: &RunOptions, quiet: bool) -> Result<(), CliError>
 
 /// `xper run` on this process (built without MPI).
 #[cfg(not(feature = "mpi"))]
-fn run_maybe_distributed(opts: &RunOptions, quiet: bool) -> Result<(), CliError> {
+fn run_maybe_distributed(opts: &RunOptions, quiet: bool) -> Result<(), RunError> {
     xper_simulation::run(opts, quiet).map(drop)
 }
 

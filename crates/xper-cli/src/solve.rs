@@ -6,11 +6,11 @@
 //! shared natural-map error of `xper_solver::error_measure` under both published scalings
 //! (`|q|`, and `max(|q|, |r|, |u|)`), see `../shared/fclib/FORMATS.md`.
 
-use crate::CliError;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 use xper_fclib::{read_local, ReadAs};
+use xper_simulation::RunError;
 use xper_solver::{solve_timed, ErrorScaling, FrictionProblem, ProblemErrorMeasure, SolverKind};
 
 /// Solver names accepted on the command line.
@@ -117,19 +117,19 @@ pub struct SolveOutput {
 }
 
 /// Reads a problem and reduces it to the local form.
-pub fn load_local(path: &Path, form: FormArg) -> Result<(FrictionProblem, &'static str), CliError> {
+pub fn load_local(path: &Path, form: FormArg) -> Result<(FrictionProblem, &'static str), RunError> {
     let how = match form {
         FormArg::Auto => ReadAs::Auto,
         FormArg::Local => ReadAs::Local,
         FormArg::Global => ReadAs::Global,
     };
-    read_local(path, how).map_err(CliError::BadInput)
+    read_local(path, how).map_err(RunError::BadInput)
 }
 
 /// Runs `xper solve`: prints the JSON; an unconverged solve is an error (exit 1) after printing.
-pub fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
+pub fn run_solve(args: &SolveArgs) -> Result<(), RunError> {
     if !(args.tol > 0.0 && args.tol.is_finite()) {
-        return Err(CliError::BadInput(format!(
+        return Err(RunError::BadInput(format!(
             "--tol {}: must be a positive number",
             args.tol
         )));
@@ -148,7 +148,7 @@ pub fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
         args.max_iter,
         scaling,
     )
-    .map_err(|e| CliError::BadInput(format!("{}: {e}", args.file.display())))?;
+    .map_err(|e| RunError::BadInput(format!("{}: {e}", args.file.display())))?;
     let output = SolveOutput {
         file: args.file.display().to_string(),
         solver: report.solver.clone(),
@@ -168,17 +168,17 @@ pub fn run_solve(args: &SolveArgs) -> Result<(), CliError> {
         read_time_s,
     };
     let json = serde_json::to_string_pretty(&output)
-        .map_err(|e| CliError::Runtime(format!("JSON: {e}")))?;
+        .map_err(|e| RunError::Runtime(format!("JSON: {e}")))?;
     println!("{json}");
     if let Some(path) = &args.solution {
         let solution = serde_json::json!({ "r": report.r, "u": report.u });
         xper_io::write_json_atomic(path, &solution)
-            .map_err(|e| CliError::Runtime(format!("{}: {e}", path.display())))?;
+            .map_err(|e| RunError::Runtime(format!("{}: {e}", path.display())))?;
     }
     if report.converged {
         Ok(())
     } else {
-        Err(CliError::Runtime(format!(
+        Err(RunError::Runtime(format!(
             "{}: {} stopped after {} iterations at error {:.3e} (tolerance {:.1e})",
             args.file.display(),
             report.solver,

@@ -4,13 +4,13 @@
 
 use crate::fluid::{self as validation, resting_grain, settling_convergence};
 use crate::Case;
-use crate::RunError as CliError;
+use crate::RunError;
 use std::path::Path;
 
 /// Appends the fluid table to `md`; returns the number of failed cases.
-pub fn fluid_section(md: &mut String, full: bool) -> Result<usize, CliError> {
+pub fn fluid_section(md: &mut String, full: bool) -> Result<usize, RunError> {
     let refs = Path::new("../shared/validation_refs/Ghia1982");
-    let run = CliError::Runtime;
+    let run = RunError::Runtime;
     let mut cases: Vec<Case> = Vec::new();
     let (tg, cavity, divergence) = if full { (32, 128, 256) } else { (16, 64, 48) };
     cases.push(validation::taylor_green(tg).map_err(run)?);

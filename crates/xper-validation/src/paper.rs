@@ -7,7 +7,7 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::RunError as CliError;
+use crate::RunError;
 use xper_simulation::fracture::outputs::FractureSummary;
 use xper_simulation::RunOptions;
 
@@ -23,7 +23,7 @@ const SCENES: [&str; 3] = [
 
 /// The summary of a paper run: stepped to its end when `full`, else only reloaded from its
 /// last checkpoint; `None` when it has no checkpoint and `full` is off.
-fn paper_run(name: &str, full: bool) -> Result<Option<FractureSummary>, CliError> {
+fn paper_run(name: &str, full: bool) -> Result<Option<FractureSummary>, RunError> {
     let out = Path::new(RUNS_DIR).join(name);
     let resume = out.join("checkpoint.bin").exists();
     if !resume && !full {
@@ -40,7 +40,7 @@ fn paper_run(name: &str, full: bool) -> Result<Option<FractureSummary>, CliError
     let summary = xper_simulation::run(&opts, quiet)?;
     serde_json::from_value(summary)
         .map(Some)
-        .map_err(|e| CliError::Runtime(format!("{name}: summary: {e}")))
+        .map_err(|e| RunError::Runtime(format!("{name}: summary: {e}")))
 }
 
 fn progress(s: &FractureSummary) -> String {
@@ -145,7 +145,7 @@ fn bimaterial_row(name: &str, s: &FractureSummary) -> Row {
 
 /// Appends the section of the paper runs to `md`; returns the number of failed checks
 /// (the bimaterial rows say which load sign reproduces the paper and fail nothing).
-pub fn paper_section(md: &mut String, full: bool) -> Result<usize, CliError> {
+pub fn paper_section(md: &mut String, full: bool) -> Result<usize, RunError> {
     md.push_str(
         "\n## The paper's fracture applications at the paper's resolution\n\n\
          Run (or continued from their checkpoints) by `cargo run --release -p xper-cli -- validate \
@@ -167,7 +167,7 @@ pub fn paper_section(md: &mut String, full: bool) -> Result<usize, CliError> {
             Err(e) => {
                 failures += 1;
                 let message = match e {
-                    CliError::BadInput(m) | CliError::Runtime(m) => m,
+                    RunError::BadInput(m) | RunError::Runtime(m) => m,
                 };
                 md.push_str(&format!("| {name} | - | run failed: {message} | FAIL |\n"));
                 continue;
@@ -194,9 +194,9 @@ pub fn paper_section(md: &mut String, full: bool) -> Result<usize, CliError> {
     Ok(failures)
 }
 
-fn scene_steps(name: &str) -> Result<u64, CliError> {
+fn scene_steps(name: &str) -> Result<u64, RunError> {
     let path = PathBuf::from(format!("scenes/{name}/scene.toml"));
-    match xper_scene::load_any_scene(&path).map_err(|e| CliError::BadInput(e.to_string()))? {
+    match xper_scene::load_any_scene(&path).map_err(|e| RunError::BadInput(e.to_string()))? {
         xper_scene::AnyScene::Fracture(s) => Ok(s.steps),
         xper_scene::AnyScene::Rigid(s) => Ok(s.steps),
     }

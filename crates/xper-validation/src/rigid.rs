@@ -2,7 +2,7 @@
 //! compares one measured number with its reference. The test suite asserts every case; `xper
 //! validate` writes them all to VALIDATION.md.
 
-use crate::{Case, RunError as CliError};
+use crate::{Case, RunError};
 use xper_bodies::{Body, BodySet};
 use xper_laws::{InteractionLaw, LawTable, SignoriniCoulomb};
 use xper_math::{Real, Vector};
@@ -49,18 +49,18 @@ fn world(bodies: Vec<Body>, friction: Real, restitution: Real, params: StepParam
     World::new(set, laws, params)
 }
 
-fn run_steps(w: &mut World, steps: usize) -> Result<(), CliError> {
+fn run_steps(w: &mut World, steps: usize) -> Result<(), RunError> {
     let mut stepper = MoreauJean::new();
     for _ in 0..steps {
         stepper
             .step(w)
-            .map_err(|e| CliError::Runtime(e.to_string()))?;
+            .map_err(|e| RunError::Runtime(e.to_string()))?;
     }
     Ok(())
 }
 
 /// A 0.4 x 0.1 m block of density 1000 on an incline; returns (travel down the slope, lift, rotation).
-fn slide_on_incline(slope: Real, mu: Real, steps: usize) -> Result<(Real, Real, Real), CliError> {
+fn slide_on_incline(slope: Real, mu: Real, steps: usize) -> Result<(Real, Real, Real), RunError> {
     let (dir, up) = (
         Vector::new(slope.cos(), slope.sin()),
         Vector::new(-slope.sin(), slope.cos()),
@@ -85,7 +85,7 @@ fn slide_on_incline(slope: Real, mu: Real, steps: usize) -> Result<(Real, Real, 
     Ok((-d.dot(&dir), d.dot(&up), world.bodies.angle[0] - slope))
 }
 
-fn incline_cases() -> Result<Vec<Case>, CliError> {
+fn incline_cases() -> Result<Vec<Case>, RunError> {
     let (x, lift, rot) = slide_on_incline(0.3, 0.4, 400)?;
     let stick = Case {
         name: "block on an incline, tan(0.3 rad) = 0.309 <= mu = 0.4: sticks".into(),
@@ -110,7 +110,7 @@ fn incline_cases() -> Result<Vec<Case>, CliError> {
     Ok(vec![stick, slide])
 }
 
-fn drop_cases() -> Result<Vec<Case>, CliError> {
+fn drop_cases() -> Result<Vec<Case>, RunError> {
     let (r, height) = (0.05, 0.5);
     let disk = Body::disk(r, 1000.0, Vector::new(0.0, r + height));
     let floor = Body::wall(Vector::new(-1.0, 0.0), Vector::new(1.0, 0.0));
@@ -126,7 +126,7 @@ fn drop_cases() -> Result<Vec<Case>, CliError> {
     for _ in 0..1000 {
         stepper
             .step(&mut w)
-            .map_err(|e| CliError::Runtime(e.to_string()))?;
+            .map_err(|e| RunError::Runtime(e.to_string()))?;
         let vy = w.bodies.velocity[0].y;
         if landed {
             rebound = rebound.max(vy.abs());
@@ -158,7 +158,7 @@ fn drop_cases() -> Result<Vec<Case>, CliError> {
     ])
 }
 
-fn cradle(gap: Real) -> Result<[Real; 3], CliError> {
+fn cradle(gap: Real) -> Result<[Real; 3], RunError> {
     let (r, v0) = (0.1, 1.0);
     let bodies = (0..3)
         .map(|k| {
@@ -175,7 +175,7 @@ fn cradle(gap: Real) -> Result<[Real; 3], CliError> {
     Ok([0, 1, 2].map(|k| w.bodies.velocity[k].x / v0))
 }
 
-fn cradle_cases() -> Result<Vec<Case>, CliError> {
+fn cradle_cases() -> Result<Vec<Case>, RunError> {
     let mut cases = Vec::new();
     for (gap, exact, name) in [
         (
@@ -204,7 +204,7 @@ fn cradle_cases() -> Result<Vec<Case>, CliError> {
     Ok(cases)
 }
 
-fn column_case() -> Result<Case, CliError> {
+fn column_case() -> Result<Case, RunError> {
     let (r, n, dt) = (0.01, 10, 1e-3);
     let mut bodies: Vec<Body> = (0..n)
         .map(|k| Body::disk(r, 2000.0, Vector::new(0.0, r + 2.0 * r * k as Real)))
@@ -258,13 +258,13 @@ pub fn deposit_scene(count: usize, steps: usize) -> String {
 }
 
 /// The deposit's cases, its NLGS sweeps plain or Anderson-accelerated (`accelerated`).
-fn deposit_case(count: usize, steps: usize, accelerated: bool) -> Result<Vec<Case>, CliError> {
+fn deposit_case(count: usize, steps: usize, accelerated: bool) -> Result<Vec<Case>, RunError> {
     let mut text = deposit_scene(count, steps);
     if accelerated {
         text.push_str("\n[solver]\nacceleration = \"anderson\"\n");
     }
     let scene = xper_scene::parse_scene(&text, std::path::Path::new("deposit.toml"))
-        .map_err(|e| CliError::Runtime(e.to_string()))?;
+        .map_err(|e| RunError::Runtime(e.to_string()))?;
     let mut w = world_from_scene(&scene);
     let tolerance = w.params.projection_tolerance.unwrap_or(0.0);
     let mut stepper = MoreauJean::new();
@@ -272,7 +272,7 @@ fn deposit_case(count: usize, steps: usize, accelerated: bool) -> Result<Vec<Cas
     for _ in 0..steps {
         let r = stepper
             .step(&mut w)
-            .map_err(|e| CliError::Runtime(e.to_string()))?;
+            .map_err(|e| RunError::Runtime(e.to_string()))?;
         peak = peak.max(r.kinetic);
         non_converged += (!r.converged) as usize;
         total_sweeps += u64::from(r.iterations);
@@ -318,7 +318,7 @@ fn deposit_case(count: usize, steps: usize, accelerated: bool) -> Result<Vec<Cas
 }
 
 /// Every case, with the deposit of `deposit_disks` disks.
-pub fn all_cases(deposit_disks: usize, deposit_steps: usize) -> Result<Vec<Case>, CliError> {
+pub fn all_cases(deposit_disks: usize, deposit_steps: usize) -> Result<Vec<Case>, RunError> {
     let mut cases = incline_cases()?;
     cases.extend(drop_cases()?);
     cases.extend(cradle_cases()?);

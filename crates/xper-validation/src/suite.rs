@@ -3,17 +3,17 @@
 //! error against the tolerance, the Signorini-Coulomb conditions of its solution checked by
 //! code independent of the solvers').
 
-use crate::RunError as CliError;
+use crate::RunError;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use xper_fclib::{read_local, ReadAs};
 use xper_solver::{solve_timed, ErrorScaling, FrictionProblem, ProblemErrorMeasure, SolverKind};
 
 /// Reads a problem file in its local form (a bad-input error naming the file otherwise).
-pub fn load_local(path: &Path) -> Result<FrictionProblem, CliError> {
+pub fn load_local(path: &Path) -> Result<FrictionProblem, RunError> {
     read_local(path, ReadAs::Auto)
         .map(|(p, _)| p)
-        .map_err(CliError::BadInput)
+        .map_err(RunError::BadInput)
 }
 
 /// The suite's problem files under `dir`, sorted; HDF5 files only with the `hdf5` feature.
@@ -88,7 +88,7 @@ pub struct SuiteCase {
 
 /// Solves one suite problem with proximal Newton, NSGS (3000 sweeps) and Newton, stopping at
 /// the first that reaches the tolerance, and checks the best solution.
-pub fn validate_problem(path: &Path) -> Result<SuiteCase, CliError> {
+pub fn validate_problem(path: &Path) -> Result<SuiteCase, RunError> {
     let problem = load_local(path)?;
     let name = path
         .file_name()
@@ -122,7 +122,7 @@ pub fn validate_problem(path: &Path) -> Result<SuiteCase, CliError> {
         }
     }
     let Some((error, solver, r)) = best else {
-        return Err(CliError::Runtime(format!(
+        return Err(RunError::Runtime(format!(
             "{}: no solver could start",
             path.display()
         )));
