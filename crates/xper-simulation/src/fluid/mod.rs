@@ -14,7 +14,7 @@ pub mod stepping;
 
 use crate::checkpoint::{checkpoint_bytes, read_checkpoint};
 use crate::comparison::SerialComparison;
-use crate::outputs::io_err;
+use crate::outputs::{io_err, write_vtu_parts};
 use crate::ranks::RankSummary;
 use crate::rigid::frames::{bodies_grid, contacts_grid};
 use crate::simulation::RunOptions;
@@ -26,7 +26,7 @@ use std::path::Path;
 use stepping::{DistributedFluidRun, FluidRun, SerialFluid};
 use xper_domain::Communicator;
 use xper_fluid::{CoupledReport, CoupledState, FluidParams};
-use xper_io::{write_json_atomic, write_vti, write_vtu, PvdCollection, SeriesTable};
+use xper_io::{write_json_atomic, write_vti, PvdCollection, SeriesTable};
 use xper_math::Real;
 use xper_scene::Scene;
 
@@ -219,17 +219,11 @@ impl Simulation for FluidSimulation<'_> {
         let file = format!("frames/fluid_{step:08}.vti");
         write_vti(&dir.join(&file), &fluid).map_err(io_err)?;
         pvd.push(world.time, 0, file);
-        for (part, (name, grid)) in [
+        let parts = [
             ("bodies", bodies_grid(world)),
             ("contacts", contacts_grid(world, false)),
-        ]
-        .iter()
-        .enumerate()
-        {
-            let file = format!("frames/{name}_{step:08}.vtu");
-            write_vtu(&dir.join(&file), grid).map_err(io_err)?;
-            pvd.push(world.time, part as u32 + 1, file);
-        }
+        ];
+        write_vtu_parts(dir, pvd, step, world.time, 1, &parts)?;
         pvd.write(&dir.join("result.pvd")).map_err(io_err)
     }
     fn checkpoint(&self) -> Result<Vec<u8>, RunError> {

@@ -2,14 +2,14 @@
 //! and `particles.csv` columns, `summary.json`, `series.png` and `particles.png`.
 
 use crate::comparison::SerialComparison;
-use crate::outputs::{io_err, mean};
+use crate::outputs::{self, io_err, mean, series_curve};
 use crate::ranks::RankSummary;
 use crate::RunError;
 use serde::Serialize;
 use std::path::Path;
 use xper_fluid::immersed::ImmersedForcing;
 use xper_fluid::{CoupledState, FluidParams, ImmersedDisk};
-use xper_io::{plot_panels, Curve, ImageGrid, Panel, SeriesTable};
+use xper_io::{plot_panels, Curve, ImageGrid, SeriesTable};
 use xper_scene::Scene;
 
 /// Columns of `series.csv` for a fluid scene.
@@ -195,21 +195,9 @@ pub fn write_plots(
     dir: &Path,
     title: &str,
 ) -> Result<(), RunError> {
-    let time = series.column("time").unwrap_or_default();
-    let curve = |name: &str, label: &str| Curve {
-        label: label.into(),
-        points: time
-            .iter()
-            .copied()
-            .zip(series.column(name).unwrap_or_default())
-            .collect(),
-    };
-    let panel = |title: &str, y: &str, curves: Vec<Curve>, log_y: bool| Panel {
-        title: title.into(),
-        x_label: "time (s)".into(),
-        y_label: y.into(),
-        curves,
-        log_y,
+    let curve = |name: &str, label: &str| series_curve(series, "time", name, label);
+    let panel = |title: &str, y: &str, curves: Vec<Curve>, log_y: bool| {
+        outputs::panel(title, "time (s)", y, curves, log_y)
     };
     let panels = [
         panel(

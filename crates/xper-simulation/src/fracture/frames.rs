@@ -1,25 +1,10 @@
 //! VTU frames of a fracture run: the exploded elements as triangles (each with its own three
 //! points, so that cracks open visibly) and the interfaces as lines.
 
+use crate::outputs::{f64_array, i32_array};
 use xper_fracture::{FractureModel, Interface, InterfaceLaw};
 use xper_io::vtu::{VTK_LINE, VTK_TRIANGLE};
-use xper_io::{DataArray, DataValues, UnstructuredGrid};
-
-fn f64_array(name: &str, components: usize, values: Vec<f64>) -> DataArray {
-    DataArray {
-        name: name.into(),
-        components,
-        values: DataValues::F64(values),
-    }
-}
-
-fn i32_array(name: &str, values: Vec<i32>) -> DataArray {
-    DataArray {
-        name: name.into(),
-        components: 1,
-        values: DataValues::I32(values),
-    }
-}
+use xper_io::UnstructuredGrid;
 
 /// Current position (m) of local node `j` of element `e`: reference plus displacement.
 pub fn node_position(m: &FractureModel, e: usize, j: usize) -> [f64; 2] {

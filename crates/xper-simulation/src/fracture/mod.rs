@@ -11,7 +11,7 @@ pub mod outputs;
 pub mod stepping;
 
 use crate::comparison::SerialComparison;
-use crate::outputs::io_err;
+use crate::outputs::{io_err, write_vtu_parts};
 use crate::ranks::RankSummary;
 use crate::simulation::RunOptions;
 use crate::simulation::{RunFacts, Simulation, StepFailure};
@@ -26,7 +26,7 @@ use std::path::Path;
 use stepping::{DistributedFractureRun, FractureRun, SerialFracture};
 use xper_domain::Communicator;
 use xper_fracture::{FractureModel, FractureStepError};
-use xper_io::{write_json_atomic, write_vtu, PvdCollection, SeriesTable};
+use xper_io::{write_json_atomic, PvdCollection, SeriesTable};
 use xper_scene::FractureScene;
 
 /// A fracture scene being run.
@@ -143,11 +143,7 @@ impl Simulation for FractureSimulation<'_> {
             ("elements", elements_grid(m)),
             ("interfaces", interfaces_grid(m)),
         ];
-        for (part, (name, grid)) in parts.iter().enumerate() {
-            let file = format!("frames/{name}_{:08}.vtu", m.step);
-            write_vtu(&dir.join(&file), grid).map_err(io_err)?;
-            pvd.push(m.time, part as u32, file);
-        }
+        write_vtu_parts(dir, pvd, m.step, m.time, 0, &parts)?;
         pvd.write(&dir.join("result.pvd")).map_err(io_err)
     }
     fn checkpoint(&self) -> Result<Vec<u8>, RunError> {

@@ -6,9 +6,10 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 use xper_bodies::Drive;
 use xper_fracture::{FractureEnergy, FractureModel, FractureStepReport, InterfaceLaw};
-use xper_io::{plot_panels, plot_segments, Curve, Panel, SegmentLayer, SeriesTable};
+use xper_io::{plot_panels, plot_segments, SegmentLayer, SeriesTable};
 
 use super::frames::{is_damaged, point_position};
+use crate::outputs::{panel, series_curve};
 
 /// Per-load columns of `series.csv`, after `step` and `time`: `<name>_fx`, `<name>_fy` (N),
 /// `<name>_ux`, `<name>_uy` (m) for each load in scene order.
@@ -179,30 +180,9 @@ pub fn summary(
     }
 }
 
-fn curve(series: &SeriesTable, x: &str, y: &str, label: &str) -> Curve {
-    let xs = series.column(x).unwrap_or_default();
-    Curve {
-        label: label.into(),
-        points: xs
-            .into_iter()
-            .zip(series.column(y).unwrap_or_default())
-            .collect(),
-    }
-}
-
-fn panel(title: &str, x: &str, y: &str, curves: Vec<Curve>, log_y: bool) -> Panel {
-    Panel {
-        title: title.into(),
-        x_label: x.into(),
-        y_label: y.into(),
-        curves,
-        log_y,
-    }
-}
-
 /// `series.png`: energy budget, NLGS sweeps, residual and broken points against time.
 pub fn write_series_plot(series: &SeriesTable, path: &Path, title: &str) -> std::io::Result<()> {
-    let c = |y: &str, label: &str| curve(series, "time", y, label);
+    let c = |y: &str, label: &str| series_curve(series, "time", y, label);
     let t = "time (s)";
     let panels = [
         panel(
@@ -271,7 +251,7 @@ pub fn write_force_displacement(
             if !keep {
                 continue;
             }
-            let mut c = curve(
+            let mut c = series_curve(
                 series,
                 &format!("{}_u{axis}", l.name),
                 &format!("{}_f{axis}", l.name),

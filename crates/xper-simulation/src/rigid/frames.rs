@@ -1,30 +1,15 @@
 //! VTU frames: bodies as cells, contacts as points, force chains as lines.
 
+use crate::outputs::{f64_array, i32_array};
 use xper_bodies::Shape;
 use xper_io::vtu::{VTK_LINE, VTK_POLYGON, VTK_VERTEX};
-use xper_io::{DataArray, DataValues, UnstructuredGrid};
+use xper_io::UnstructuredGrid;
 use xper_laws::InteractionLaw;
 use xper_math::{rotate, Vector};
 use xper_nscd::World;
 
 /// Sides of the polygon drawn for a disk.
 const DISK_SIDES: usize = 16;
-
-fn f64_array(name: &str, components: usize, values: Vec<f64>) -> DataArray {
-    DataArray {
-        name: name.into(),
-        components,
-        values: DataValues::F64(values),
-    }
-}
-
-fn i32_array(name: &str, values: Vec<i32>) -> DataArray {
-    DataArray {
-        name: name.into(),
-        components: 1,
-        values: DataValues::I32(values),
-    }
-}
 
 /// Bodies: disks as 16-sided polygons, polygons as polygons, walls as lines; cell data
 /// `id`, `group`, `shape` (0 disk, 1 polygon, 2 wall), `velocity`, `angular_velocity`, `angle`.

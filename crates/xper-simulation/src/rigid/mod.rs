@@ -9,7 +9,7 @@ pub mod stepping;
 
 use crate::checkpoint::{checkpoint_bytes, read_checkpoint};
 use crate::comparison::SerialComparison;
-use crate::outputs::{create_output_dir, io_err};
+use crate::outputs::{create_output_dir, io_err, write_vtu_parts};
 use crate::ranks::RankSummary;
 use crate::simulation::RunOptions;
 use crate::simulation::{RunFacts, Simulation, StepFailure};
@@ -20,7 +20,7 @@ use outputs::{series_row, solver_name, SeriesFigures, Summary, SERIES_COLUMNS};
 use std::path::Path;
 use stepping::{check_distributable, DistributedRun, RigidRun, SerialRun};
 use xper_domain::Communicator;
-use xper_io::{write_json_atomic, write_vtu, PvdCollection, SeriesTable};
+use xper_io::{write_json_atomic, PvdCollection, SeriesTable};
 use xper_nscd::World;
 use xper_scene::Scene;
 
@@ -167,11 +167,7 @@ impl Simulation for RigidSimulation<'_> {
             ("force_chains", contacts_grid(world, true)),
         ];
         pvd.truncate_after(world.time - 0.5 * world.params.dt);
-        for (part, (name, grid)) in parts.iter().enumerate() {
-            let file = format!("frames/{name}_{:08}.vtu", world.step);
-            write_vtu(&dir.join(&file), grid).map_err(io_err)?;
-            pvd.push(world.time, part as u32, file);
-        }
+        write_vtu_parts(dir, pvd, world.step, world.time, 0, &parts)?;
         pvd.write(&dir.join("result.pvd")).map_err(io_err)
     }
     fn checkpoint(&self) -> Result<Vec<u8>, RunError> {

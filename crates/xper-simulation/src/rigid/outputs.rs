@@ -2,12 +2,12 @@
 //! `series.png` and the contact problems of the steps listed in `[output] dump_problems`.
 
 use crate::comparison::SerialComparison;
-use crate::outputs::{io_err, mean};
+use crate::outputs::{self, io_err, mean, series_curve};
 use crate::ranks::RankSummary;
 use crate::RunError;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
-use xper_io::{plot_panels, Curve, Panel, SeriesTable};
+use xper_io::{plot_panels, Curve, SeriesTable};
 use xper_nscd::StepReport;
 
 /// Columns of `series.csv`, one row per step.
@@ -150,27 +150,15 @@ pub fn solver_name(kind: xper_scene::VelocitySolverKind) -> &'static str {
 
 /// `series.png`: energies, solver sweeps, residual and contacts against time.
 pub fn write_plot(series: &SeriesTable, path: &Path, title: &str) -> Result<(), RunError> {
-    let time = series.column("time").unwrap_or_default();
-    let curve = |name: &str, label: &str| Curve {
-        label: label.into(),
-        points: time
-            .iter()
-            .copied()
-            .zip(series.column(name).unwrap_or_default())
-            .collect(),
-    };
+    let curve = |name: &str, label: &str| series_curve(series, "time", name, label);
     let potential0 = series
         .column("potential_energy")
         .and_then(|p| p.first().copied())
         .unwrap_or(0.0);
     let mut potential = curve("potential_energy", "potential - initial potential");
     potential.points.iter_mut().for_each(|p| p.1 -= potential0);
-    let panel = |title: &str, y: &str, curves: Vec<Curve>, log_y: bool| Panel {
-        title: title.into(),
-        x_label: "time (s)".into(),
-        y_label: y.into(),
-        curves,
-        log_y,
+    let panel = |title: &str, y: &str, curves: Vec<Curve>, log_y: bool| {
+        outputs::panel(title, "time (s)", y, curves, log_y)
     };
     let panels = [
         panel(
