@@ -190,7 +190,6 @@ impl Simulation for RigidSimulation<'_> {
         stepping::compare_serial(start, end, stepping, self.processes).map(Some)
     }
     fn write_summary(&self, dir: &Path, facts: &RunFacts) -> Result<serde_json::Value, RunError> {
-        let f = SeriesFigures::of(&self.series);
         let summary = Summary {
             scene: self.scene.name.clone(),
             scene_file: facts.scene_file.display().to_string(),
@@ -202,12 +201,7 @@ impl Simulation for RigidSimulation<'_> {
             first_step: facts.first_step,
             steps: self.run.step_index(),
             simulated_time: self.run.time(),
-            wall_time_s: f.wall_time_s,
-            average_iterations: f.average_iterations,
-            max_iterations: f.max_iterations,
-            non_converged_steps: f.non_converged_steps,
-            average_contacts: f.average_contacts,
-            max_contacts: f.max_contacts,
+            figures: SeriesFigures::of(&self.series),
             peak_memory_bytes: xper_io::peak_memory_bytes(),
             xper_version: env!("CARGO_PKG_VERSION"),
             processes: facts.ranks.len().max(1),

@@ -80,18 +80,9 @@ pub struct Summary {
     pub steps: u64,
     /// Simulated time (s).
     pub simulated_time: f64,
-    /// Sum of the steps' wall times (s).
-    pub wall_time_s: f64,
-    /// Mean solver iterations per step.
-    pub average_iterations: f64,
-    /// Largest solver iterations in a step.
-    pub max_iterations: f64,
-    /// Steps whose solver did not converge.
-    pub non_converged_steps: usize,
-    /// Mean contacts per step.
-    pub average_contacts: f64,
-    /// Largest contacts in a step.
-    pub max_contacts: f64,
+    /// Averages over the series.
+    #[serde(flatten)]
+    pub figures: SeriesFigures,
     /// Peak heap or resident memory (bytes), where known.
     pub peak_memory_bytes: Option<u64>,
     /// Version of xper.
@@ -107,6 +98,7 @@ pub struct Summary {
 }
 
 /// The summary's averages over the series.
+#[derive(Serialize)]
 pub struct SeriesFigures {
     /// Sum of the steps' wall times (s).
     pub wall_time_s: f64,
