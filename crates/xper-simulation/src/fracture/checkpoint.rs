@@ -80,36 +80,34 @@ impl Checkpoint {
 /// The step and the nodal displacements of each element (m) held by the checkpoint of a
 /// fracture run in `dir` (for comparing runs).
 pub fn checkpoint_displacements(dir: &Path) -> Result<(u64, Vec<[f64; 6]>), RunError> {
-    let path = dir.join("checkpoint.bin");
-    let bytes = std::fs::read(&path)
-        .map_err(|e| RunError::BadInput(format!("{}: cannot read: {e}", path.display())))?;
-    let c: Checkpoint = bincode::deserialize(&bytes).map_err(|e| {
-        RunError::BadInput(format!(
-            "{}: not a fracture checkpoint of xper: {e}",
-            path.display()
-        ))
-    })?;
+    let c = Checkpoint::load(dir, "cannot read")?;
     Ok((c.step, c.elements.iter().map(|e| e.displacement).collect()))
 }
 
 impl Checkpoint {
     /// Reads `dir/checkpoint.bin` of the scene whose files hash to `scene_hash`.
     pub fn read(dir: &Path, scene_hash: u64) -> Result<Self, RunError> {
+        let c = Self::load(dir, "cannot resume")?;
+        if c.scene_hash != scene_hash {
+            return Err(RunError::BadInput(format!(
+                "{}: the checkpoint was written for a different scene or mesh file (changed since)",
+                dir.join("checkpoint.bin").display()
+            )));
+        }
+        Ok(c)
+    }
+
+    /// `dir/checkpoint.bin`, whatever scene it belongs to; `failing` opens the message of a
+    /// file that cannot be read.
+    fn load(dir: &Path, failing: &str) -> Result<Self, RunError> {
         let path = dir.join("checkpoint.bin");
         let bytes = std::fs::read(&path)
-            .map_err(|e| RunError::BadInput(format!("{}: cannot resume: {e}", path.display())))?;
-        let c: Checkpoint = bincode::deserialize(&bytes).map_err(|e| {
+            .map_err(|e| RunError::BadInput(format!("{}: {failing}: {e}", path.display())))?;
+        bincode::deserialize(&bytes).map_err(|e| {
             RunError::BadInput(format!(
                 "{}: not a fracture checkpoint of xper: {e}",
                 path.display()
             ))
-        })?;
-        if c.scene_hash != scene_hash {
-            return Err(RunError::BadInput(format!(
-                "{}: the checkpoint was written for a different scene or mesh file (changed since)",
-                path.display()
-            )));
-        }
-        Ok(c)
+        })
     }
 }
