@@ -97,7 +97,7 @@ pub struct CoupledStepper {
 impl CoupledStepper {
     /// A stepper for `state` (the disks of `state.world` are immersed). Each step's length is
     /// chosen by [`FluidSolver::stable_dt_for`], at most `params.dt_max`, and handed to the
-    /// grains' step ([`MoreauJean::step_by`]), which keeps it in `world.params.dt`.
+    /// grains' step ([`MoreauJean::step_by`]); `world.params.dt` is not used.
     pub fn new(params: &FluidParams, state: &CoupledState) -> Result<Self, FluidError> {
         let fluid = FluidSolver::new(state.fluid.grid, params)?;
         Ok(Self::with_solver(fluid, state.fluid.grid, state))

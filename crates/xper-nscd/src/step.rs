@@ -51,6 +51,9 @@ pub struct MoreauJean {
     /// Forces applied to the bodies during each step besides gravity and drives (e.g. the
     /// fluid's), one generalised force per body; empty when there are none.
     external_forces: Vec<[Real; DOFS]>,
+    /// The length of the step being taken (s): `world.params.dt` for [`MoreauJean::step`],
+    /// the caller's for [`MoreauJean::step_by`]; set by [`MoreauJean::prepare`].
+    h: Real,
 }
 
 impl MoreauJean {
@@ -73,7 +76,7 @@ impl MoreauJean {
     pub fn step(&mut self, world: &mut World) -> Result<StepReport, StepError> {
         let h = world.params.dt;
         let (t_begin, t_end) = (world.step as Real * h, (world.step + 1) as Real * h);
-        self.step_between(world, t_begin, t_end, None)
+        self.step_between(world, [t_begin, t_end], h, None)
     }
 
     /// [`MoreauJean::step`] of a process's part of a distributed world: bodies marked
@@ -94,24 +97,27 @@ impl MoreauJean {
         }
         let h = world.params.dt;
         let (t_begin, t_end) = (world.step as Real * h, (world.step + 1) as Real * h);
-        self.step_between(world, t_begin, t_end, Some(solver))
+        self.step_between(world, [t_begin, t_end], h, Some(solver))
     }
 
     /// Advances `world` by a step of `h` from `world.time` (for time steps that change during
-    /// a run, e.g. set by a fluid's stability limit); `world.params.dt` becomes `h`.
+    /// a run, e.g. set by a fluid's stability limit); `world.params.dt` is left as it is (the
+    /// caller's bound on the step, if any).
     pub fn step_by(&mut self, world: &mut World, h: Real) -> Result<StepReport, StepError> {
-        world.params.dt = h;
         let t_begin = world.time;
-        self.step_between(world, t_begin, t_begin + h, None)
+        self.step_between(world, [t_begin, t_begin + h], h, None)
     }
 
+    /// One step of length `h` over `[t_begin, t_end]` (`t_end - t_begin` is `h` up to
+    /// rounding: the bounds are computed so that long runs keep exact times).
     fn step_between(
         &mut self,
         world: &mut World,
-        t_begin: Real,
-        t_end: Real,
+        [t_begin, t_end]: [Real; 2],
+        h: Real,
         shared: Option<&mut dyn ContactSolve<RigidContactOperator>>,
     ) -> Result<StepReport, StepError> {
+        self.h = h;
         let start = Instant::now();
         let mut report = StepReport {
             step: world.step + 1,
@@ -285,6 +291,7 @@ impl MoreauJean {
         let mut report = StepReport::default();
         let h = world.params.dt;
         let (t_begin, t_end) = (world.step as Real * h, (world.step + 1) as Real * h);
+        self.h = h;
         self.prepare(&mut world, &mut report, t_begin, t_end, false);
     }
 
@@ -300,7 +307,7 @@ impl MoreauJean {
         owned_only: bool,
     ) {
         let start = Instant::now();
-        let (h, theta) = (world.params.dt, world.params.theta);
+        let (h, theta) = (self.h, world.params.theta);
 
         // Stage: detect, on the configuration at the beginning of the step.
         let laws = &world.laws;
@@ -437,7 +444,7 @@ impl MoreauJean {
 
     /// `v_free = v_i + h M^-1 F_theta`; imposed velocities take their value at `t_end`.
     fn free_velocity(&mut self, world: &World, t_begin: Real, t_end: Real) {
-        let (h, theta, g) = (world.params.dt, world.params.theta, world.params.gravity);
+        let (h, theta, g) = (self.h, world.params.theta, world.params.gravity);
         for (b, body) in self.op.bodies.iter_mut().enumerate() {
             if world.bodies.is_dynamic(b) {
                 body.velocity[0] += h * g.x * (body.inv_mass[0] > 0.0) as u8 as Real;
@@ -469,7 +476,7 @@ impl MoreauJean {
     /// Work of imposed forces, and of imposed velocities on finite-mass bodies (the change of
     /// kinetic energy they cause beyond gravity), over the step.
     fn driven_work(&self, world: &World, t_begin: Real, t_end: Real) -> Real {
-        let (h, theta, g) = (world.params.dt, world.params.theta, world.params.gravity);
+        let (h, theta, g) = (self.h, world.params.theta, world.params.gravity);
         let mut work = 0.0;
         let owned = |b: usize| world.bodies.ownership[b] == Ownership::Owned;
         for (handle, drives) in &world.bodies.driven {
@@ -522,7 +529,7 @@ impl MoreauJean {
 
     /// `q_i+1 = q_i + h ((1 - theta) v_i + theta v_i+1)`.
     fn update(&mut self, world: &mut World) -> Result<(), StepError> {
-        let (h, theta) = (world.params.dt, world.params.theta);
+        let (h, theta) = (self.h, world.params.theta);
         let bodies = &mut world.bodies;
         for b in 0..bodies.len() {
             let (v0, v1) = (bodies.generalized_velocity(b), self.op.bodies[b].velocity);

@@ -25,7 +25,7 @@ impl MoreauJean {
     /// returns the largest overlap among them; called before [`Self::update`], while the
     /// bodies hold the velocities at the beginning of the step.
     pub(super) fn end_gaps(&mut self, world: &mut World) -> Real {
-        let (h, theta) = (world.params.dt, world.params.theta);
+        let (h, theta) = (self.h, world.params.theta);
         self.exchange_rows();
         let mut deepest: Real = 0.0;
         for (a, gap) in world.contacts.gaps.iter_mut().enumerate() {
