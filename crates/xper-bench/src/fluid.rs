@@ -17,24 +17,24 @@ pub const RESULTS_FILE: &str = "fluid.json";
 /// One timed fluid step configuration.
 #[derive(Serialize, Deserialize)]
 pub struct StepFigures {
-    cells: [usize; 2],
-    grains: usize,
-    steps: usize,
-    mean_step_s: f64,
-    cells_per_second: f64,
-    mean_pressure_cycles: f64,
-    share_projection: f64,
+    pub(crate) cells: [usize; 2],
+    pub(crate) grains: usize,
+    pub(crate) steps: usize,
+    pub(crate) mean_step_s: f64,
+    pub(crate) cells_per_second: f64,
+    pub(crate) mean_pressure_cycles: f64,
+    pub(crate) share_projection: f64,
 }
 
 /// Everything `--fluid` measures.
 #[derive(Serialize, Deserialize)]
 pub struct FluidBench {
-    machine: String,
-    multigrid: Vec<(String, BenchFigures)>,
-    steps: Vec<StepFigures>,
-    two_grains_wall_s_per_simulated_s: f64,
-    two_grains_simulated_s: f64,
-    two_grains_steps: u64,
+    pub(crate) machine: String,
+    pub(crate) multigrid: Vec<(String, BenchFigures)>,
+    pub(crate) steps: Vec<StepFigures>,
+    pub(crate) two_grains_wall_s_per_simulated_s: f64,
+    pub(crate) two_grains_simulated_s: f64,
+    pub(crate) two_grains_steps: u64,
 }
 
 /// Mean of `steps` lid-driven steps on `n x n` cells of a unit box, after 5 warm-up steps,
