@@ -232,7 +232,7 @@ mod tests {
         assert!(md.contains("| b | g | 1 | none | - |"));
         assert_eq!(
             md.lines()
-                .filter(|l| l.starts_with("| a") || l.starts_with("| b"))
+                .filter(|l| l.starts_with("| a |") || l.starts_with("| b |"))
                 .count(),
             2
         );
