@@ -5,7 +5,6 @@
 //! line, checkpoint).
 
 use clap::{Parser, Subcommand};
-use std::io::IsTerminal;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -52,7 +51,8 @@ enum Command {
         /// Stop after this step (writing a checkpoint), as if the run had been interrupted.
         #[arg(long)]
         stop_at_step: Option<u64>,
-        /// No progress bar or final message (also implied when stderr is not a terminal).
+        /// Print nothing but errors: no progress bar (shown only on a terminal), no notes, no
+        /// first and closing lines (a run off a terminal prints these two for batch logs).
         #[arg(long)]
         quiet: bool,
         /// Under mpirun: after the run, run the same steps on one process and write the
@@ -109,7 +109,6 @@ fn main() -> ExitCode {
             quiet,
             compare_serial,
         } => {
-            let quiet = quiet || !interactive();
             let opts = RunOptions {
                 scene,
                 out,
@@ -172,13 +171,3 @@ fn run_maybe_distributed(opts: &RunOptions, quiet: bool) -> Result<(), RunError>
     xper_simulation::run(opts, quiet).map(drop)
 }
 
-/// Whether progress can be shown: stderr is a terminal or, for a process an MPI launcher
-/// started (which hands its processes the terminal on stdout only, stderr through a pipe),
-/// stdout is.
-fn interactive() -> bool {
-    #[cfg(feature = "mpi")]
-    let launched = xper_domain::MpiCommunicator::launched();
-    #[cfg(not(feature = "mpi"))]
-    let launched = false;
-    std::io::stderr().is_terminal() || (launched && std::io::stdout().is_terminal())
-}

@@ -34,8 +34,15 @@ fn mpirun(ranks: usize, args: &[&str]) -> Output {
     .expect("mpirun could not be started (is openmpi-bin installed?)")
 }
 
+/// The payload of `dir/checkpoint.bin`, its envelope verified.
+fn payload(dir: &Path) -> Vec<u8> {
+    xper_simulation::checkpoint::open(dir, "test")
+        .unwrap()
+        .payload
+}
+
 fn checkpoint(dir: &Path) -> World {
-    let bytes = std::fs::read(dir.join("checkpoint.bin")).unwrap();
+    let bytes = payload(dir);
     let (_, _, world): (u32, u64, Vec<u8>) = bincode::deserialize(&bytes).unwrap();
     World::from_bytes(&world).unwrap()
 }
@@ -302,7 +309,7 @@ fn two_grains_scene(dir: &Path, name: &str, tolerance: &str) -> std::path::PathB
 
 /// The grains' positions in the checkpoint of a fluid run.
 fn grains(dir: &Path) -> Vec<f64> {
-    let bytes = std::fs::read(dir.join("checkpoint.bin")).unwrap();
+    let bytes = payload(dir);
     let (_, _, state): (u32, u64, xper_fluid::CoupledState) = bincode::deserialize(&bytes).unwrap();
     (state.world.bodies.position.iter())
         .flat_map(|p| [p.x, p.y])

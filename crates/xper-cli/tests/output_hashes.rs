@@ -15,6 +15,7 @@
 //! of steps run; a scene directory missing from it fails the test, so a new scene cannot be
 //! forgotten (add a line `name steps - -` and refresh).
 
+mod common;
 use std::path::{Path, PathBuf};
 
 /// Columns of series.csv that hold wall-clock measurements, left out of the hash.
@@ -87,32 +88,6 @@ fn last_frame_hash(frames: &Path) -> (u64, String) {
         names.push(name.clone());
     }
     (hash, names.join("+"))
-}
-
-/// The scene of `scenes/NAME/scene.toml` cut to `steps` steps, with a frame and a checkpoint
-/// at the last one (no shipped scene names a file by a relative path).
-fn reduced_scene(name: &str, steps: u64, dir: &Path) -> PathBuf {
-    let path = repo_root().join("scenes").join(name).join("scene.toml");
-    let text = std::fs::read_to_string(&path).unwrap();
-    let mut doc: toml::Table = text.parse().unwrap();
-    let scene = doc["scene"].as_table_mut().expect("[scene]");
-    scene.remove("duration");
-    scene.insert("steps".into(), toml::Value::Integer(steps as i64));
-    let output = doc
-        .entry("output")
-        .or_insert_with(|| toml::Value::Table(toml::Table::new()))
-        .as_table_mut()
-        .unwrap();
-    output.insert("frame_every".into(), toml::Value::Integer(steps as i64));
-    output.insert(
-        "checkpoint_every".into(),
-        toml::Value::Integer(steps as i64),
-    );
-    // Problem dumps need the hdf5 feature and are not hashed.
-    output.remove("dump_problems");
-    let out = dir.join(format!("{name}.toml"));
-    std::fs::write(&out, toml::to_string(&doc).unwrap()).unwrap();
-    out
 }
 
 struct Entry {
@@ -197,7 +172,7 @@ fn check_hashes(list: &str, ranks: usize, every_scene: bool) {
     std::fs::create_dir_all(&tmp).unwrap();
     let mut failures = Vec::new();
     for entry in &mut entries {
-        let scene = reduced_scene(&entry.scene, entry.steps, &tmp);
+        let scene = common::shipped_scene(&entry.scene, entry.steps, [entry.steps; 2], &tmp);
         let out = tmp.join(&entry.scene);
         let started = std::time::Instant::now();
         let run = run_xper(&scene, &out, ranks);

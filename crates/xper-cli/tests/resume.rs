@@ -123,10 +123,11 @@ fn resume_refuses_a_checkpoint_of_another_layout() {
         "5",
     ];
     assert!(xper(&args).status.success());
-    let bytes = std::fs::read(run.join("checkpoint.bin")).unwrap();
-    let (_, hash, world): (u32, u64, Vec<u8>) = bincode::deserialize(&bytes).unwrap();
+    let sealed = xper_simulation::checkpoint::open(&run, "test").unwrap();
+    let (_, hash, world): (u32, u64, Vec<u8>) = bincode::deserialize(&sealed.payload).unwrap();
     let old_layout = bincode::serialize(&(hash, world)).unwrap();
-    std::fs::write(run.join("checkpoint.bin"), old_layout).unwrap();
+    let resealed = xper_simulation::checkpoint::seal(sealed.header, &old_layout).unwrap();
+    std::fs::write(run.join("checkpoint.bin"), resealed).unwrap();
     let out = xper(&["run", s, "--out", run.to_str().unwrap(), "--resume"]);
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);

@@ -41,5 +41,5 @@ mod world;
 pub use assemble::assemble_problem;
 pub use operator::{ContactRow, RigidContactOperator, RigidProblem, SolverBody};
 pub use select::{contact_owner_body, is_movable, normal_shift};
-pub use step::{ContactSolve, MoreauJean, StageTimes, StepError, StepReport};
+pub use step::{energy_blown_up, ContactSolve, MoreauJean, StageTimes, StepError, StepReport};
 pub use world::{EnergyBudget, StepParams, VelocitySolver, World};

@@ -89,3 +89,10 @@ impl std::fmt::Display for StepError {
 }
 
 impl std::error::Error for StepError {}
+
+/// Whether a step's energy balance error shows a blow-up: an error above the scale of the
+/// energy budget (`scale`, J/m), or an error or a scale that is not finite (energies that
+/// overflowed, as under an absurd gravity, must stop the run rather than compare false).
+pub fn energy_blown_up(error: Real, scale: Real) -> bool {
+    !(error.is_finite() && scale.is_finite() && error <= scale.max(1e-12))
+}

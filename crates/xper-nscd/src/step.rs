@@ -6,7 +6,7 @@ use crate::assemble::assemble_problem;
 use crate::contact_solve::reborrow;
 pub use crate::contact_solve::ContactSolve;
 use crate::operator::{ContactRow, RigidContactOperator, RigidProblem};
-pub use crate::report::{StageTimes, StepError, StepReport};
+pub use crate::report::{energy_blown_up, StageTimes, StepError, StepReport};
 use crate::select::{contact_owner_body, normal_shift};
 use crate::world::{VelocitySolver, World};
 use std::time::Instant;
@@ -146,7 +146,7 @@ impl MoreauJean {
             .max(e.external_work.abs());
         report.times.total = start.elapsed().as_secs_f64();
         let scale = e.scale + e.dissipated + report.kinetic.min(e.initial.abs());
-        if !distributed && report.energy_error > scale.max(1e-12) {
+        if !distributed && energy_blown_up(report.energy_error, scale) {
             return Err(StepError::EnergyBlowUp {
                 error: report.energy_error,
                 scale,

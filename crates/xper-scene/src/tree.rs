@@ -16,17 +16,35 @@ impl Pos {
     pub const START: Pos = Pos { line: 1, column: 1 };
 }
 
-/// Converts byte offsets into line/column positions.
+/// Converts byte offsets into line/column positions, each in time independent of the line's
+/// length on ASCII lines and, on other lines, in time proportional to the distance from the
+/// previous position asked for (values are visited in document order): reading stays linear
+/// in the size of the text however long its lines.
 pub(crate) struct LineIndex<'a> {
     text: &'a str,
     starts: Vec<usize>,
+    /// Whether each line is pure ASCII (columns are then byte distances).
+    ascii: Vec<bool>,
+    /// The last non-ASCII position computed: (byte offset, its 0-based column).
+    last: std::cell::Cell<(usize, usize)>,
 }
 
 impl<'a> LineIndex<'a> {
     pub fn new(text: &'a str) -> Self {
         let mut starts = vec![0];
         starts.extend(text.match_indices('\n').map(|(i, _)| i + 1));
-        Self { text, starts }
+        let ascii = (starts.iter().enumerate())
+            .map(|(k, &start)| {
+                let end = starts.get(k + 1).copied().unwrap_or(text.len());
+                text.as_bytes()[start..end].is_ascii()
+            })
+            .collect();
+        Self {
+            text,
+            starts,
+            ascii,
+            last: std::cell::Cell::new((0, 0)),
+        }
     }
 
     /// Position of a byte offset (clamped to the text).
@@ -37,11 +55,20 @@ impl<'a> LineIndex<'a> {
             Err(i) => i.saturating_sub(1),
         };
         let start = self.starts.get(line).copied().unwrap_or(0).min(offset);
-        let column = self
-            .text
-            .get(start..offset)
-            .map(|s| s.chars().count())
-            .unwrap_or(offset - start);
+        let column = if self.ascii.get(line).copied().unwrap_or(false) {
+            offset - start
+        } else {
+            let (last, last_column) = self.last.get();
+            let (from, base) = if (start..=offset).contains(&last) {
+                (last, last_column)
+            } else {
+                (start, 0)
+            };
+            let column =
+                base + (self.text.get(from..offset)).map_or(offset - from, |s| s.chars().count());
+            self.last.set((offset, column));
+            column
+        };
         Pos {
             line: line + 1,
             column: column + 1,

@@ -7,7 +7,8 @@
 //! while the scene is not at its end (and not at --stop-at-step):
 //!     step                                    (collective)
 //!     every frame_every steps: sync, frame     (the last step too)
-//!     every checkpoint_every steps: sync, checkpoint.bin, then the tables beside it
+//!     every checkpoint_every steps: sync, the tables, then checkpoint.bin (sealed, with
+//!                                             the tables' row counts)
 //! sync; per-process summaries; --compare-serial
 //! checkpoint.bin (or, after a failure, the tables alone), summary.json, plots
 //! ```
@@ -15,10 +16,13 @@
 //! Outputs are events of this loop; what a frame, a checkpoint, a table or a summary holds is
 //! the simulation's (see [`Simulation`]).
 
+use crate::checkpoint::{self, Header};
+use crate::lock::OutputLock;
 use crate::outputs::{create_output_dir, io_err, progress_bar};
 use crate::scene::LoadedScene;
 use crate::simulation::{run_status, OutputSchedule, RunFacts, RunOptions, Simulation};
 use crate::RunError;
+use std::io::IsTerminal;
 use std::path::Path;
 use std::time::Instant;
 use xper_domain::Communicator;
@@ -44,10 +48,19 @@ pub fn run_on(
     drive(simulation.as_mut(), schedule, opts, quiet, distributed)
 }
 
-/// Writes `checkpoint.bin`, then the tables beside it.
+/// Writes the tables, then `checkpoint.bin` with their row counts: a run interrupted between
+/// the two leaves tables that reach past the previous checkpoint, never short of one.
 fn write_checkpoint(sim: &dyn Simulation, dir: &Path) -> Result<(), RunError> {
-    write_atomic(&dir.join("checkpoint.bin"), &sim.checkpoint()?).map_err(io_err)?;
-    write_tables(sim, dir)
+    write_tables(sim, dir)?;
+    let header = Header {
+        scene_hash: sim.scene_hash(),
+        payload_len: 0,
+        tables: (sim.tables().into_iter())
+            .map(|(name, table)| (name.to_string(), table.rows.len() as u64))
+            .collect(),
+    };
+    let bytes = checkpoint::seal(header, &sim.checkpoint()?)?;
+    write_atomic(&dir.join("checkpoint.bin"), &bytes).map_err(io_err)
 }
 
 fn write_tables(sim: &dyn Simulation, dir: &Path) -> Result<(), RunError> {
@@ -57,17 +70,59 @@ fn write_tables(sim: &dyn Simulation, dir: &Path) -> Result<(), RunError> {
     Ok(())
 }
 
-/// Reads back the tables and `result.pvd` of the run being resumed, cut at its checkpoint.
+/// Removes what an earlier run left in `dir` that this fresh run would not overwrite: its
+/// checkpoint (not this run's), `result.pvd`, `summary.json` and its frames (a longer earlier
+/// run's last frames would otherwise sit beside this run's). Tables and plots are rewritten.
+fn clear_earlier_run(dir: &Path) -> Result<(), RunError> {
+    let remove = |path: &Path| match std::fs::remove_file(path) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => Err(io_err(e)),
+        _ => Ok(()),
+    };
+    for name in ["checkpoint.bin", "result.pvd", "summary.json"] {
+        remove(&dir.join(name))?;
+    }
+    let frames = dir.join("frames");
+    for entry in std::fs::read_dir(&frames).map_err(io_err)? {
+        let path = entry.map_err(io_err)?.path();
+        let frame = matches!(
+            path.extension().and_then(|e| e.to_str()),
+            Some("vtu" | "vtp" | "pvtu")
+        );
+        if frame && path.is_file() {
+            remove(&path)?;
+        }
+    }
+    Ok(())
+}
+
+/// Reads back the tables and `result.pvd` of the run being resumed, cut at its checkpoint:
+/// each table keeps the rows it had when the checkpoint was written, and one with fewer rows
+/// is refused (its rows since an earlier point are lost).
 fn read_back(
     sim: &mut dyn Simulation,
     dir: &Path,
     pvd: &mut PvdCollection,
 ) -> Result<(), RunError> {
-    let step = sim.step_index() as f64;
+    let rows = checkpoint::open(dir, "cannot resume")?.header.tables;
+    let step = sim.step_index();
     for (name, table) in sim.tables_mut() {
-        *table = SeriesTable::read_csv(&dir.join(name))
-            .map_err(|e| RunError::BadInput(e.to_string()))?;
-        table.truncate_rows_where_first_column_greater_than(step);
+        let path = dir.join(name);
+        *table = SeriesTable::read_csv(&path).map_err(|e| RunError::BadInput(e.to_string()))?;
+        let Some(&(_, kept)) = rows.iter().find(|(n, _)| n == name) else {
+            return Err(RunError::BadInput(format!(
+                "{}: the checkpoint does not list {name}; run the scene again without --resume",
+                dir.join("checkpoint.bin").display()
+            )));
+        };
+        if (table.rows.len() as u64) < kept {
+            return Err(RunError::BadInput(format!(
+                "{}: {} rows, but the checkpoint at step {step} was written after {kept}: rows \
+                 were lost since; run the scene again without --resume",
+                path.display(),
+                table.rows.len()
+            )));
+        }
+        table.rows.truncate(kept as usize);
     }
     *pvd = PvdCollection::read(&dir.join("result.pvd"))
         .map_err(|e| RunError::BadInput(e.to_string()))?;
@@ -84,10 +139,22 @@ pub fn drive(
 ) -> Result<serde_json::Value, RunError> {
     let root = sim.is_root();
     let dir = opts.out.as_path();
+    let mut _lock = None;
     if root {
-        create_output_dir(&dir.join("frames"))?;
+        let mut notes = sim.notes();
+        let locked =
+            create_output_dir(&dir.join("frames")).and_then(|()| OutputLock::take(dir, &mut notes));
+        match locked {
+            Ok(lock) => _lock = Some(lock),
+            Err(e) => {
+                if let Some(comm) = comm {
+                    comm.abort(&e.to_string(), 2);
+                }
+                return Err(e);
+            }
+        }
         if !quiet {
-            for note in sim.notes() {
+            for note in notes {
                 eprintln!("xper: note: {note}");
             }
         }
@@ -98,12 +165,21 @@ pub fn drive(
     } else {
         sim.sync();
         if root {
-            // A checkpoint of an earlier run in the same directory is not this run's.
-            let _ = std::fs::remove_file(dir.join("checkpoint.bin"));
+            clear_earlier_run(dir)?;
             sim.write_frame(dir, &mut pvd)?;
         }
     }
     let (steps, position) = sim.progress();
+    if root && !quiet && !std::io::stderr().is_terminal() {
+        // Batch logs get a first line; the closing line ends them.
+        eprintln!(
+            "xper: {} {} from step {position} of {steps} on {} process(es), outputs in {}",
+            if opts.resume { "resuming" } else { "running" },
+            opts.scene.display(),
+            sim.processes(),
+            dir.display()
+        );
+    }
     let bar = progress_bar(quiet || !root, steps, position);
     sim.begin();
     let started = Instant::now();

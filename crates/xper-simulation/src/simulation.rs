@@ -110,8 +110,11 @@ pub trait Simulation {
     fn sync(&mut self);
     /// Writes the frame of the current state under `dir/frames` and lists it in `pvd`.
     fn write_frame(&mut self, dir: &Path, pvd: &mut PvdCollection) -> Result<(), RunError>;
-    /// The bytes of `checkpoint.bin` for the current state.
+    /// The payload of `checkpoint.bin` for the current state (the driver seals it, see
+    /// [`crate::checkpoint`]).
     fn checkpoint(&self) -> Result<Vec<u8>, RunError>;
+    /// Hash of the scene files the simulation was built from ([`crate::checkpoint::fnv1a`]).
+    fn scene_hash(&self) -> u64;
     /// The tables written beside the checkpoint (`series.csv`, ...), by file name.
     fn tables(&self) -> Vec<(&'static str, &SeriesTable)>;
     /// The same tables, to be replaced when a run resumes.

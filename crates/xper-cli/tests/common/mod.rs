@@ -40,3 +40,30 @@ pub fn deposit_scene(count: usize, steps: usize) -> String {
         "[output]\nframe_every = 50\ncheckpoint_every = 40\n\n[[materials]]",
     )
 }
+
+/// The scene of `scenes/NAME/scene.toml` cut to `steps` steps, with a frame every
+/// `[frames, checkpoints][0]` steps and a checkpoint every `[..][1]` (no shipped scene names a
+/// file by a relative path); problem dumps, which need the hdf5 feature, are left out.
+pub fn shipped_scene(name: &str, steps: u64, every: [u64; 2], dir: &Path) -> PathBuf {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let path = root.join("scenes").join(name).join("scene.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut doc: toml::Table = text.parse().unwrap();
+    let scene = doc["scene"].as_table_mut().expect("[scene]");
+    scene.remove("duration");
+    scene.insert("steps".into(), toml::Value::Integer(steps as i64));
+    let output = doc
+        .entry("output")
+        .or_insert_with(|| toml::Value::Table(toml::Table::new()))
+        .as_table_mut()
+        .unwrap();
+    output.insert("frame_every".into(), toml::Value::Integer(every[0] as i64));
+    output.insert(
+        "checkpoint_every".into(),
+        toml::Value::Integer(every[1] as i64),
+    );
+    output.remove("dump_problems");
+    let out = dir.join(format!("{name}.toml"));
+    std::fs::write(&out, toml::to_string(&doc).unwrap()).unwrap();
+    out
+}

@@ -444,7 +444,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
             .max((report.kinetic + report.potential - budget.initial).abs())
             .max(budget.external_work.abs());
         let scale = budget.scale + budget.dissipated + report.kinetic.min(budget.initial.abs());
-        if report.energy_error > scale.max(1e-12) {
+        if xper_nscd::energy_blown_up(report.energy_error, scale) {
             return Err(StepError::EnergyBlowUp {
                 error: report.energy_error,
                 scale,

@@ -226,6 +226,9 @@ impl Simulation for FluidSimulation<'_> {
         write_vtu_parts(dir, pvd, step, world.time, 1, &parts)?;
         pvd.write(&dir.join("result.pvd")).map_err(io_err)
     }
+    fn scene_hash(&self) -> u64 {
+        self.scene_hash
+    }
     fn checkpoint(&self) -> Result<Vec<u8>, RunError> {
         checkpoint_bytes(self.scene_hash, &self.state)
     }

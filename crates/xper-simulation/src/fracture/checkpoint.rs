@@ -101,8 +101,7 @@ impl Checkpoint {
     /// file that cannot be read.
     fn load(dir: &Path, failing: &str) -> Result<Self, RunError> {
         let path = dir.join("checkpoint.bin");
-        let bytes = std::fs::read(&path)
-            .map_err(|e| RunError::BadInput(format!("{}: {failing}: {e}", path.display())))?;
+        let bytes = crate::checkpoint::open(dir, failing)?.payload;
         bincode::deserialize(&bytes).map_err(|e| {
             RunError::BadInput(format!(
                 "{}: not a fracture checkpoint of xper: {e}",

@@ -146,6 +146,9 @@ impl Simulation for FractureSimulation<'_> {
         write_vtu_parts(dir, pvd, m.step, m.time, 0, &parts)?;
         pvd.write(&dir.join("result.pvd")).map_err(io_err)
     }
+    fn scene_hash(&self) -> u64 {
+        self.scene_hash
+    }
     fn checkpoint(&self) -> Result<Vec<u8>, RunError> {
         bincode::serialize(&Checkpoint::of(&self.model, self.scene_hash))
             .map_err(|e| RunError::Runtime(e.to_string()))

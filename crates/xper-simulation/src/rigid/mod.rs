@@ -170,6 +170,9 @@ impl Simulation for RigidSimulation<'_> {
         write_vtu_parts(dir, pvd, world.step, world.time, 0, &parts)?;
         pvd.write(&dir.join("result.pvd")).map_err(io_err)
     }
+    fn scene_hash(&self) -> u64 {
+        self.scene_hash
+    }
     fn checkpoint(&self) -> Result<Vec<u8>, RunError> {
         checkpoint_bytes(self.scene_hash, &self.whole()?.to_bytes())
     }

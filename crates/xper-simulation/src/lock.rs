@@ -1,0 +1,152 @@
+//! One run per output directory: `xper.lock` names the process that writes there.
+//!
+//! A run creates the lock (atomically: `create_new`) before writing anything and removes it
+//! when it ends, also when it fails. A second run into the same directory is refused with the
+//! first run's process id, host and start time. A lock left by a run that was killed (its
+//! process no longer exists on this host) is taken over with a note.
+
+use crate::RunError;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// File name of the lock inside the output directory.
+pub const LOCK_FILE: &str = "xper.lock";
+
+/// The lock of an output directory, released when dropped.
+#[derive(Debug)]
+pub struct OutputLock {
+    path: PathBuf,
+}
+
+fn host() -> String {
+    std::fs::read_to_string("/proc/sys/kernel/hostname")
+        .or_else(|_| std::env::var("HOSTNAME"))
+        .map(|h| h.trim().to_string())
+        .unwrap_or_default()
+}
+
+/// Whether process `pid` of this host still runs (`None`: this system cannot tell).
+fn alive(pid: u32) -> Option<bool> {
+    let proc = Path::new("/proc");
+    proc.join("self")
+        .exists()
+        .then(|| proc.join(pid.to_string()).exists())
+}
+
+impl OutputLock {
+    /// Locks `dir` (which must exist) for this process; `notes` receives the remark of a stale
+    /// lock taken over.
+    pub fn take(dir: &Path, notes: &mut Vec<String>) -> Result<Self, RunError> {
+        let path = dir.join(LOCK_FILE);
+        let me = format!(
+            "pid {} on host {} since {} s after the Unix epoch\n",
+            std::process::id(),
+            host(),
+            std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map_or(0, |d| d.as_secs())
+        );
+        for _ in 0..2 {
+            match std::fs::OpenOptions::new()
+                .write(true)
+                .create_new(true)
+                .open(&path)
+            {
+                Ok(mut file) => {
+                    file.write_all(me.as_bytes())
+                        .map_err(|e| RunError::Runtime(format!("{}: {e}", path.display())))?;
+                    return Ok(OutputLock { path });
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+                    let holder = std::fs::read_to_string(&path).unwrap_or_default();
+                    let holder = holder.trim();
+                    let pid = (holder.split_whitespace().nth(1)).and_then(|p| p.parse().ok());
+                    let same_host = holder.contains(&format!("on host {} ", host()));
+                    match pid.filter(|_| same_host).map(alive) {
+                        Some(Some(false)) => {
+                            notes.push(format!(
+                                "{}: the run that held it ({holder}) no longer runs; taken over",
+                                path.display()
+                            ));
+                            std::fs::remove_file(&path).map_err(|e| {
+                                RunError::Runtime(format!("{}: {e}", path.display()))
+                            })?;
+                        }
+                        _ => {
+                            return Err(RunError::BadInput(format!(
+                                "{}: another run writes into {} ({}); wait for it to end, \
+                                 choose another --out, or delete the lock file if no run \
+                                 is using the directory",
+                                path.display(),
+                                dir.display(),
+                                if holder.is_empty() {
+                                    "unknown process"
+                                } else {
+                                    holder
+                                }
+                            )));
+                        }
+                    }
+                }
+                Err(e) => {
+                    return Err(RunError::BadInput(format!(
+                        "{}: cannot lock the output directory: {e}",
+                        path.display()
+                    )))
+                }
+            }
+        }
+        Err(RunError::Runtime(format!(
+            "{}: the lock was taken again while being taken over",
+            path.display()
+        )))
+    }
+}
+
+impl Drop for OutputLock {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.path);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dir(name: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!("xper-lock-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&d);
+        std::fs::create_dir_all(&d).unwrap();
+        d
+    }
+
+    #[test]
+    fn a_second_lock_is_refused_while_the_first_is_held_and_granted_after() {
+        let d = dir("held");
+        let mut notes = Vec::new();
+        let first = OutputLock::take(&d, &mut notes).unwrap();
+        let err = OutputLock::take(&d, &mut notes).unwrap_err().to_string();
+        assert!(
+            err.contains("another run") && err.contains(&format!("pid {}", std::process::id()))
+        );
+        drop(first);
+        assert!(!d.join(LOCK_FILE).exists());
+        OutputLock::take(&d, &mut notes).unwrap();
+        assert!(notes.is_empty());
+    }
+
+    #[test]
+    fn the_lock_of_a_process_that_no_longer_runs_is_taken_over() {
+        if alive(1).is_none() {
+            return;
+        }
+        let d = dir("stale");
+        // Process ids are below 2^22 on Linux: this one cannot run.
+        let stale = format!("pid 4294967295 on host {} since 0 s\n", host());
+        std::fs::write(d.join(LOCK_FILE), stale).unwrap();
+        let mut notes = Vec::new();
+        let _lock = OutputLock::take(&d, &mut notes).unwrap();
+        assert_eq!(notes.len(), 1, "{notes:?}");
+        assert!(notes[0].contains("no longer runs"));
+    }
+}
