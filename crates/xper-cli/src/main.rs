@@ -59,6 +59,10 @@ enum Command {
         /// parallel efficiency and the largest position difference into summary.json.
         #[arg(long)]
         compare_serial: bool,
+        /// Largest memory the run may need by the estimate `xper check` prints (GB); the
+        /// memory available when the run starts by default.
+        #[arg(long, value_parser = positive_gb, allow_negative_numbers = true)]
+        max_memory: Option<f64>,
     },
     /// Run benchmark scenes without outputs; print figures, save JSON and regenerate BENCHMARKS.md.
     Bench(bench::BenchArgs),
@@ -77,6 +81,15 @@ enum Command {
         #[arg(long, conflicts_with = "full")]
         summary_only: bool,
     },
+}
+
+/// `--max-memory`: a positive, finite number of gigabytes.
+fn positive_gb(text: &str) -> Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(gb) if gb > 0.0 && gb.is_finite() => Ok(gb),
+        Ok(gb) => Err(format!("must be a positive number of GB, got {gb}")),
+        Err(e) => Err(format!("not a number of GB: {e}")),
+    }
 }
 
 /// Restores the default action of SIGPIPE (end the process quietly), as C programs have, so
@@ -108,6 +121,7 @@ fn main() -> ExitCode {
             stop_at_step,
             quiet,
             compare_serial,
+            max_memory,
         } => {
             let opts = RunOptions {
                 scene,
@@ -115,6 +129,7 @@ fn main() -> ExitCode {
                 resume,
                 stop_at_step,
                 compare_serial,
+                max_memory: max_memory.map(|gb| gb * 1e9),
             };
             run_maybe_distributed(&opts, quiet)
         }
@@ -170,4 +185,3 @@ fn run_maybe_distributed(opts: &RunOptions, quiet: bool) -> Result<(), RunError>
 fn run_maybe_distributed(opts: &RunOptions, quiet: bool) -> Result<(), RunError> {
     xper_simulation::run(opts, quiet).map(drop)
 }
-

@@ -22,7 +22,9 @@ pub enum SolverArg {
     Nsgs,
     /// Generalized Newton on the Alart-Curnier function.
     Newton,
-    /// Proximal-point iterations around the generalized Newton (rank-deficient W).
+    /// Proximal-point iterations around the generalized Newton (rank-deficient W); also
+    /// `proximal_newton`, as scenes and reports write it.
+    #[value(alias = "proximal_newton")]
     ProximalNewton,
     /// Lemke's pivoting on the LCP form (2D only; exact reference for small problems).
     Lemke,
@@ -32,7 +34,7 @@ impl SolverArg {
     /// The library's solver.
     pub fn kind(self) -> SolverKind {
         match self {
-            SolverArg::Nlgs | SolverArg::Nsgs => SolverKind::Nsgs,
+            SolverArg::Nlgs | SolverArg::Nsgs => SolverKind::Nlgs,
             SolverArg::Newton => SolverKind::Newton,
             SolverArg::ProximalNewton => SolverKind::ProximalNewton,
             SolverArg::Lemke => SolverKind::Lemke,
@@ -69,7 +71,7 @@ pub struct SolveArgs {
     #[arg(long, value_enum, default_value_t = SolverArg::Nlgs)]
     pub solver: SolverArg,
     /// Tolerance on the scaled error.
-    #[arg(long, default_value_t = 1e-8)]
+    #[arg(long, default_value_t = 1e-8, allow_negative_numbers = true)]
     pub tol: f64,
     /// Iteration limit (sweeps, Newton iterations, proximal steps, pivots); default per solver.
     #[arg(long)]
@@ -130,8 +132,13 @@ pub fn load_local(path: &Path, form: FormArg) -> Result<(FrictionProblem, &'stat
 pub fn run_solve(args: &SolveArgs) -> Result<(), RunError> {
     if !(args.tol > 0.0 && args.tol.is_finite()) {
         return Err(RunError::BadInput(format!(
-            "--tol {}: must be a positive number",
-            args.tol
+            "--tol {}: must be a positive number{}",
+            args.tol,
+            if args.tol < 0.0 {
+                " (it is negative)"
+            } else {
+                ""
+            }
         )));
     }
     let start = Instant::now();

@@ -111,3 +111,148 @@ fn a_run_off_a_terminal_says_when_it_starts_and_when_it_ends() {
         "{err}"
     );
 }
+
+/// A grain in a fluid box of `side` m with `cells` (a `[fluid]` line setting the grid).
+fn fluid_scene(dir: &Path, side: &str, cells: &str) -> std::path::PathBuf {
+    let text = format!(
+        r#"[scene]
+name = "grain_in_box"
+dt = 1e-4
+steps = 3
+gravity = [0.0, -9.81]
+[[materials]]
+name = "grain"
+density = 1500.0
+[[laws]]
+between = ["grain", "wall"]
+kind = "signorini_coulomb"
+friction = 0.5
+[[bodies]]
+shape = "disk"
+center = [0.008, 0.012]
+radius = 0.001
+material = "grain"
+group = "grain"
+[[walls]]
+from = [0.0, 0.0]
+to = [0.016, 0.0]
+group = "wall"
+[fluid]
+density = 1000.0
+viscosity = 1e-2
+domain = [[0.0, 0.0], [{side}, {side}]]
+{cells}
+"#
+    );
+    let path = dir.join("fluid.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn absurd_fluid_grids_are_errors_of_check_never_aborts_of_run() {
+    let dir = temp_dir("fault-absurd-grids");
+    let cases = [
+        ("0.064", "cells_per_diameter = 1e6", "a fluid grid may have"),
+        ("0.064", "cell_size = 1e-300", "cells of 1e-300 m"),
+        ("1e300", "cells_per_diameter = 8", "holds"),
+    ];
+    for (side, cells, expected) in cases {
+        let scene = fluid_scene(&dir, side, cells);
+        for command in ["check", "run"] {
+            let mut args = vec![command, scene.to_str().unwrap()];
+            let out = dir.join("out");
+            if command == "run" {
+                args.extend(["--out", out.to_str().unwrap(), "--quiet"]);
+            }
+            let result = xper(&args);
+            let err = String::from_utf8_lossy(&result.stderr);
+            assert_eq!(result.status.code(), Some(2), "{command} {cells}: {err}");
+            assert!(
+                err.contains("fluid.domain") && err.contains(expected),
+                "{err}"
+            );
+            assert!(err.len() < 400, "a short message: {err}");
+        }
+    }
+}
+
+#[test]
+fn a_scene_larger_than_the_memory_is_refused_by_run_with_its_estimate() {
+    let dir = temp_dir("fault-memory");
+    // 16000 x 16000 cells: under the grid cap, about 67 GB.
+    let scene = fluid_scene(&dir, "0.064", "cells_per_diameter = 500");
+    let check = xper(&["check", scene.to_str().unwrap()]);
+    let printed = String::from_utf8_lossy(&check.stdout);
+    assert!(check.status.success(), "{printed}");
+    assert!(
+        printed.contains("needs: about 6") && printed.contains("256000000 fluid cells"),
+        "{printed}"
+    );
+    let out = dir.join("out");
+    let result = run(&scene, &out, &["--quiet", "--max-memory", "8"]);
+    let err = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("needs about 6") && err.contains("8.0 GB available"),
+        "{err}"
+    );
+    let bad = run(&scene, &out, &["--max-memory", "-1"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("positive number of GB"));
+}
+
+#[test]
+fn an_impossible_random_placement_is_refused_at_once() {
+    let dir = temp_dir("fault-random-placement");
+    let scene = drop_scene(&dir, 10, |doc| {
+        let generator: toml::Table = toml::from_str(
+            r#"kind = "box_of_disks"
+count = 100000
+radius = [0.004, 0.005]
+box = [[-0.5, 0.0], [0.5, 1.0]]
+placement = "random"
+material = "water_like"
+group = "ball""#,
+        )
+        .unwrap();
+        doc.insert(
+            "generators".into(),
+            toml::Value::Array(vec![generator.into()]),
+        );
+    });
+    let result = xper(&["check", scene.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(2), "{err}");
+    // The message of the refusal before any attempt, not of the attempts running out.
+    assert!(err.contains("random placement jams"), "{err}");
+}
+
+#[test]
+fn solver_names_are_the_same_on_the_command_line_in_scenes_and_in_outputs() {
+    let problem = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../../shared/fclib/siconos_dat_2d/FrictionContactProblem00031.dat");
+    let problem = problem.to_str().unwrap();
+    for (given, reported) in [
+        ("nlgs", "nlgs"),
+        ("nsgs", "nlgs"),
+        ("proximal_newton", "proximal_newton"),
+        ("proximal-newton", "proximal_newton"),
+        ("newton", "newton"),
+    ] {
+        let out = xper(&["solve", problem, "--solver", given]);
+        let json = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "{given}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(
+            json.contains(&format!("\"solver\": \"{reported}\"")),
+            "{given}: {json}"
+        );
+    }
+    let out = xper(&["solve", problem, "--tol", "-1"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("negative"));
+}

@@ -168,7 +168,7 @@ fn dumped_problem_is_the_problem_of_that_step() {
             "step {step}: the file differs from the step's problem"
         );
 
-        for kind in [SolverKind::Newton, SolverKind::Nsgs] {
+        for kind in [SolverKind::Newton, SolverKind::Nlgs] {
             let report = solve(&got, &SolverParams::with_kind(kind), None).unwrap();
             let e = report.error.relative_max;
             assert!(

@@ -27,8 +27,8 @@ mod topology;
 
 pub use error::{MeshError, MeshErrorKind};
 pub use generate::{
-    double_edge_notched, rectangle_with_inclusions, NotchedSpec, RectangleSpec, MAX_AREA_FACTOR,
-    MAX_TRIANGLES, MIN_ANGLE_DEGREES,
+    double_edge_notched, estimated_triangles, rectangle_with_inclusions, NotchedSpec,
+    RectangleSpec, MAX_AREA_FACTOR, MAX_TRIANGLES, MIN_ANGLE_DEGREES,
 };
 pub use mesh::{EdgeLengthStats, Mesh, Region};
 pub use msh::{parse_msh, read_msh};

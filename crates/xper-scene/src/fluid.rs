@@ -182,20 +182,60 @@ fn cell_size(ctx: &mut Ctx, t: &Tbl, bodies: &[BodyDesc]) -> Option<f64> {
 }
 
 /// The domain must hold a whole number of cells (at least 4) along each axis.
+/// Largest fluid grid a scene may ask for (cells): 2^28, about 70 GB at the solver's ~260 bytes
+/// per cell; a larger one is an input error (usually a unit), never an allocation failure.
+pub const MAX_FLUID_CELLS: f64 = 268_435_456.0;
+
+/// A number as a person writes it: plain between 1e-4 and 1e7, in exponent form otherwise.
+fn short(v: f64) -> String {
+    if v == 0.0 || (1e-4..1e7).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
 fn cells(ctx: &mut Ctx, t: &Tbl, domain: [[f64; 2]; 2], h: f64) {
+    let pos = t.get("domain").map_or(t.pos, |n| n.pos);
+    let mut counts = [0.0; 2];
     for (d, axis) in ["width", "height"].iter().enumerate() {
         let length = domain[1][d] - domain[0][d];
         let n = (length / h).round();
+        counts[d] = n;
+        if !n.is_finite() || n > MAX_FLUID_CELLS {
+            let msg = format!(
+                "the domain {axis} {} m holds {n:e} cells of {} m",
+                short(length),
+                short(h)
+            );
+            ctx.err(pos, &t.field("domain"), msg);
+            return;
+        }
         if (n * h - length).abs() > 1e-6 * h || n < 4.0 {
-            let pos = t.get("domain").map_or(t.pos, |n| n.pos);
             ctx.err(
                 pos,
                 &t.field("domain"),
                 format!(
-                    "the domain {axis} {length} m is not a whole number (>= 4) of cells of {h} m"
+                    "the domain {axis} {} m is not a whole number (>= 4) of cells of {} m",
+                    short(length),
+                    short(h)
                 ),
             );
         }
+    }
+    let total = counts[0] * counts[1];
+    if total > MAX_FLUID_CELLS {
+        ctx.err(
+            pos,
+            &t.field("domain"),
+            format!(
+                "{} x {} = {total:.3e} cells of {} m: more than the {MAX_FLUID_CELLS:.3e} a \
+                 fluid grid may have (check the units: m)",
+                counts[0],
+                counts[1],
+                short(h)
+            ),
+        );
     }
 }
 

@@ -62,6 +62,18 @@ pub(crate) fn circumradius(rel: &[V2]) -> f64 {
     rel.iter().map(|v| norm(*v)).fold(0.0, f64::max)
 }
 
+/// A vertex list for an error message: whole when short, else its first vertices and the count
+/// (a message must not repeat a whole 100,000-vertex line).
+fn listed(v: &[V2]) -> String {
+    const SHOWN: usize = 8;
+    if v.len() <= SHOWN {
+        format!("{v:?}")
+    } else {
+        let head = format!("{:?}", &v[..SHOWN]);
+        format!("{}, ...] ({} vertices)", &head[..head.len() - 1], v.len())
+    }
+}
+
 /// Checks an absolute vertex list (>= 3 vertices, non-degenerate, strictly convex, simple;
 /// clockwise lists are reversed) and computes its centroid, area and second moment.
 pub(crate) fn polygon(abs: &[V2]) -> Result<PolyProps, String> {
@@ -76,8 +88,9 @@ pub(crate) fn polygon(abs: &[V2]) -> Result<PolyProps, String> {
     let twice_area: f64 = (0..n).map(|i| cross(pts[i], pts[(i + 1) % n])).sum();
     if !(twice_area.abs() > 1e-12 * size * size) || !twice_area.is_finite() {
         return Err(format!(
-            "degenerate polygon (area {}), vertices {abs:?}",
-            twice_area / 2.0
+            "degenerate polygon (area {}), vertices {}",
+            twice_area / 2.0,
+            listed(abs)
         ));
     }
     if twice_area < 0.0 {
@@ -96,14 +109,18 @@ pub(crate) fn polygon(abs: &[V2]) -> Result<PolyProps, String> {
                 "has collinear or repeated vertices"
             };
             return Err(format!(
-                "polygon {what} (at vertex {:?}), vertices {abs:?}",
-                add(pts[(i + 1) % n], o)
+                "polygon {what} (at vertex {:?}), vertices {}",
+                add(pts[(i + 1) % n], o),
+                listed(abs)
             ));
         }
         turning += c.atan2(dot(e0, e1));
     }
     if (turning - 2.0 * std::f64::consts::PI).abs() > 1e-6 {
-        return Err(format!("polygon is self-intersecting, vertices {abs:?}"));
+        return Err(format!(
+            "polygon is self-intersecting, vertices {}",
+            listed(abs)
+        ));
     }
     let (mut cx, mut cy) = (0.0, 0.0);
     for i in 0..n {

@@ -294,13 +294,23 @@ fn generator_errors() {
     );
     assert!(e.message.contains("holds 16"), "{}", e.message);
     ok(&gen("count = 16\n"));
+    // 40 disks would cover 1.26 times the box: refused before any attempt.
     let e = expect_error(
         &gen("count = 40\nplacement = \"random\"\n"),
         "generators[0].count",
         "count",
+        "random placement jams",
+    );
+    assert!(e.message.contains("cover 1.257"), "{}", e.message);
+    // 17 would cover 0.53 of it, but random addition in so small a box jams before: the
+    // attempts run out.
+    let e = expect_error(
+        &gen("count = 17\nplacement = \"random\"\n"),
+        "generators[0].count",
+        "count",
         "random placement failed",
     );
-    assert!(e.message.contains("40000 attempts"), "{}", e.message);
+    assert!(e.message.contains("17000 attempts"), "{}", e.message);
     let t = gen("count = 1\nkind2 = 1\n");
     expect_error(&t, "generators[0].kind2", "kind2", "unknown key");
     let t = with_header("[[generators]]\nkind = \"pile\"\n");

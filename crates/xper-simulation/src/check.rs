@@ -8,13 +8,28 @@ use xper_scene::Scene;
 /// Validates the scene at `path`; prints a line of what it holds (and notes), or returns
 /// every error (file:line:column: field: reason) as a bad-input error.
 pub fn check(path: &Path) -> Result<(), RunError> {
-    match LoadedScene::read(path)? {
+    let scene = LoadedScene::read(path)?;
+    let needs = crate::resources::estimate(&scene);
+    let result = match scene {
         LoadedScene::Fracture { scene, .. } => crate::fracture::build::check(&scene, path),
         LoadedScene::Rigid { scene, .. } | LoadedScene::Fluid { scene, .. } => {
             check_rigid(&scene, path);
             Ok(())
         }
+    };
+    if result.is_ok() {
+        println!("needs: {} on one process", needs.describe());
+        if let Some(available) = crate::resources::available_memory() {
+            if needs.memory_bytes > available {
+                println!(
+                    "note: more than the {} available here: `xper run` refuses it unless \
+                     given --max-memory",
+                    crate::resources::bytes(available)
+                );
+            }
+        }
     }
+    result
 }
 
 fn check_rigid(scene: &Scene, path: &Path) {
@@ -47,16 +62,29 @@ fn check_rigid(scene: &Scene, path: &Path) {
         );
     }
     let n = scene.groups.len();
-    for a in 0..n {
+    let mut members = vec![0usize; n];
+    // Walls (segments) never interact with each other: they are not counted.
+    for b in &scene.bodies {
+        if !matches!(b.shape, xper_scene::ShapeDesc::Segment { .. }) {
+            members[b.group] += 1;
+        }
+    }
+    for (a, &members_a) in members.iter().enumerate() {
         for b in a..n {
-            if !scene
-                .laws
-                .iter()
-                .any(|l| (l.groups == [a, b]) || (l.groups == [b, a]))
-            {
+            let law = (scene.laws.iter()).any(|l| l.groups == [a, b] || l.groups == [b, a]);
+            if law {
+                continue;
+            }
+            if a != b {
                 println!(
                     "note: groups `{}` and `{}` have no law: they do not interact",
                     scene.groups[a], scene.groups[b]
+                );
+            } else if members_a > 1 {
+                println!(
+                    "note: group `{}` has no law with itself: its {} bodies do not interact \
+                     with each other",
+                    scene.groups[a], members_a
                 );
             }
         }

@@ -2,7 +2,8 @@
 //! communicator.
 //!
 //! ```text
-//! read the scene once -> build its simulation (or restore it from checkpoint.bin)
+//! read the scene once; refuse it if its estimated memory exceeds what is available
+//! build its simulation (or restore it from checkpoint.bin)
 //! first frame (or, on --resume, the tables and result.pvd read back)
 //! while the scene is not at its end (and not at --stop-at-step):
 //!     step                                    (collective)
@@ -19,6 +20,7 @@
 use crate::checkpoint::{self, Header};
 use crate::lock::OutputLock;
 use crate::outputs::{create_output_dir, io_err, progress_bar};
+use crate::resources;
 use crate::scene::LoadedScene;
 use crate::simulation::{run_status, OutputSchedule, RunFacts, RunOptions, Simulation};
 use crate::RunError;
@@ -43,6 +45,17 @@ pub fn run_on(
 ) -> Result<serde_json::Value, RunError> {
     let scene = LoadedScene::read(&opts.scene)?;
     let distributed = comm.filter(|c| c.size() > 1);
+    let processes = distributed.map_or(1, |c| c.size());
+    let fits = resources::ensure_fits(
+        &resources::estimate(&scene),
+        opts.max_memory,
+        processes,
+        &opts.scene,
+    );
+    if let (Err(e), Some(comm)) = (&fits, distributed) {
+        comm.abort(&e.to_string(), 2);
+    }
+    fits?;
     let schedule = scene.output_schedule();
     let mut simulation = scene.into_simulation(opts, distributed)?;
     drive(simulation.as_mut(), schedule, opts, quiet, distributed)

@@ -18,6 +18,7 @@ pub mod fracture;
 pub mod lock;
 pub mod outputs;
 pub mod ranks;
+pub mod resources;
 pub mod rigid;
 pub mod scene;
 pub mod simulation;

@@ -27,6 +27,9 @@ pub struct RunOptions {
     /// After a distributed run, run the same steps on one process and report the parallel
     /// efficiency and the largest position difference in `summary.json`.
     pub compare_serial: bool,
+    /// Largest memory the run may need by its estimate (bytes,
+    /// [`crate::resources::estimate`]); the memory available now when `None`.
+    pub max_memory: Option<f64>,
 }
 
 /// How often a run writes its outputs (steps).

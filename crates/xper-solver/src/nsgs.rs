@@ -108,7 +108,7 @@ pub fn nsgs(
     }
     debug_assert_eq!(r.len(), d * n);
     Ok(SolveReport::new(
-        SolverKind::Nsgs,
+        SolverKind::Nlgs,
         problem,
         params,
         iterations,

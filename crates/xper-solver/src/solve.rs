@@ -13,7 +13,7 @@
 //!
 //! | solver | method | use |
 //! |---|---|---|
-//! | [`SolverKind::Nsgs`] | non-smooth Gauss-Seidel over contacts ([`crate::nsgs`]) | robust default, rigid bodies |
+//! | [`SolverKind::Nlgs`] | non-smooth Gauss-Seidel over contacts ([`crate::nsgs`]) | robust default, rigid bodies |
 //! | [`SolverKind::Newton`] | semi-smooth Newton on Alart-Curnier's function ([`crate::newton`]) | full-rank `W` |
 //! | [`SolverKind::ProximalNewton`] | proximal point around the Newton solver ([`crate::proximal`]) | rank-deficient `W` |
 //! | [`SolverKind::Lemke`] | Lemke's pivoting on the 2D LCP ([`crate::lemke`]) | exact reference, small 2D |
@@ -30,7 +30,7 @@ use crate::proximal::{proximal_newton, ProximalParams};
 pub enum SolverKind {
     /// Non-smooth (non-linear) Gauss-Seidel over contacts.
     #[default]
-    Nsgs,
+    Nlgs,
     /// Generalized Newton on the Alart-Curnier function, sparse LU, line search.
     Newton,
     /// Proximal-point iterations, each solved by the generalized Newton method.
@@ -40,12 +40,13 @@ pub enum SolverKind {
 }
 
 impl SolverKind {
-    /// Short name used in reports.
+    /// Short name used in reports: the name a scene's `[solver] kind` gives it (the command
+    /// line accepts it too).
     pub fn name(self) -> &'static str {
         match self {
-            SolverKind::Nsgs => "nsgs",
+            SolverKind::Nlgs => "nlgs",
             SolverKind::Newton => "newton",
-            SolverKind::ProximalNewton => "proximal-newton",
+            SolverKind::ProximalNewton => "proximal_newton",
             SolverKind::Lemke => "lemke",
         }
     }
@@ -100,7 +101,7 @@ pub struct SolverParams {
 impl Default for SolverParams {
     fn default() -> Self {
         SolverParams {
-            kind: SolverKind::Nsgs,
+            kind: SolverKind::Nlgs,
             tolerance: 1e-8,
             max_iterations: 10_000,
             scaling: ErrorScaling::RelativeMax,
@@ -116,7 +117,7 @@ impl SolverParams {
     /// Default parameters for `kind`, with the iteration limit suited to it.
     pub fn with_kind(kind: SolverKind) -> Self {
         let max_iterations = match kind {
-            SolverKind::Nsgs => 10_000,
+            SolverKind::Nlgs => 10_000,
             SolverKind::Newton => 200,
             SolverKind::ProximalNewton => 100,
             SolverKind::Lemke => 0,
@@ -182,7 +183,7 @@ pub fn solve(
     warm_start: Option<&[f64]>,
 ) -> Result<SolveReport, SolveError> {
     match params.kind {
-        SolverKind::Nsgs => nsgs(problem, params, warm_start),
+        SolverKind::Nlgs => nsgs(problem, params, warm_start),
         SolverKind::Newton => newton(problem, params, warm_start),
         SolverKind::ProximalNewton => proximal_newton(problem, params, warm_start),
         SolverKind::Lemke => lemke(problem, params),

@@ -90,7 +90,7 @@ fn check_coulomb(dim: usize, r: &[f64], u: &[f64], mu: &[f64], tol: f64) -> Resu
 fn params(kind: SolverKind, tol: f64) -> SolverParams {
     let mut p = SolverParams::with_kind(kind);
     p.tolerance = tol;
-    if kind == SolverKind::Nsgs {
+    if kind == SolverKind::Nlgs {
         p.max_iterations = 200_000;
     }
     p
@@ -139,7 +139,7 @@ fn small_2d_problems_nsgs_newton_lemke_agree() {
             SolverKind::ProximalNewton
         };
         let reports = [
-            run(&p, SolverKind::Nsgs, 1e-12),
+            run(&p, SolverKind::Nlgs, 1e-12),
             run(&p, newton_kind, 1e-12),
             run(&p, SolverKind::ProximalNewton, 1e-12),
         ];
@@ -180,7 +180,7 @@ fn random_3d_problems_nsgs_and_newton_agree() {
         let full_rank = case % 3 != 0;
         let dofs = if full_rank { 3 * n + 3 } else { 2 * n };
         let p = random_problem(&mut rng, 3, n, dofs, 0.8);
-        let nsgs = run(&p, SolverKind::Nsgs, 1e-12);
+        let nsgs = run(&p, SolverKind::Nlgs, 1e-12);
         let newton = run(
             &p,
             if full_rank {
@@ -230,7 +230,7 @@ fn nlgs_on_dense_problem_agrees_with_nsgs() {
         .unwrap();
         assert!(info.converged, "case {case}: {info:?}");
         let r_nlgs: Vec<f64> = impulses.iter().flatten().copied().collect();
-        let rep = run(&p, SolverKind::Nsgs, 1e-12);
+        let rep = run(&p, SolverKind::Nlgs, 1e-12);
         // Same contact order and the same exact local solve: the two iterations coincide, up
         // to the rounding of the velocity updates (incremental in nlgs, from rows in nsgs).
         assert!(
@@ -256,7 +256,7 @@ fn one_contact_3d_stick_slide_take_off() {
     for (q, mu, exact) in cases {
         let p = FrictionProblem::new(3, w.clone(), q.to_vec(), vec![mu]).unwrap();
         for kind in [
-            SolverKind::Nsgs,
+            SolverKind::Nlgs,
             SolverKind::Newton,
             SolverKind::ProximalNewton,
         ] {
@@ -286,7 +286,7 @@ fn bad_problems_are_errors_not_panics() {
         mu: vec![0.3],
     };
     for kind in [
-        SolverKind::Nsgs,
+        SolverKind::Nlgs,
         SolverKind::Newton,
         SolverKind::ProximalNewton,
         SolverKind::Lemke,
@@ -326,7 +326,7 @@ fn empty_problem_is_solved() {
     )
     .unwrap();
     for kind in [
-        SolverKind::Nsgs,
+        SolverKind::Nlgs,
         SolverKind::Newton,
         SolverKind::ProximalNewton,
     ] {
@@ -341,7 +341,7 @@ fn warm_start_at_the_solution_stops_at_once() {
     let p = random_problem(&mut rng, 3, 4, 15, 0.5);
     let first = run(&p, SolverKind::Newton, 1e-12);
     for kind in [
-        SolverKind::Nsgs,
+        SolverKind::Nlgs,
         SolverKind::Newton,
         SolverKind::ProximalNewton,
     ] {
@@ -358,7 +358,7 @@ fn warm_start_at_the_solution_stops_at_once() {
 fn shuffled_nsgs_is_deterministic_and_converges() {
     let mut rng = Rng(8);
     let p = random_problem(&mut rng, 3, 6, 12, 0.7);
-    let mut prm = params(SolverKind::Nsgs, 1e-10);
+    let mut prm = params(SolverKind::Nlgs, 1e-10);
     prm.nsgs.shuffle_seed = Some(99);
     let a = solve(&p, &prm, None).unwrap();
     let b = solve(&p, &prm, None).unwrap();
@@ -393,7 +393,7 @@ proptest! {
         let q: Vec<f64> = (0..m).map(|_| rng.range(-3.0, 3.0)).collect();
         let mu: Vec<f64> = (0..n).map(|_| rng.range(0.0, 2.0)).collect();
         let p = FrictionProblem::new(dim, CsrMatrix::from_dense_row_major(m, m, &w), q, mu).unwrap();
-        let kind = [SolverKind::Nsgs, SolverKind::Newton, SolverKind::ProximalNewton, SolverKind::Lemke][kind];
+        let kind = [SolverKind::Nlgs, SolverKind::Newton, SolverKind::ProximalNewton, SolverKind::Lemke][kind];
         let mut prm = SolverParams::with_kind(kind);
         prm.max_iterations = if kind == SolverKind::Lemke { 0 } else { 30 };
         if let Ok(rep) = solve(&p, &prm, None) {

@@ -35,6 +35,7 @@ fn paper_run(name: &str, full: bool) -> Result<Option<FractureSummary>, RunError
         resume,
         stop_at_step: if full { None } else { Some(0) },
         compare_serial: false,
+        max_memory: None,
     };
     let quiet = !full || !std::io::IsTerminal::is_terminal(&std::io::stderr());
     let summary = xper_simulation::run(&opts, quiet)?;

@@ -49,7 +49,7 @@ pub fn suite_tolerance(name: &str) -> f64 {
 /// The solvers run on a problem: Lemke only on small 2D problems (its tableau is dense).
 pub fn suite_solvers(dim: usize, contacts: usize) -> Vec<SolverKind> {
     let mut kinds = vec![
-        SolverKind::Nsgs,
+        SolverKind::Nlgs,
         SolverKind::Newton,
         SolverKind::ProximalNewton,
     ];
@@ -99,10 +99,10 @@ pub fn validate_problem(path: &Path) -> Result<SuiteCase, RunError> {
     let mut consistent = true;
     for kind in [
         SolverKind::ProximalNewton,
-        SolverKind::Nsgs,
+        SolverKind::Nlgs,
         SolverKind::Newton,
     ] {
-        let max_iter = (kind == SolverKind::Nsgs).then_some(3000);
+        let max_iter = (kind == SolverKind::Nlgs).then_some(3000);
         let Ok((report, _)) =
             solve_timed(&problem, kind, tolerance, max_iter, ErrorScaling::RelativeQ)
         else {

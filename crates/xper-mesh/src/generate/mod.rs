@@ -130,9 +130,15 @@ pub(crate) fn positive(origin: &str, field: &str, value: f64) -> Result<(), Mesh
     }
 }
 
+/// About how many triangles meshing `area` (m^2) with element size `h` (m) gives (before
+/// meshing: the estimate behind [`MAX_TRIANGLES`] and the memory estimate of a scene).
+pub fn estimated_triangles(area: f64, h: f64) -> f64 {
+    area / (MAX_AREA_FACTOR * h * h) * 2.0
+}
+
 /// Checks that meshing `area` (m^2) with element size `h` (m) stays below [`MAX_TRIANGLES`].
 pub(crate) fn check_count(origin: &str, area: f64, h: f64) -> Result<(), MeshError> {
-    let estimate = area / (MAX_AREA_FACTOR * h * h) * 2.0;
+    let estimate = estimated_triangles(area, h);
     if estimate > MAX_TRIANGLES {
         return Err(MeshError::new(
             MeshErrorKind::Spec,
