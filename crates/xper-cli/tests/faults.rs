@@ -256,3 +256,45 @@ fn solver_names_are_the_same_on_the_command_line_in_scenes_and_in_outputs() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("negative"));
 }
+
+#[test]
+fn a_fluid_checkpoint_with_another_grid_size_is_refused_not_indexed() {
+    let dir = temp_dir("fault-fluid-grid");
+    let scene = fluid_scene(&dir, "0.016", "cells_per_diameter = 8");
+    let out = dir.join("out");
+    assert!(run(&scene, &out, &["--quiet", "--stop-at-step", "2"])
+        .status
+        .success());
+    // The damage the campaign found (one byte of the grid size), re-sealed with a valid
+    // checksum, as a file written by a faulty build would be.
+    let sealed = xper_simulation::checkpoint::open(&out, "test").unwrap();
+    type Payload = (u32, u64, xper_fluid::CoupledState);
+    let (tag, hash, mut state): Payload = bincode::deserialize(&sealed.payload).unwrap();
+    state.fluid.grid.nx += 256;
+    let payload = bincode::serialize(&(tag, hash, state)).unwrap();
+    let bytes = xper_simulation::checkpoint::seal(sealed.header, &payload).unwrap();
+    std::fs::write(out.join("checkpoint.bin"), bytes).unwrap();
+    let result = run(&scene, &out, &["--quiet", "--resume"]);
+    let err = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(2), "{err}");
+    assert!(err.contains("fluid grid of 320 x 64"), "{err}");
+}
+
+#[test]
+fn step_counts_beyond_2_pow_53_are_refused_and_printed_as_numbers() {
+    let dir = temp_dir("fault-steps");
+    for (key, value, expected) in [
+        ("steps", toml::Value::Integer(i64::MAX), "9007199254740992"),
+        ("duration", toml::Value::Float(1e300), "1.000e303 steps"),
+    ] {
+        let scene = drop_scene(&dir, 10, |doc| {
+            let s = doc["scene"].as_table_mut().unwrap();
+            s.remove("steps");
+            s.insert(key.into(), value);
+        });
+        let result = xper(&["check", scene.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&result.stderr);
+        assert_eq!(result.status.code(), Some(2), "{err}");
+        assert!(err.contains(expected) && err.len() < 300, "{err}");
+    }
+}

@@ -65,7 +65,9 @@ pub(crate) fn header(ctx: &mut Ctx, root: &Tbl) -> Header {
             None
         }
         (Got::Bad, _) | (_, Got::Bad) => None,
-        (Got::Absent, s) => int_in(ctx, s.ok(), &t.field("steps"), 1, i64::MAX).map(|s| s as u64),
+        (Got::Absent, s) => {
+            int_in(ctx, s.ok(), &t.field("steps"), 1, MAX_STEPS as i64).map(|s| s as u64)
+        }
         (d, Got::Absent) => {
             let d = ensure(ctx, d.ok(), &t.field("duration"), |v| v > 0.0, "> 0 s");
             match (d, dt) {
@@ -80,7 +82,7 @@ pub(crate) fn header(ctx: &mut Ctx, root: &Tbl) -> Header {
                         ctx.err(
                             pos,
                             &t.field("duration"),
-                            format!("duration/dt = {ratio} steps is too many (limit 2^53)"),
+                            format!("duration/dt = {ratio:.3e} steps is too many (limit 2^53)"),
                         );
                         None
                     }

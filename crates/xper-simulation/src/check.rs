@@ -13,6 +13,7 @@ pub fn check(path: &Path) -> Result<(), RunError> {
     let result = match scene {
         LoadedScene::Fracture { scene, .. } => crate::fracture::build::check(&scene, path),
         LoadedScene::Rigid { scene, .. } | LoadedScene::Fluid { scene, .. } => {
+            crate::rigid::dumps_supported(&scene, path)?;
             check_rigid(&scene, path);
             Ok(())
         }

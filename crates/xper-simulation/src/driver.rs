@@ -216,7 +216,9 @@ pub fn drive(
                     write_checkpoint(sim, dir)?;
                 }
                 if step % 10 == 0 || sim.is_complete() {
-                    bar.set_position(sim.progress().1);
+                    let (steps, position) = sim.progress();
+                    bar.set_length(steps);
+                    bar.set_position(position);
                     bar.set_message(sim.status_line());
                 }
             }

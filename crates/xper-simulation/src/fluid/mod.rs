@@ -62,7 +62,13 @@ impl<'c> FluidSimulation<'c> {
             .ok_or_else(|| RunError::BadInput("not a fluid scene".into()))?;
         let params = fluid_params(desc, scene.dt);
         let state = if opts.resume {
-            read_checkpoint(&opts.out, scene_hash, "a checkpoint of a fluid scene")?
+            let state: CoupledState =
+                read_checkpoint(&opts.out, scene_hash, "a checkpoint of a fluid scene")?;
+            same_layout(&state, &coupled_state(&scene, desc, &params)).map_err(|why| {
+                let file = opts.out.join("checkpoint.bin");
+                RunError::BadInput(format!("{}: {why}", file.display()))
+            })?;
+            state
         } else {
             coupled_state(&scene, desc, &params)
         };
@@ -150,11 +156,19 @@ impl Simulation for FluidSimulation<'_> {
     fn is_complete(&self) -> bool {
         self.state.world.time >= self.duration() * (1.0 - 1e-12)
     }
+    /// Steps done, and the steps of the whole run at the last step's length (the fluid's time
+    /// step varies: the total is re-estimated as the run goes).
     fn progress(&self) -> (u64, u64) {
-        (
-            self.scene.steps,
-            (self.state.world.time / self.scene.dt) as u64,
-        )
+        let done = self.state.world.step;
+        let dt = if self.last.2 > 0.0 {
+            self.last.2
+        } else {
+            self.scene.dt
+        };
+        let left = ((self.duration() - self.state.world.time) / dt)
+            .ceil()
+            .max(0.0);
+        (done + left as u64, done)
     }
     fn status_line(&self) -> String {
         let (cycles, contacts, dt) = self.last;
@@ -283,4 +297,34 @@ impl Simulation for FluidSimulation<'_> {
             dir.display()
         )
     }
+}
+
+/// Whether a restored state has the grid, the array sizes and the bodies of the scene's own
+/// (`fresh`): a checkpoint that passed its checksum but disagrees is refused, not indexed.
+fn same_layout(restored: &CoupledState, fresh: &CoupledState) -> Result<(), String> {
+    let (r, f) = (&restored.fluid, &fresh.fluid);
+    let sizes = |s: &xper_fluid::FluidState| {
+        let mut v: Vec<usize> = s.velocity.iter().map(Vec::len).collect();
+        v.extend([s.pressure.len(), s.increment.len()]);
+        v
+    };
+    if r.grid != f.grid || sizes(r) != sizes(f) {
+        return Err(format!(
+            "the checkpoint holds a fluid grid of {} x {} cells of {} m (arrays {:?}), the scene \
+             {} x {} of {} m (arrays {:?})",
+            r.grid.nx,
+            r.grid.ny,
+            r.grid.h,
+            sizes(r),
+            f.grid.nx,
+            f.grid.ny,
+            f.grid.h,
+            sizes(f)
+        ));
+    }
+    let (rb, fb) = (restored.world.bodies.len(), fresh.world.bodies.len());
+    if rb != fb {
+        return Err(format!("the checkpoint holds {rb} bodies, the scene {fb}"));
+    }
+    Ok(())
 }

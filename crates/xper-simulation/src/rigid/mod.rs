@@ -51,12 +51,7 @@ impl<'c> RigidSimulation<'c> {
         comm: Option<&'c dyn Communicator>,
     ) -> Result<Self, RunError> {
         let dumps = scene.output.dump_problems.clone();
-        if !dumps.is_empty() && !cfg!(feature = "hdf5") {
-            return Err(RunError::BadInput(format!(
-                "{}: [output] dump_problems: built without HDF5 support: rebuild with --features hdf5",
-                opts.scene.display()
-            )));
-        }
+        dumps_supported(&scene, &opts.scene)?;
         check_distributable(&scene, &opts.scene, comm.is_some())?;
         let root = comm.is_none_or(|c| c.rank() == 0);
         if !dumps.is_empty() && root {
@@ -225,4 +220,16 @@ impl Simulation for RigidSimulation<'_> {
             dir.display()
         )
     }
+}
+
+/// `[output] dump_problems` needs the `hdf5` feature: without it the scene is refused (by
+/// `xper check` too), never accepted and then failed at the first dump.
+pub fn dumps_supported(scene: &Scene, path: &Path) -> Result<(), RunError> {
+    if !scene.output.dump_problems.is_empty() && !cfg!(feature = "hdf5") {
+        return Err(RunError::BadInput(format!(
+            "{}: [output] dump_problems: built without HDF5 support: rebuild with --features hdf5",
+            path.display()
+        )));
+    }
+    Ok(())
 }
