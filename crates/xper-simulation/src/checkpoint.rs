@@ -202,4 +202,30 @@ mod tests {
             );
         }
     }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(3000))]
+
+        #[test]
+        fn any_damage_to_a_sealed_checkpoint_is_refused(
+            edits in proptest::collection::vec((0usize..4096, 0u8..=255, 0u8..3), 1..6),
+        ) {
+            let good = sample();
+            let mut bad = good.clone();
+            for (at, value, op) in edits {
+                let at = at % bad.len().max(1);
+                match op {
+                    0 if !bad.is_empty() => bad[at] ^= value.max(1),
+                    1 => bad.insert(at, value),
+                    _ if !bad.is_empty() => {
+                        bad.remove(at);
+                    }
+                    _ => {}
+                }
+            }
+            if bad != good {
+                proptest::prop_assert!(unseal(bad).is_err());
+            }
+        }
+    }
 }
