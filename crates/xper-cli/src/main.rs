@@ -80,6 +80,10 @@ enum Command {
         /// Run nothing: rewrite the summary table that opens the report from its tables.
         #[arg(long, conflicts_with = "full")]
         summary_only: bool,
+        /// Run only the robustness campaign (damaged inputs, corrupted checkpoints, killed
+        /// runs) and replace its section of the report, then the summary.
+        #[arg(long, conflicts_with_all = ["full", "summary_only"])]
+        robustness_only: bool,
     },
 }
 
@@ -140,6 +144,11 @@ fn main() -> ExitCode {
             summary_only: true,
             ..
         } => xper_validation::report::rewrite_summary(&report),
+        Command::Validate {
+            report,
+            robustness_only: true,
+            ..
+        } => xper_validation::report::rewrite_robustness(&report),
         Command::Validate { report, full, .. } => {
             xper_validation::report::write_report(&report, full)
         }

@@ -18,6 +18,7 @@ pub mod fracture;
 pub mod paper;
 pub mod report;
 pub mod rigid;
+pub mod robustness;
 pub mod suite;
 
 pub use case::Case;

@@ -3,6 +3,7 @@
 
 use crate::case::{push_case_row, push_cases};
 use crate::RunError;
+use std::path::Path;
 
 /// Runs every case at full resolution and writes the report; fails if a case fails. With
 /// `full`, also runs (or continues) the paper's fracture applications at its resolution
@@ -36,6 +37,11 @@ pub fn write_report(path: &std::path::Path, full: bool) -> Result<(), RunError> 
         fracture_section(&mut md)? + crate::fluid_report::fluid_section(&mut md, full)?;
     let paper_failures = crate::paper::paper_section(&mut md, full)? + fracture_failures;
     let suite_failures = suite_section(&mut md)? + paper_failures;
+    // The kill rounds run this very binary (`xper validate` is `xper`).
+    let xper = std::env::current_exe().ok();
+    let suite_failures =
+        crate::robustness::robustness_section(&mut md, Path::new("."), xper.as_deref(), KILLS)?
+            + suite_failures;
     let md = with_summary(&md);
     xper_io::write_atomic(path, md.as_bytes()).map_err(|e| RunError::Runtime(e.to_string()))?;
     match cases.iter().filter(|c| !c.passed()).count() + suite_failures {
@@ -46,6 +52,9 @@ pub fn write_report(path: &std::path::Path, full: bool) -> Result<(), RunError> 
         ))),
     }
 }
+
+/// Kills of the robustness campaign's kill rounds.
+const KILLS: usize = 60;
 
 /// Title of the summary table that opens the report.
 const SUMMARY_HEADING: &str = "## Summary";
@@ -118,6 +127,48 @@ pub fn rewrite_summary(path: &std::path::Path) -> Result<(), RunError> {
     Ok(())
 }
 
+/// Runs the robustness campaign ([`crate::robustness`]) alone and puts its section into the
+/// report at `path` in place of the previous one (or at its end), then rewrites the summary.
+pub fn rewrite_robustness(path: &Path) -> Result<(), RunError> {
+    let md = std::fs::read_to_string(path)
+        .map_err(|e| RunError::BadInput(format!("{}: {e}", path.display())))?;
+    let mut section = String::new();
+    let xper = std::env::current_exe().ok();
+    let failed = crate::robustness::robustness_section(
+        &mut section,
+        Path::new("."),
+        xper.as_deref(),
+        KILLS,
+    )?;
+    let md = replace_section(&md, crate::robustness::HEADING, &section);
+    xper_io::write_atomic(path, with_summary(&md).as_bytes())
+        .map_err(|e| RunError::Runtime(e.to_string()))?;
+    println!("wrote {}", path.display());
+    match failed {
+        0 => Ok(()),
+        n => Err(RunError::Runtime(format!(
+            "{n} robustness row(s) failed; see {}",
+            path.display()
+        ))),
+    }
+}
+
+/// `md` with the section opened by `heading` (up to the next `## ` heading) replaced by
+/// `section`, or `section` appended when there is none.
+fn replace_section(md: &str, heading: &str, section: &str) -> String {
+    let Some(start) = md.find(&format!("\n{heading}")) else {
+        return format!("{}{section}", md.trim_end_matches('\n').to_string() + "\n");
+    };
+    let after = start + 1 + heading.len();
+    let end = md[after..].find("\n## ").map_or(md.len(), |e| after + e);
+    format!(
+        "{}{}{}",
+        &md[..start],
+        section.trim_end_matches('\n').to_string() + "\n",
+        &md[end..]
+    )
+}
+
 /// The fracture engine's cases with exact answers (`xper_fracture::validation`, which the
 /// crate's tests assert too): appends their table to `md`, returns the number that failed.
 fn fracture_section(md: &mut String) -> Result<usize, RunError> {
@@ -186,7 +237,17 @@ fn suite_section(md: &mut String) -> Result<usize, RunError> {
 
 #[cfg(test)]
 mod tests {
-    use super::with_summary;
+
+    #[test]
+    fn a_section_is_replaced_in_place_or_appended() {
+        let md = "# R\n\n## A\na\n\n## B\nold\n\n## C\nc\n";
+        let new = replace_section(md, "## B", "\n## B\nnew\n");
+        assert_eq!(new, "# R\n\n## A\na\n\n## B\nnew\n\n## C\nc\n");
+        let appended = replace_section("# R\n\n## A\na\n", "## B", "\n## B\nnew\n");
+        assert_eq!(appended, "# R\n\n## A\na\n\n## B\nnew\n");
+    }
+
+    use super::{replace_section, with_summary};
 
     #[test]
     fn the_summary_counts_each_section_and_is_replaced_not_repeated() {
