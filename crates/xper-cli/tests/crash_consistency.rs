@@ -236,3 +236,60 @@ fn random_kills_resume_to_the_uninterrupted_outputs() {
         assert_same_outputs(&straight, &split, &format!("{name} after {kills} kills"));
     }
 }
+
+/// A tmpfs mounted for a test, unmounted when dropped.
+struct Tmpfs(PathBuf);
+
+impl Tmpfs {
+    /// A `size` tmpfs at `dir`, or why there cannot be one (not root, no mount).
+    fn mount(dir: &Path, size: &str) -> Result<Self, String> {
+        std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
+        let out = Command::new("mount")
+            .args(["-t", "tmpfs", "-o", &format!("size={size}"), "tmpfs"])
+            .arg(dir)
+            .output()
+            .map_err(|e| format!("mount: {e}"))?;
+        if !out.status.success() {
+            return Err(String::from_utf8_lossy(&out.stderr).trim().to_string());
+        }
+        Ok(Tmpfs(dir.to_path_buf()))
+    }
+
+    fn resize(&self, size: &str) {
+        let ok = Command::new("mount")
+            .args(["-o", &format!("remount,size={size}")])
+            .arg(&self.0)
+            .status()
+            .unwrap()
+            .success();
+        assert!(ok, "remount {}", self.0.display());
+    }
+}
+
+impl Drop for Tmpfs {
+    fn drop(&mut self) {
+        let _ = Command::new("umount").arg(&self.0).status();
+    }
+}
+
+#[test]
+fn a_full_disk_then_resume_gives_the_uninterrupted_outputs() {
+    let dir = temp_dir("crash-full-disk");
+    let scene = shipped_scene("drop", 1000, [10, 100], &dir);
+    let disk = match Tmpfs::mount(&dir.join("disk"), "256k") {
+        Ok(disk) => disk,
+        Err(why) => {
+            println!("skipped: no small tmpfs to fill ({why}); run as root to test a full disk");
+            return;
+        }
+    };
+    let (straight, split) = (dir.join("straight"), disk.0.join("out"));
+    ok(&run(&scene, &straight, &[]));
+    let full = run(&scene, &split, &[]);
+    let err = String::from_utf8_lossy(&full.stderr);
+    assert_eq!(full.status.code(), Some(1), "a 256 kB disk holds the run: {err}");
+    assert!(err.contains("No space left"), "{err}");
+    disk.resize("64m");
+    ok(&run(&scene, &split, &["--resume"]));
+    assert_same_outputs(&straight, &split, "drop after a full disk");
+}
