@@ -287,7 +287,11 @@ fn a_full_disk_then_resume_gives_the_uninterrupted_outputs() {
     ok(&run(&scene, &straight, &[]));
     let full = run(&scene, &split, &[]);
     let err = String::from_utf8_lossy(&full.stderr);
-    assert_eq!(full.status.code(), Some(1), "a 256 kB disk holds the run: {err}");
+    assert_eq!(
+        full.status.code(),
+        Some(1),
+        "a 256 kB disk holds the run: {err}"
+    );
     assert!(err.contains("No space left"), "{err}");
     disk.resize("64m");
     ok(&run(&scene, &split, &["--resume"]));

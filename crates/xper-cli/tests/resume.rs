@@ -136,3 +136,72 @@ fn resume_refuses_a_checkpoint_of_another_layout() {
         "{err}"
     );
 }
+
+#[test]
+fn resume_after_a_longer_duration_continues_and_lists_the_edit() {
+    let dir = temp_dir("resume-compatible");
+    let (scene, straight_scene) = (dir.join("scene.toml"), dir.join("straight.toml"));
+    std::fs::write(&straight_scene, deposit_scene(60, 150)).unwrap();
+    std::fs::write(&scene, deposit_scene(60, 100)).unwrap();
+    let (straight, split) = (dir.join("straight"), dir.join("split"));
+    let ok = |args: &[&str]| {
+        let out = xper(args);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    ok(&[
+        "run",
+        straight_scene.to_str().unwrap(),
+        "--out",
+        straight.to_str().unwrap(),
+    ]);
+    let s = scene.to_str().unwrap();
+    ok(&["run", s, "--out", split.to_str().unwrap()]);
+    // The run ended at 100 steps; the scene now asks for 150 (and says so in a comment).
+    std::fs::write(&scene, format!("# longer\n{}", deposit_scene(60, 150))).unwrap();
+    let err = ok(&["run", s, "--out", split.to_str().unwrap(), "--resume"]);
+    assert!(err.contains("scene.steps: 100 -> 150"), "{err}");
+    let a = std::fs::read(straight.join("checkpoint.bin")).unwrap();
+    let b = std::fs::read(split.join("checkpoint.bin")).unwrap();
+    let (a, b) = (
+        xper_simulation::checkpoint::unseal(a).unwrap(),
+        xper_simulation::checkpoint::unseal(b).unwrap(),
+    );
+    assert!(a.payload[12..] == b.payload[12..], "final states differ");
+    let sa = SeriesTable::read_csv(&straight.join("series.csv")).unwrap();
+    let sb = SeriesTable::read_csv(&split.join("series.csv")).unwrap();
+    assert_eq!(sa.rows.len(), 150);
+    let column = |t: &SeriesTable| t.column("kinetic_energy").unwrap();
+    assert_eq!(column(&sa), column(&sb));
+}
+
+#[test]
+fn resume_refuses_an_edit_of_the_physics_with_its_list() {
+    let dir = temp_dir("resume-incompatible");
+    let scene = dir.join("scene.toml");
+    std::fs::write(&scene, deposit_scene(20, 10)).unwrap();
+    let (s, run) = (scene.to_str().unwrap(), dir.join("run"));
+    let r = run.to_str().unwrap();
+    assert!(xper(&["run", s, "--out", r, "--stop-at-step", "5"])
+        .status
+        .success());
+    let edited = deposit_scene(20, 10)
+        .replace("friction = 0.3", "friction = 0.4")
+        .replace("steps = 10", "steps = 20");
+    std::fs::write(&scene, edited).unwrap();
+    let out = xper(&["run", s, "--out", r, "--resume"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("different scene") && err.contains("laws[0].friction: 0.3 -> 0.4"),
+        "{err}"
+    );
+    assert!(
+        !err.contains("scene.steps"),
+        "only what a resume cannot follow: {err}"
+    );
+}

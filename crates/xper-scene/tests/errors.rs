@@ -54,7 +54,12 @@ fn duration_and_steps() {
     let t = HEADER.replace("steps = 10\n", "");
     expect_error(&t, "scene.duration", "[scene]", "missing required key");
     let t = HEADER.replace("steps = 10", "steps = 0");
-    expect_error(&t, "scene.steps", "steps", "must be >= 1, got 0");
+    expect_error(
+        &t,
+        "scene.steps",
+        "steps",
+        "must be in [1, 9007199254740992], got 0",
+    );
 }
 
 #[test]

@@ -39,6 +39,9 @@ pub struct Header {
     pub payload_len: u64,
     /// Rows of each table written beside the checkpoint, by file name, at its step.
     pub tables: Vec<(String, u64)>,
+    /// The scene file's text, to tell a compatible edit from another scene on `--resume`
+    /// ([`crate::resume`]).
+    pub scene_text: String,
 }
 
 /// A checkpoint read back and verified.
@@ -135,16 +138,17 @@ pub fn checkpoint_bytes<T: Serialize>(scene_hash: u64, state: &T) -> Result<Vec<
         .map_err(|e| RunError::Runtime(e.to_string()))
 }
 
-/// Reads `dir/checkpoint.bin`, verified by [`open`], whose payload [`checkpoint_bytes`] wrote,
-/// for the scene whose text hashes to `scene_hash`; `what` names the kind of state in the error
-/// message.
+/// Reads `dir/checkpoint.bin`, verified by [`open`], whose payload [`checkpoint_bytes`] wrote;
+/// `what` names the kind of state in the error message. Whether it belongs to the scene is the
+/// driver's decision ([`crate::resume::check_resume`]); its payload must name the scene its
+/// envelope names.
 pub fn read_checkpoint<T: serde::de::DeserializeOwned>(
     dir: &Path,
-    scene_hash: u64,
     what: &str,
 ) -> Result<T, RunError> {
     let path = dir.join("checkpoint.bin");
-    let bytes = open(dir, "cannot resume")?.payload;
+    let sealed = open(dir, "cannot resume")?;
+    let (scene_hash, bytes) = (sealed.header.scene_hash, sealed.payload);
     let tag: Option<u32> = bytes.get(..4).and_then(|b| bincode::deserialize(b).ok());
     if tag != Some(CHECKPOINT_TAG) {
         return Err(RunError::BadInput(format!(
@@ -157,7 +161,7 @@ pub fn read_checkpoint<T: serde::de::DeserializeOwned>(
         .map_err(|e| RunError::BadInput(format!("{}: not {what}: {e}", path.display())))?;
     if hash != scene_hash {
         return Err(RunError::BadInput(format!(
-            "{}: the checkpoint was written for a different scene file (the scene changed since)",
+            "{}: the checkpoint's state belongs to another scene than its envelope says",
             path.display()
         )));
     }
@@ -173,6 +177,7 @@ mod tests {
             scene_hash: 7,
             payload_len: 0,
             tables: vec![("series.csv".into(), 12)],
+            scene_text: "[scene]\n".into(),
         };
         seal(header, &(0..200u8).collect::<Vec<_>>()).unwrap()
     }

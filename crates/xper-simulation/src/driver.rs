@@ -21,6 +21,7 @@ use crate::checkpoint::{self, Header};
 use crate::lock::OutputLock;
 use crate::outputs::{create_output_dir, io_err, progress_bar};
 use crate::resources;
+use crate::resume;
 use crate::scene::LoadedScene;
 use crate::simulation::{run_status, OutputSchedule, RunFacts, RunOptions, Simulation};
 use crate::RunError;
@@ -43,7 +44,7 @@ pub fn run_on(
     quiet: bool,
     comm: Option<&dyn Communicator>,
 ) -> Result<serde_json::Value, RunError> {
-    let scene = LoadedScene::read(&opts.scene)?;
+    let (scene, text) = LoadedScene::read_with_text(&opts.scene)?;
     let distributed = comm.filter(|c| c.size() > 1);
     let processes = distributed.map_or(1, |c| c.size());
     let fits = resources::ensure_fits(
@@ -57,16 +58,41 @@ pub fn run_on(
     }
     fits?;
     let schedule = scene.output_schedule();
+    let resumed_edits = match opts.resume {
+        true => resume::check_resume(&opts.out, scene.hash(), &text)?,
+        false => Vec::new(),
+    };
     let mut simulation = scene.into_simulation(opts, distributed)?;
-    drive(simulation.as_mut(), schedule, opts, quiet, distributed)
+    let file = SceneFile {
+        text,
+        notes: resumed_edits,
+    };
+    drive(
+        simulation.as_mut(),
+        schedule,
+        opts,
+        quiet,
+        distributed,
+        &file,
+    )
+}
+
+/// What the driver keeps of the scene file: its text (each checkpoint holds it, so that a
+/// resume can tell a compatible edit, [`crate::resume`]) and the notes of its reading.
+pub struct SceneFile {
+    /// The scene file's text.
+    pub text: String,
+    /// Remarks printed before the run (the edits a resume takes).
+    pub notes: Vec<String>,
 }
 
 /// Writes the tables, then `checkpoint.bin` with their row counts: a run interrupted between
 /// the two leaves tables that reach past the previous checkpoint, never short of one.
-fn write_checkpoint(sim: &dyn Simulation, dir: &Path) -> Result<(), RunError> {
+fn write_checkpoint(sim: &dyn Simulation, dir: &Path, scene: &SceneFile) -> Result<(), RunError> {
     write_tables(sim, dir)?;
     let header = Header {
         scene_hash: sim.scene_hash(),
+        scene_text: scene.text.clone(),
         payload_len: 0,
         tables: (sim.tables().into_iter())
             .map(|(name, table)| (name.to_string(), table.rows.len() as u64))
@@ -149,12 +175,14 @@ pub fn drive(
     opts: &RunOptions,
     quiet: bool,
     comm: Option<&dyn Communicator>,
+    scene: &SceneFile,
 ) -> Result<serde_json::Value, RunError> {
     let root = sim.is_root();
     let dir = opts.out.as_path();
     let mut _lock = None;
     if root {
-        let mut notes = sim.notes();
+        let mut notes = scene.notes.clone();
+        notes.extend(sim.notes());
         let locked =
             create_output_dir(&dir.join("frames")).and_then(|()| OutputLock::take(dir, &mut notes));
         match locked {
@@ -213,7 +241,7 @@ pub fn drive(
                     sim.write_frame(dir, &mut pvd)?;
                 }
                 if checkpoint && root {
-                    write_checkpoint(sim, dir)?;
+                    write_checkpoint(sim, dir, scene)?;
                 }
                 if step % 10 == 0 || sim.is_complete() {
                     let (steps, position) = sim.progress();
@@ -264,7 +292,7 @@ pub fn drive(
         };
     }
     if failure.is_none() {
-        write_checkpoint(sim, dir)?;
+        write_checkpoint(sim, dir, scene)?;
     } else {
         write_tables(sim, dir)?;
     }

@@ -19,11 +19,12 @@ pub mod lock;
 pub mod outputs;
 pub mod ranks;
 pub mod resources;
+pub mod resume;
 pub mod rigid;
 pub mod scene;
 pub mod simulation;
 
-pub use driver::{drive, run, run_on};
+pub use driver::{drive, run, run_on, SceneFile};
 pub use scene::LoadedScene;
 pub use simulation::{OutputSchedule, RunFacts, RunOptions, Simulation, StepFailure};
 

@@ -42,6 +42,20 @@ impl LoadedScene {
     /// Reads and validates the scene file at `path` (every problem is a bad-input error
     /// naming the file and the place in it).
     pub fn read(path: &Path) -> Result<Self, RunError> {
+        Self::read_with_text(path).map(|(scene, _)| scene)
+    }
+
+    /// Hash of the scene's files (its text, and its mesh file if any).
+    pub fn hash(&self) -> u64 {
+        match self {
+            LoadedScene::Rigid { hash, .. }
+            | LoadedScene::Fluid { hash, .. }
+            | LoadedScene::Fracture { hash, .. } => *hash,
+        }
+    }
+
+    /// [`LoadedScene::read`], also returning the scene file's text (kept in checkpoints).
+    pub fn read_with_text(path: &Path) -> Result<(Self, String), RunError> {
         let text = match std::fs::read_to_string(path) {
             Ok(text) => text,
             // The reader's own message for a file it cannot read.
@@ -53,29 +67,28 @@ impl LoadedScene {
             }
         };
         let mut hash_bytes = text.as_bytes().to_vec();
-        Ok(
-            match xper_scene::parse_any_scene(&text, path).map_err(bad)? {
-                AnyScene::Fracture(scene) => {
-                    // A mesh file that cannot be read fails the model's build, which names the
-                    // place in the scene that refers to it.
-                    if let MeshSource::File(mesh) = &scene.mesh.source {
-                        if let Ok(bytes) = std::fs::read(mesh) {
-                            hash_bytes.extend(bytes);
-                        }
+        let scene = match xper_scene::parse_any_scene(&text, path).map_err(bad)? {
+            AnyScene::Fracture(scene) => {
+                // A mesh file that cannot be read fails the model's build, which names the
+                // place in the scene that refers to it.
+                if let MeshSource::File(mesh) = &scene.mesh.source {
+                    if let Ok(bytes) = std::fs::read(mesh) {
+                        hash_bytes.extend(bytes);
                     }
-                    let hash = fnv1a(&hash_bytes);
-                    LoadedScene::Fracture { scene, hash }
                 }
-                AnyScene::Rigid(scene) if scene.fluid.is_some() => LoadedScene::Fluid {
-                    scene,
-                    hash: fnv1a(&hash_bytes),
-                },
-                AnyScene::Rigid(scene) => LoadedScene::Rigid {
-                    scene,
-                    hash: fnv1a(&hash_bytes),
-                },
+                let hash = fnv1a(&hash_bytes);
+                LoadedScene::Fracture { scene, hash }
+            }
+            AnyScene::Rigid(scene) if scene.fluid.is_some() => LoadedScene::Fluid {
+                scene,
+                hash: fnv1a(&hash_bytes),
             },
-        )
+            AnyScene::Rigid(scene) => LoadedScene::Rigid {
+                scene,
+                hash: fnv1a(&hash_bytes),
+            },
+        };
+        Ok((scene, text))
     }
 
     /// How often the scene asks for frames and checkpoints.

@@ -62,6 +62,9 @@ fn damaged(text: &[u8], rng: &mut Lcg) -> Vec<u8> {
             k => {
                 let s = String::from_utf8_lossy(&bytes).into_owned();
                 let mut lines: Vec<String> = s.lines().map(str::to_string).collect();
+                if lines.is_empty() {
+                    break;
+                }
                 let l = rng.below(lines.len());
                 match k {
                     2 => {
@@ -145,9 +148,11 @@ pub fn robustness_section(
     // Panics are counted, not printed, while the readers run.
     let hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(|_| {}));
-    let read = readers(md, root);
+    let read = catch_unwind(AssertUnwindSafe(|| readers(md, root)));
     std::panic::set_hook(hook);
-    let mut failures = read?;
+    let mut failures = read.map_err(|_| {
+        RunError::Runtime("the robustness campaign itself panicked outside a reader".into())
+    })??;
     let mut rng = Lcg(2026);
     if let Some(xper) = xper {
         failures += kill_rounds(md, root, xper, kills, &mut rng)?;
@@ -262,7 +267,7 @@ fn checkpoints(md: &mut String, root: &Path, rng: &mut Lcg) -> Result<usize, Run
         for _ in 0..1 + rng.below(4) {
             let at = rng.below(bad.len());
             match rng.below(3) {
-                0 => bad[at] ^= 1 + rng.below(255) as u8,
+                0 if at < bad.len() => bad[at] ^= 1 + rng.below(255) as u8,
                 1 => bad.truncate(at),
                 _ => bad.insert(at, rng.below(256) as u8),
             }

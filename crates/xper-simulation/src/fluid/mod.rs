@@ -62,8 +62,9 @@ impl<'c> FluidSimulation<'c> {
             .ok_or_else(|| RunError::BadInput("not a fluid scene".into()))?;
         let params = fluid_params(desc, scene.dt);
         let state = if opts.resume {
-            let state: CoupledState =
-                read_checkpoint(&opts.out, scene_hash, "a checkpoint of a fluid scene")?;
+            let mut state: CoupledState =
+                read_checkpoint(&opts.out, "a checkpoint of a fluid scene")?;
+            crate::rigid::build::take_solver_limits(&mut state.world, &scene);
             same_layout(&state, &coupled_state(&scene, desc, &params)).map_err(|why| {
                 let file = opts.out.join("checkpoint.bin");
                 RunError::BadInput(format!("{}: {why}", file.display()))

@@ -85,12 +85,17 @@ pub fn checkpoint_displacements(dir: &Path) -> Result<(u64, Vec<[f64; 6]>), RunE
 }
 
 impl Checkpoint {
-    /// Reads `dir/checkpoint.bin` of the scene whose files hash to `scene_hash`.
-    pub fn read(dir: &Path, scene_hash: u64) -> Result<Self, RunError> {
+    /// Reads `dir/checkpoint.bin` for a resume (whether it belongs to the scene is the driver's
+    /// decision, [`crate::resume::check_resume`]); its state must name the scene its envelope
+    /// names.
+    pub fn read(dir: &Path) -> Result<Self, RunError> {
+        let envelope = crate::checkpoint::open(dir, "cannot resume")?
+            .header
+            .scene_hash;
         let c = Self::load(dir, "cannot resume")?;
-        if c.scene_hash != scene_hash {
+        if c.scene_hash != envelope {
             return Err(RunError::BadInput(format!(
-                "{}: the checkpoint was written for a different scene or mesh file (changed since)",
+                "{}: the checkpoint's state belongs to another scene than its envelope says",
                 dir.join("checkpoint.bin").display()
             )));
         }

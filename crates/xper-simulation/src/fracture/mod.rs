@@ -54,8 +54,7 @@ impl<'c> FractureSimulation<'c> {
     ) -> Result<Self, RunError> {
         let (mut model, _) = build::build_model(&scene, &opts.scene)?;
         if opts.resume {
-            Checkpoint::read(&opts.out, scene_hash)?
-                .restore(&mut model, &opts.out.join("checkpoint.bin"))?;
+            Checkpoint::read(&opts.out)?.restore(&mut model, &opts.out.join("checkpoint.bin"))?;
         }
         let names: Vec<String> = model.spec.loads.iter().map(|l| l.name.clone()).collect();
         let columns = series_columns(&names);

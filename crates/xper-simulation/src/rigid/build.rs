@@ -103,6 +103,17 @@ pub fn world_from_scene(scene: &Scene) -> World {
     World::new(bodies, laws, params)
 }
 
+/// Gives a world restored from a checkpoint the solver limits of its (possibly edited) scene:
+/// tolerance, iteration limit and check interval are among the edits a resume may take
+/// ([`crate::resume::COMPATIBLE`]).
+pub fn take_solver_limits(world: &mut World, scene: &Scene) {
+    let s = &scene.solver;
+    world.params.nlgs.tolerance = s.tolerance;
+    world.params.nlgs.max_iterations = s.max_iterations;
+    world.params.nlgs.check_every = s.check_every;
+    world.params.solver = velocity_solver(s);
+}
+
 /// Frees the scene's list of body descriptions once the world is built from it (nothing after
 /// needs it): for a generated scene of a million disks it is as large as the world.
 pub fn release_body_descriptions(scene: &mut Scene) {

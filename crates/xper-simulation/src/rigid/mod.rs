@@ -58,13 +58,15 @@ impl<'c> RigidSimulation<'c> {
             create_output_dir(&opts.out.join("problems"))?;
         }
         let world = if opts.resume {
-            let bytes: Vec<u8> = read_checkpoint(&opts.out, scene_hash, "an xper checkpoint")?;
-            World::from_bytes(&bytes).map_err(|e| {
+            let bytes: Vec<u8> = read_checkpoint(&opts.out, "an xper checkpoint")?;
+            let mut world = World::from_bytes(&bytes).map_err(|e| {
                 RunError::BadInput(format!(
                     "{}: {e}",
                     opts.out.join("checkpoint.bin").display()
                 ))
-            })?
+            })?;
+            build::take_solver_limits(&mut world, &scene);
+            world
         } else {
             world_from_scene(&scene)
         };
