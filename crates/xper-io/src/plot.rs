@@ -85,23 +85,21 @@ struct Bounds {
 
 impl Bounds {
     /// Ranges covering the usable points of `panel`.
+    /// A log axis with no positive value (a residual of exactly zero, say) falls back to a
+    /// linear one, so that the panel shows its curves instead of nothing.
     fn of(panel: &Panel) -> Self {
-        let pts = || {
-            panel
-                .curves
-                .iter()
-                .flat_map(|c| c.points.iter().copied())
-                .filter(|&p| usable(p, panel.log_y))
-        };
+        let all = || panel.curves.iter().flat_map(|c| c.points.iter().copied());
+        let log_y = panel.log_y && all().any(|p| usable(p, true));
+        let pts = || all().filter(move |&p| usable(p, log_y));
         let y_values = pts().map(|p| p.1);
         Bounds {
             x: linear_range(pts().map(|p| p.0)),
-            y: if panel.log_y {
+            y: if log_y {
                 log_range(y_values)
             } else {
                 linear_range(y_values)
             },
-            log_y: panel.log_y,
+            log_y,
         }
     }
 
@@ -294,7 +292,7 @@ fn render(
     if !panels.is_empty() {
         for (area, panel) in body.split_evenly((panels.len(), 1)).iter().zip(panels) {
             let bounds = Bounds::of(panel);
-            if panel.log_y {
+            if bounds.log_y {
                 draw_panel(area, panel, &bounds, bounds.y.clone().log_scale())?;
             } else {
                 draw_panel(area, panel, &bounds, bounds.y.clone())?;
@@ -395,5 +393,25 @@ mod tests {
         assert_eq!(segments(&pts, &bounds(true)).len(), 3);
         assert!(segments(&[(f64::INFINITY, 1.0)], &bounds(false)).is_empty());
         assert_eq!(segments(&[(1.0, 9.0)], &bounds(false)).len(), 0);
+    }
+
+    #[test]
+    fn a_log_panel_without_a_positive_value_is_drawn_on_a_linear_axis() {
+        let panel = |ys: &[f64]| Panel {
+            title: "residual".into(),
+            x_label: "t".into(),
+            y_label: "r".into(),
+            curves: vec![Curve {
+                label: String::new(),
+                points: ys.iter().enumerate().map(|(i, &y)| (i as f64, y)).collect(),
+            }],
+            log_y: true,
+        };
+        let zeros = Bounds::of(&panel(&[0.0, 0.0, 0.0]));
+        assert!(!zeros.log_y);
+        assert!(zeros.contains((1.0, 0.0)));
+        let some = Bounds::of(&panel(&[0.0, 1e-3, 1e-6]));
+        assert!(some.log_y);
+        assert!(!some.contains((0.0, 0.0)) && some.contains((1.0, 1e-3)));
     }
 }

@@ -29,6 +29,8 @@ const TITLE: u32 = 40;
 const X_AREA: u32 = 45;
 const Y_AREA: u32 = 80;
 const MARGIN: u32 = 15;
+/// Height of one legend line below the drawing (px): the legend never covers the drawing.
+const LEGEND_LINE: u32 = 20;
 
 fn finite(s: &[[f64; 2]; 2]) -> bool {
     s.iter().flatten().all(|v| v.is_finite())
@@ -86,7 +88,8 @@ pub fn plot_segments(
     let (xr, yr) = data_box(layers);
     let plot_w = (width - Y_AREA - 2 * MARGIN) as f64;
     let plot_h = plot_w * (yr.end - yr.start) / (xr.end - xr.start);
-    let height = (plot_h as u32 + TITLE + X_AREA + 2 * MARGIN).clamp(200, 4000);
+    let legend = legend_height(layers);
+    let height = (plot_h as u32 + TITLE + X_AREA + 2 * MARGIN).clamp(200, 4000) + legend;
     let fail = |e: String| with_path(path, format!("drawing failed: {e}"), io::ErrorKind::Other);
     ensure_font().map_err(fail)?;
     let mut buf = vec![255u8; width as usize * height as usize * 3];
@@ -103,6 +106,16 @@ pub fn plot_segments(
     write_atomic(path, &png)
 }
 
+/// Height of the legend below the drawing (px): one line per labelled layer.
+fn legend_height(layers: &[SegmentLayer]) -> u32 {
+    let n = layers.iter().filter(|l| !l.label.is_empty()).count() as u32;
+    if n == 0 {
+        0
+    } else {
+        n * LEGEND_LINE + MARGIN / 2
+    }
+}
+
 fn render(
     buf: &mut [u8],
     size: (u32, u32),
@@ -116,6 +129,8 @@ fn render(
     let (top, body) = root.split_vertically(TITLE);
     top.titled(title, ("sans-serif", 24))
         .map_err(|e| e.to_string())?;
+    let body_height = size.1 - TITLE;
+    let (body, legend_area) = body.split_vertically(body_height - legend_height(layers));
     let mut chart = ChartBuilder::on(&body)
         .margin(MARGIN)
         .x_label_area_size(X_AREA)
@@ -135,29 +150,30 @@ fn render(
         .axis_desc_style(("sans-serif", 15))
         .draw()
         .map_err(|e| e.to_string())?;
-    let mut any_label = false;
     for layer in layers {
         let [r, g, b] = layer.color;
         let style = RGBColor(r, g, b).stroke_width(layer.width.max(1));
         let lines = (layer.segments.iter())
             .filter(|s| finite(s))
             .map(|s| PathElement::new(vec![(s[0][0], s[0][1]), (s[1][0], s[1][1])], style));
-        let series = chart.draw_series(lines).map_err(|e| e.to_string())?;
-        if !layer.label.is_empty() {
-            any_label = true;
-            series
-                .label(&layer.label)
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], style));
-        }
+        chart.draw_series(lines).map_err(|e| e.to_string())?;
     }
-    if any_label {
-        chart
-            .configure_series_labels()
-            .label_font(("sans-serif", 13))
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .position(SeriesLabelPosition::UpperRight)
-            .draw()
+    // The legend, one line per labelled layer, below the drawing.
+    let labelled = layers.iter().filter(|l| !l.label.is_empty());
+    for (k, layer) in labelled.enumerate() {
+        let [r, g, b] = layer.color;
+        let style = RGBColor(r, g, b).stroke_width(layer.width.max(1) + 1);
+        let y = (LEGEND_LINE / 2 + k as u32 * LEGEND_LINE) as i32;
+        let x = (Y_AREA + MARGIN) as i32;
+        legend_area
+            .draw(&PathElement::new(vec![(x, y), (x + 30, y)], style))
+            .map_err(|e| e.to_string())?;
+        legend_area
+            .draw(&Text::new(
+                layer.label.clone(),
+                (x + 40, y - 7),
+                ("sans-serif", 13).into_font().color(&BLACK),
+            ))
             .map_err(|e| e.to_string())?;
     }
     root.present().map_err(|e| e.to_string())

@@ -221,7 +221,7 @@ pub fn write_plots(
             vec![curve("divergence", "L2 norm")],
             true,
         ),
-        panel("Time step", "s", vec![curve("dt", "dt")], true),
+        panel("Time step", "s", vec![curve("dt", "dt")], false),
     ];
     plot_panels(&dir.join("series.png"), title, &panels, 1000, 300).map_err(io_err)?;
 
