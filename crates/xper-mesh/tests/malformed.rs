@@ -172,3 +172,26 @@ fn content_that_trips_the_parser_is_an_error() {
     assert_eq!(err.kind, MeshErrorKind::Format);
     assert!(err.to_string().starts_with("zero.msh: "), "{err}");
 }
+
+#[test]
+fn header_counts_that_disagree_with_the_blocks_are_refused() {
+    let good = std::fs::read_to_string(data("square_inclusion_ascii.msh")).unwrap();
+    for (from, to, words) in [
+        (
+            "\n18 152 1 152\n",
+            "\n18 151 1 152\n",
+            "the header says 151 nodes, the blocks hold 152",
+        ),
+        (
+            "\n11 313 1 313\n",
+            "\n11 300 1 313\n",
+            "the header says 300 elements, the blocks hold 313",
+        ),
+    ] {
+        assert!(good.contains(from));
+        let (path, result) = read_bytes("counts", good.replacen(from, to, 1).as_bytes());
+        let text = result.expect_err(to).to_string();
+        assert!(text.starts_with(&path.display().to_string()), "{text}");
+        assert!(text.contains(words), "`{text}` lacks `{words}`");
+    }
+}

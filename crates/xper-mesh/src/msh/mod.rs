@@ -63,6 +63,57 @@ pub fn parse_msh(bytes: &[u8], origin: &str) -> Result<Mesh, MeshError> {
     convert(&msh, &names, origin)
 }
 
+/// Checks the counts and tag ranges the `$Nodes` and `$Elements` headers state against the
+/// blocks that follow: a file whose header disagrees with its content is damaged or cut.
+fn header_counts(msh: &MshFile<u64, i32, f64>) -> Result<(), (String, String)> {
+    if let Some(nodes) = &msh.data.nodes {
+        let held: usize = nodes.node_blocks.iter().map(|b| b.nodes.len()).sum();
+        if held as u64 != nodes.num_nodes {
+            return Err((
+                "$Nodes".into(),
+                format!(
+                    "the header says {} nodes, the blocks hold {held}",
+                    nodes.num_nodes
+                ),
+            ));
+        }
+        let tags = (nodes.node_blocks.iter())
+            .filter_map(|b| b.node_tags.as_ref())
+            .flat_map(|map| map.keys().copied());
+        let range = nodes.min_node_tag..=nodes.max_node_tag;
+        if let Some(t) = tags.into_iter().find(|t| !range.contains(t)) {
+            return Err((
+                format!("$Nodes, node {t}"),
+                format!("outside the tag range {range:?} the header states"),
+            ));
+        }
+        let dense = nodes.node_blocks.iter().all(|b| b.node_tags.is_none());
+        if dense && held > 0 && nodes.max_node_tag - nodes.min_node_tag + 1 != held as u64 {
+            return Err((
+                "$Nodes".into(),
+                format!(
+                    "the header's tags {range:?} do not number the {held} nodes the blocks hold"
+                ),
+            ));
+        }
+    }
+    if let Some(elements) = &msh.data.elements {
+        let held: usize = (elements.element_blocks.iter())
+            .map(|b| b.elements.len())
+            .sum();
+        if held as u64 != elements.num_elements {
+            return Err((
+                "$Elements".into(),
+                format!(
+                    "the header says {} elements, the blocks hold {held}",
+                    elements.num_elements
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// A mshio error as a [`MeshError`]: the innermost error, the sections it was met in, and
 /// its line (ASCII) or byte offset (binary).
 fn translate(err: &MshParserError<&[u8]>, bytes: &[u8], origin: &str, binary: bool) -> MeshError {
@@ -116,6 +167,7 @@ fn convert(
     }
     let has_groups = physical.values().any(|p| !p.is_empty());
 
+    header_counts(msh).map_err(|(place, reason)| err(MeshErrorKind::Format, place, reason))?;
     // Node tag -> coordinates.
     let mut coords: HashMap<u64, [f64; 3]> = HashMap::new();
     if let Some(nodes) = &msh.data.nodes {
