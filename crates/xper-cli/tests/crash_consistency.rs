@@ -7,7 +7,7 @@
 //! kills per physics (20 by default; the long form of the test is `XPER_KILLS=200`).
 
 mod common;
-use common::{shipped_scene, temp_dir, xper};
+use common::{assert_success as ok, run_scene, shipped_scene, temp_dir};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -19,25 +19,9 @@ const SCENES: [(&str, u64, [u64; 2]); 3] = [
     ("nooru_mohamed_small", 60, [10, 15]),
 ];
 
+/// `xper run` without its progress and lines.
 fn run(scene: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
-    let mut args = vec![
-        "run",
-        scene.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ];
-    args.push("--quiet");
-    args.extend_from_slice(extra);
-    xper(&args)
-}
-
-fn ok(out: &std::process::Output) {
-    assert!(
-        out.status.success(),
-        "exit {:?}: {}",
-        out.status.code(),
-        String::from_utf8_lossy(&out.stderr)
-    );
+    run_scene(scene, out, &[&["--quiet"], extra].concat())
 }
 
 /// A table's text without its wall-clock columns.

@@ -1,19 +1,8 @@
 //! Faults of issue 38's campaign, each a regression test named after it.
 
 mod common;
-use common::{shipped_scene, temp_dir, xper};
+use common::{run_scene as run, shipped_scene, temp_dir, xper};
 use std::path::Path;
-
-fn run(scene: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
-    let mut args = vec![
-        "run",
-        scene.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ];
-    args.extend_from_slice(extra);
-    xper(&args)
-}
 
 /// `scenes/drop` cut to `steps` steps with `edit` applied to its TOML document.
 fn drop_scene(dir: &Path, steps: u64, edit: impl FnOnce(&mut toml::Table)) -> std::path::PathBuf {

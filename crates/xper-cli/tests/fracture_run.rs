@@ -3,7 +3,7 @@
 //! a summary; a resumed run ends in the state of an uninterrupted one; a blow-up exits 1.
 
 mod common;
-use common::{temp_dir, xper};
+use common::{assert_success as assert_ok, run_scene as run, temp_dir, xper};
 use std::path::Path;
 use xper_io::{read_vtu, DataValues, PvdCollection, SeriesTable, UnstructuredGrid};
 
@@ -117,26 +117,6 @@ fn write_scene(name: &str, text: &str) -> (std::path::PathBuf, std::path::PathBu
     let scene = dir.join("scene.toml");
     std::fs::write(&scene, text).unwrap();
     (scene, dir)
-}
-
-fn run(scene: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
-    let mut args = vec![
-        "run",
-        scene.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ];
-    args.extend(extra);
-    xper(&args)
-}
-
-fn assert_ok(out: &std::process::Output) {
-    assert!(
-        out.status.success(),
-        "exit {:?}: {}",
-        out.status.code(),
-        String::from_utf8_lossy(&out.stderr)
-    );
 }
 
 /// `check` and `run` both exit 2 naming the scene file, the line (`:line:`) and each fragment.

@@ -22,6 +22,18 @@ pub fn xper(args: &[&str]) -> Output {
         .expect("xper runs")
 }
 
+/// `xper run SCENE --out OUT EXTRA..`.
+pub fn run_scene(scene: &Path, out: &Path, extra: &[&str]) -> Output {
+    let mut args = vec![
+        "run",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    xper(&args)
+}
+
 /// Fails with the exit code and both output streams unless the command succeeded.
 pub fn assert_success(output: &Output) {
     assert!(
