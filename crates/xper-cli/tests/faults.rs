@@ -287,3 +287,20 @@ fn step_counts_beyond_2_pow_53_are_refused_and_printed_as_numbers() {
         assert!(err.contains(expected) && err.len() < 300, "{err}");
     }
 }
+
+#[test]
+fn a_fluid_blow_up_fails_instead_of_completing() {
+    let dir = temp_dir("fault-fluid-blow-up");
+    let lines = "cells_per_diameter = 8\nbody_force = [0.0, -1e200]";
+    let scene = fluid_scene(&dir, "0.016", lines);
+    let out = dir.join("out");
+    let result = run(&scene, &out, &["--quiet"]);
+    let err = String::from_utf8_lossy(&result.stderr);
+    assert_eq!(result.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("step 1") && err.contains("non-finite"),
+        "{err}"
+    );
+    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    assert!(summary.contains("\"status\": \"failed\""), "{summary}");
+}
