@@ -115,6 +115,49 @@ pub fn parse_fracture_scene(text: &str, file: &Path) -> Result<FractureScene, Sc
     })
 }
 
+/// The field a TOML syntax error on 1-based `line` of `text` is in: `table.key` (with the index
+/// of an array of tables, `bodies[2].radius`) on a `key = value` line, `(table header)` on a
+/// header line, `(no key)` otherwise. The lines are read once, up to `line`.
+fn syntax_error_field(text: &str, line: usize) -> String {
+    let mut table = String::new();
+    let mut arrays: std::collections::HashMap<String, usize> = std::collections::HashMap::new();
+    for (k, raw) in text.lines().take(line).enumerate() {
+        let l = raw.trim();
+        let last = k + 1 == line;
+        if l.starts_with('[') {
+            if last {
+                return "(table header)".into();
+            }
+            let name = l
+                .trim_start_matches('[')
+                .split(']')
+                .next()
+                .unwrap_or("")
+                .trim();
+            table = if l.starts_with("[[") {
+                let count = arrays.entry(name.to_string()).or_insert(0);
+                *count += 1;
+                format!("{name}[{}]", *count - 1)
+            } else {
+                name.to_string()
+            };
+        } else if last {
+            return match l.split_once('=') {
+                Some((key, _)) if !key.trim().is_empty() && !l.starts_with('#') => {
+                    let key = key.trim().trim_matches(|c| c == '"' || c == '\'');
+                    if table.is_empty() {
+                        key.to_string()
+                    } else {
+                        format!("{table}.{key}")
+                    }
+                }
+                _ => "(no key)".into(),
+            };
+        }
+    }
+    "(no key)".into()
+}
+
 /// Parses the TOML of `text` and hands its root table to `read`; the result is returned when
 /// no error was recorded, else every error sorted by position.
 fn with_root<T>(
@@ -129,7 +172,8 @@ fn with_root<T>(
         Err(e) => {
             let pos = idx.span_pos(e.span(), Pos::START);
             let msg = e.message().trim().replace('\n', "; ");
-            ctx.err(pos, "", format!("TOML syntax error: {msg}"));
+            let field = syntax_error_field(text, pos.line);
+            ctx.err(pos, &field, format!("TOML syntax error: {msg}"));
             return Err(SceneErrors(ctx.errors));
         }
     };

@@ -345,6 +345,24 @@ fn syntax_error_has_a_position() {
         "{}",
         e.0[0].message
     );
+    assert_eq!(e.0[0].field, "scene.dt");
+}
+
+#[test]
+fn a_syntax_error_names_its_key_or_says_there_is_none() {
+    for (text, field) in [
+        ("[scene]\nname = \"x\"\ndt = 1e-3 1\n", "scene.dt"),
+        (
+            "[[bodies]]\nradius = 1\n[[bodies]]\nradius = \n",
+            "bodies[1].radius",
+        ),
+        ("[scene\nname = \"x\"\n", "(table header)"),
+        ("[scene]\n\"quoted\" = [1,\n", "(no key)"),
+    ] {
+        let e = errs(text);
+        assert_eq!(e.0.len(), 1, "{text}");
+        assert_eq!(e.0[0].field, field, "{text}: {}", e.0[0]);
+    }
 }
 
 #[test]
