@@ -4,22 +4,26 @@
 //!
 //! The bytes per item are peak resident sizes measured on this code's runs (BENCHMARKS.md and
 //! the figures beside each constant), rounded up: the estimate aims at the right order of
-//! magnitude, a little above the real peak.
+//! magnitude, a little above the real peak (1.0 to 1.6 times the peaks measured).
 
 use crate::scene::LoadedScene;
 use crate::RunError;
 use xper_scene::MeshSource;
 
 /// Resident memory of the process before the scene's own data (bytes).
-const BASE_BYTES: f64 = 16e6;
-/// Peak bytes per rigid body, contacts included: box100k peaked at 790 B per disk with about
-/// two contacts per disk, box1m at 429, box10k at 1169 with the process's base included.
-const BYTES_PER_BODY: f64 = 800.0;
+const BASE_BYTES: f64 = 30e6;
+/// Peak bytes per rigid body of `xper run`, contacts and outputs included: box10k peaked at
+/// 59 MB over its 1500 steps, box100k at 291 MB over its first 30 (its frames of 100k bodies
+/// dominate; `xper bench`, without outputs, peaked at 790 B per disk). On two processes box10k
+/// peaked at 74 MB on rank 0 and 31 MB on rank 1: [`ensure_fits`] counts twice the serial
+/// estimate for a distributed run.
+const BYTES_PER_BODY: f64 = 3000.0;
 /// Peak bytes per fluid cell: 252 B measured between grids of 256^2 and 1024^2 cells
 /// (274 MB at 1024^2).
 const BYTES_PER_CELL: f64 = 260.0;
 /// Peak bytes per triangle of a fracture mesh with its cohesive interfaces: 3.7 kB on
-/// notched_tension (20,936 triangles, 78 MB), 3.3 kB on nooru_mohamed_100k.
+/// notched_tension (20,936 triangles, 78 MB without outputs; `xper run` peaked at 114 MB over
+/// its first 20 steps), 3.3 kB on nooru_mohamed_100k.
 const BYTES_PER_ELEMENT: f64 = 4000.0;
 
 /// The size of a scene and the memory it needs.
