@@ -58,14 +58,18 @@ pub fn run_on(
     }
     fits?;
     let schedule = scene.output_schedule();
-    let resumed_edits = match opts.resume {
-        true => resume::check_resume(&opts.out, scene.hash(), &text)?,
-        false => Vec::new(),
+    let (resumed, notes) = match opts.resume {
+        true => {
+            let (header, notes) = resume::check_resume(&opts.out, scene.hash(), &text)?;
+            (Some(header), notes)
+        }
+        false => (None, Vec::new()),
     };
     let mut simulation = scene.into_simulation(opts, distributed)?;
     let file = SceneFile {
         text,
-        notes: resumed_edits,
+        notes,
+        resumed,
     };
     drive(
         simulation.as_mut(),
@@ -84,6 +88,8 @@ pub struct SceneFile {
     pub text: String,
     /// Remarks printed before the run (the edits a resume takes).
     pub notes: Vec<String>,
+    /// On `--resume`, the header of the checkpoint resumed (read once, with its table rows).
+    pub resumed: Option<Header>,
 }
 
 /// Writes the tables, then `checkpoint.bin` with their row counts: a run interrupted between
@@ -141,8 +147,12 @@ fn read_back(
     sim: &mut dyn Simulation,
     dir: &Path,
     pvd: &mut PvdCollection,
+    resumed: Option<&Header>,
 ) -> Result<(), RunError> {
-    let rows = checkpoint::open(dir, "cannot resume")?.header.tables;
+    let rows = match resumed {
+        Some(header) => header.tables.clone(),
+        None => checkpoint::open(dir, "cannot resume")?.header.tables,
+    };
     let step = sim.step_index();
     for (name, table) in sim.tables_mut() {
         let path = dir.join(name);
@@ -202,7 +212,7 @@ pub fn drive(
     }
     let mut pvd = PvdCollection::default();
     if opts.resume {
-        read_back(sim, dir, &mut pvd)?;
+        read_back(sim, dir, &mut pvd, scene.resumed.as_ref())?;
     } else {
         sim.sync();
         if root {

@@ -62,9 +62,8 @@ pub fn estimate(scene: &LoadedScene) -> Needs {
             let mut counts = vec![("bodies", bodies)];
             let mut memory = BASE_BYTES + BYTES_PER_BODY * bodies;
             if let Some(fluid) = &scene.fluid {
-                let cells = (0..2)
-                    .map(|d| ((fluid.upper[d] - fluid.lower[d]) / fluid.cell_size).round())
-                    .product::<f64>();
+                let grid = crate::fluid::build::fluid_grid(fluid);
+                let cells = grid.nx as f64 * grid.ny as f64;
                 counts.push(("fluid cells", cells));
                 memory += BYTES_PER_CELL * cells;
             }

@@ -105,12 +105,16 @@ pub fn changes(old: &str, new: &str) -> Result<Vec<Change>, String> {
 }
 
 /// Decides whether the checkpoint in `dir` resumes the scene whose files hash to `hash` and
-/// whose text is `text`: the notes to print (the compatible edits taken), or a bad-input error
-/// naming the incompatible differences.
-pub fn check_resume(dir: &Path, hash: u64, text: &str) -> Result<Vec<String>, RunError> {
+/// whose text is `text`: its header with the notes to print (the compatible edits taken), or
+/// a bad-input error naming the incompatible differences.
+pub fn check_resume(
+    dir: &Path,
+    hash: u64,
+    text: &str,
+) -> Result<(checkpoint::Header, Vec<String>), RunError> {
     let header = checkpoint::open(dir, "cannot resume")?.header;
     if header.scene_hash == hash {
-        return Ok(Vec::new());
+        return Ok((header, Vec::new()));
     }
     let file = dir.join("checkpoint.bin");
     let refuse = |why: String| {
@@ -138,14 +142,15 @@ pub fn check_resume(dir: &Path, hash: u64, text: &str) -> Result<Vec<String>, Ru
         )));
     }
     let taken: Vec<String> = fine.iter().map(|c| c.to_string()).collect();
-    Ok(vec![format!(
+    let note = format!(
         "resuming with the scene's edited values: {}",
         if taken.is_empty() {
             "none (comments or layout only)".into()
         } else {
             taken.join("; ")
         }
-    )])
+    );
+    Ok((header, vec![note]))
 }
 
 #[cfg(test)]

@@ -80,7 +80,7 @@ impl Checkpoint {
 /// The step and the nodal displacements of each element (m) held by the checkpoint of a
 /// fracture run in `dir` (for comparing runs).
 pub fn checkpoint_displacements(dir: &Path) -> Result<(u64, Vec<[f64; 6]>), RunError> {
-    let c = Checkpoint::load(dir, "cannot read")?;
+    let (c, _) = Checkpoint::load(dir, "cannot read")?;
     Ok((c.step, c.elements.iter().map(|e| e.displacement).collect()))
 }
 
@@ -89,10 +89,7 @@ impl Checkpoint {
     /// decision, [`crate::resume::check_resume`]); its state must name the scene its envelope
     /// names.
     pub fn read(dir: &Path) -> Result<Self, RunError> {
-        let envelope = crate::checkpoint::open(dir, "cannot resume")?
-            .header
-            .scene_hash;
-        let c = Self::load(dir, "cannot resume")?;
+        let (c, envelope) = Self::load(dir, "cannot resume")?;
         if c.scene_hash != envelope {
             return Err(RunError::BadInput(format!(
                 "{}: the checkpoint's state belongs to another scene than its envelope says",
@@ -102,16 +99,18 @@ impl Checkpoint {
         Ok(c)
     }
 
-    /// `dir/checkpoint.bin`, whatever scene it belongs to; `failing` opens the message of a
-    /// file that cannot be read.
-    fn load(dir: &Path, failing: &str) -> Result<Self, RunError> {
+    /// `dir/checkpoint.bin`, whatever scene it belongs to, with the scene hash its envelope
+    /// names (the file is read once); `failing` opens the message of a file that cannot be read.
+    fn load(dir: &Path, failing: &str) -> Result<(Self, u64), RunError> {
         let path = dir.join("checkpoint.bin");
-        let bytes = crate::checkpoint::open(dir, failing)?.payload;
-        bincode::deserialize(&bytes).map_err(|e| {
+        let sealed = crate::checkpoint::open(dir, failing)?;
+        let envelope = sealed.header.scene_hash;
+        let c = bincode::deserialize(&sealed.payload).map_err(|e| {
             RunError::BadInput(format!(
                 "{}: not a fracture checkpoint of xper: {e}",
                 path.display()
             ))
-        })
+        })?;
+        Ok((c, envelope))
     }
 }
