@@ -1,7 +1,7 @@
 //! Faults of issue 38's campaign, each a regression test named after it.
 
 mod common;
-use common::{run_scene as run, shipped_scene, temp_dir, xper};
+use common::{grain_in_box, run_scene as run, shipped_scene, temp_dir, xper};
 use std::path::Path;
 
 /// `scenes/drop` cut to `steps` steps with `edit` applied to its TOML document.
@@ -103,35 +103,10 @@ fn a_run_off_a_terminal_says_when_it_starts_and_when_it_ends() {
 
 /// A grain in a fluid box of `side` m with `cells` (a `[fluid]` line setting the grid).
 fn fluid_scene(dir: &Path, side: &str, cells: &str) -> std::path::PathBuf {
-    let text = format!(
-        r#"[scene]
-name = "grain_in_box"
-dt = 1e-4
-steps = 3
-gravity = [0.0, -9.81]
-[[materials]]
-name = "grain"
-density = 1500.0
-[[laws]]
-between = ["grain", "wall"]
-kind = "signorini_coulomb"
-friction = 0.5
-[[bodies]]
-shape = "disk"
-center = [0.008, 0.012]
-radius = 0.001
-material = "grain"
-group = "grain"
-[[walls]]
-from = [0.0, 0.0]
-to = [0.016, 0.0]
-group = "wall"
-[fluid]
-density = 1000.0
-viscosity = 1e-2
-domain = [[0.0, 0.0], [{side}, {side}]]
-{cells}
-"#
+    let text = grain_in_box(
+        "dt = 1e-4\nsteps = 3",
+        "",
+        &format!("viscosity = 1e-2\ndomain = [[0.0, 0.0], [{side}, {side}]]\n{cells}"),
     );
     let path = dir.join("fluid.toml");
     std::fs::write(&path, text).unwrap();

@@ -2,47 +2,15 @@
 //! an uninterrupted run, and a bad `[fluid]` section reported with its place and exit code 2.
 
 mod common;
-use common::{assert_success, temp_dir, xper};
+use common::{assert_success, grain_in_box, temp_dir, xper};
 
 fn scene(duration: f64, viscosity: &str) -> String {
-    format!(
-        r#"[scene]
-name = "grain_in_box"
-dt = 1e-3
-duration = {duration}
-gravity = [0.0, -9.81]
-
-[output]
-frame_every = 20
-checkpoint_every = 25
-
-[[materials]]
-name = "grain"
-density = 1500.0
-
-[[laws]]
-between = ["grain", "wall"]
-kind = "signorini_coulomb"
-friction = 0.5
-
-[[bodies]]
-shape = "disk"
-center = [0.008, 0.012]
-radius = 0.001
-material = "grain"
-group = "grain"
-
-[[walls]]
-from = [0.0, 0.0]
-to = [0.016, 0.0]
-group = "wall"
-
-[fluid]
-density = 1000.0
-viscosity = {viscosity}
-domain = [[0.0, 0.0], [0.016, 0.016]]
-cells_per_diameter = 8
-"#
+    grain_in_box(
+        &format!("dt = 1e-3\nduration = {duration}"),
+        "[output]\nframe_every = 20\ncheckpoint_every = 25\n\n",
+        &format!(
+            "viscosity = {viscosity}\ndomain = [[0.0, 0.0], [0.016, 0.016]]\ncells_per_diameter = 8"
+        ),
     )
 }
 

@@ -79,3 +79,41 @@ pub fn shipped_scene(name: &str, steps: u64, every: [u64; 2], dir: &Path) -> Pat
     std::fs::write(&out, toml::to_string(&doc).unwrap()).unwrap();
     out
 }
+
+/// A disk above a wall in a fluid box (a `[fluid]` scene): `length` holds the `[scene]` lines
+/// of its time step and length, `output` an `[output]` table (or nothing), `fluid` the
+/// `[fluid]` lines after its density (viscosity, domain, grid).
+pub fn grain_in_box(length: &str, output: &str, fluid: &str) -> String {
+    format!(
+        r#"[scene]
+name = "grain_in_box"
+{length}
+gravity = [0.0, -9.81]
+
+{output}[[materials]]
+name = "grain"
+density = 1500.0
+
+[[laws]]
+between = ["grain", "wall"]
+kind = "signorini_coulomb"
+friction = 0.5
+
+[[bodies]]
+shape = "disk"
+center = [0.008, 0.012]
+radius = 0.001
+material = "grain"
+group = "grain"
+
+[[walls]]
+from = [0.0, 0.0]
+to = [0.016, 0.0]
+group = "wall"
+
+[fluid]
+density = 1000.0
+{fluid}
+"#
+    )
+}
