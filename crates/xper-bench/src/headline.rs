@@ -188,6 +188,38 @@ pub fn fluid(bench: &FluidBench) -> Vec<Headline> {
     rows
 }
 
+/// Rows of scene reading: the largest file of each layout against issue 38's "a 50 MB scene
+/// is checked in seconds" (read as at most 10 s), and linear growth.
+pub fn reading(bench: &crate::reading::ReadingBench) -> Vec<Headline> {
+    let mut rows = Vec::new();
+    if let Some(largest) = (bench.files.iter()).max_by_key(|f| f.bytes) {
+        rows.push(
+            Headline::new(
+                "reading scenes",
+                &format!("check of a {:.0} MB scene (s)", largest.bytes as f64 / 1e6),
+                format!("{:.1}", largest.seconds),
+                "<= 10 s (target: \"in seconds\")",
+            )
+            .smaller(largest.seconds, 10.0),
+        );
+    }
+    let worst = (bench.files.iter())
+        .filter_map(|f| crate::reading::growth(bench, &f.layout))
+        .fold(None, |w: Option<f64>, g| Some(w.map_or(g, |w| w.max(g))));
+    if let Some(worst) = worst {
+        rows.push(
+            Headline::new(
+                "reading scenes",
+                "time per MB, largest over second size, worst layout",
+                format!("{worst:.2}"),
+                "<= 2 (1 linear, 10 quadratic)",
+            )
+            .smaller(worst, 2.0),
+        );
+    }
+    rows
+}
+
 /// The Markdown table of `rows`.
 pub fn markdown(rows: &[Headline]) -> String {
     let mut md = String::from(

@@ -7,6 +7,7 @@ pub mod fluid;
 pub mod fracture;
 pub mod headline;
 pub mod poisson;
+pub mod reading;
 pub mod solvers;
 mod stats;
 
@@ -46,6 +47,13 @@ pub struct BenchArgs {
     /// only these run.
     #[arg(long)]
     fluid: bool,
+    /// Time `xper check` on generated scenes of 0.5 to 50 MB (reading in linear time and
+    /// memory); without `--scene`, only these run.
+    #[arg(long)]
+    reading: bool,
+    /// Check one scene in this process and print its time and peak heap (used by `--reading`).
+    #[arg(long, hide = true, value_name = "SCENE")]
+    read_one: Option<PathBuf>,
     /// Run nothing: regenerate the report from the JSON results in `--out` (linking its NOTES.md).
     #[arg(long)]
     report_only: bool,
@@ -205,6 +213,17 @@ pub fn bench(args: &BenchArgs) -> Result<(), RunError> {
             return write_report(&args.out, &args.report);
         }
     }
+    if let Some(path) = &args.read_one {
+        return crate::reading::read_one(path);
+    }
+    if args.reading {
+        std::fs::create_dir_all(&args.out)
+            .map_err(|e| RunError::BadInput(format!("{}: {e}", args.out.display())))?;
+        crate::reading::bench_reading(&args.out, machine())?;
+        if args.scenes.is_empty() && !args.fluid {
+            return write_report(&args.out, &args.report);
+        }
+    }
     if args.fluid {
         std::fs::create_dir_all(&args.out)
             .map_err(|e| RunError::BadInput(format!("{}: {e}", args.out.display())))?;
@@ -302,6 +321,7 @@ fn read_results<T: serde::de::DeserializeOwned>(
                         !fracture
                             && name != crate::solvers::RESULTS_FILE
                             && name != crate::fluid::RESULTS_FILE
+                            && name != crate::reading::RESULTS_FILE
                     }
                 }
         })
@@ -408,6 +428,19 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), RunError> {
         })?;
         headlines.extend(headline::fluid(&fluid));
         md.push_str(&crate::fluid::markdown(&fluid));
+    }
+    let reading_file = dir.join(crate::reading::RESULTS_FILE);
+    if reading_file.exists() {
+        let text = std::fs::read_to_string(&reading_file)
+            .map_err(|e| RunError::Runtime(format!("{}: {e}", reading_file.display())))?;
+        let reading = serde_json::from_str(&text).map_err(|e| {
+            RunError::Runtime(format!(
+                "{}: not a reading benchmark result of this version ({e})",
+                reading_file.display()
+            ))
+        })?;
+        headlines.extend(headline::reading(&reading));
+        md.push_str(&crate::reading::markdown(&reading));
     }
     if dir.join("NOTES.md").exists() {
         md.push_str(&format!(

@@ -19,6 +19,7 @@ pub mod rng;
 pub mod types;
 
 mod bodies;
+mod document;
 mod fluid;
 mod fracture;
 mod generators;
@@ -91,19 +92,17 @@ pub fn load_any_scene(path: &Path) -> Result<AnyScene, SceneErrors> {
     }
 }
 
-/// Whether `text` is a fracture scene: valid TOML with a top-level `mesh` key.
-pub fn is_fracture_scene(text: &str) -> bool {
-    toml_edit::ImDocument::parse(text).is_ok_and(|d| d.as_table().contains_key("mesh"))
-}
-
 /// Parses and validates a scene of either kind: a fracture scene when it has a `[mesh]`
-/// section ([`parse_fracture_scene`]), else a rigid scene ([`parse_scene`]).
+/// section ([`parse_fracture_scene`]), else a rigid scene ([`parse_scene`]). The text is
+/// parsed once.
 pub fn parse_any_scene(text: &str, file: &Path) -> Result<AnyScene, SceneErrors> {
-    if is_fracture_scene(text) {
-        parse_fracture_scene(text, file).map(AnyScene::Fracture)
-    } else {
-        parse_scene(text, file).map(AnyScene::Rigid)
-    }
+    with_root(text, file, |ctx, root| {
+        if root.get("mesh").is_some() {
+            fracture::fracture_scene(ctx, root, file).map(AnyScene::Fracture)
+        } else {
+            rigid_scene(ctx, root).map(AnyScene::Rigid)
+        }
+    })
 }
 
 /// Parses and validates the text of a fracture scene (FORMAT.md, "Fracture scenes"); `file`
@@ -167,20 +166,15 @@ fn with_root<T>(
 ) -> Result<T, SceneErrors> {
     let idx = LineIndex::new(text);
     let mut ctx = Ctx::new(file);
-    let doc = match toml_edit::ImDocument::parse(text) {
-        Ok(doc) => doc,
+    let root_node = match document::parse(text, &idx) {
+        Ok(root) => root,
         Err(e) => {
-            let pos = idx.span_pos(e.span(), Pos::START);
-            let msg = e.message().trim().replace('\n', "; ");
-            let field = syntax_error_field(text, pos.line);
-            ctx.err(pos, &field, format!("TOML syntax error: {msg}"));
+            let pos = idx.pos(e.offset);
+            let field = syntax_error_field(text, pos.line as usize);
+            ctx.err(pos, &field, format!("TOML syntax error: {}", e.message));
             return Err(SceneErrors(ctx.errors));
         }
     };
-    let root_node = tree::root(doc.as_table(), &idx);
-    // The span-preserving document is larger than the tree built from it: freed before the
-    // scene is read from the tree (a 50 MB scene file peaked at 2.5 GB with both alive).
-    drop(doc);
     let value = Tbl::of(&mut ctx, &root_node, String::new()).and_then(|root| read(&mut ctx, &root));
     match value {
         Some(v) if ctx.errors.is_empty() => Ok(v),

@@ -23,8 +23,8 @@ impl<'f> Ctx<'f> {
     pub fn err(&mut self, pos: Pos, field: &str, message: impl Into<String>) {
         self.errors.push(SceneError {
             file: self.file.to_path_buf(),
-            line: pos.line,
-            column: pos.column,
+            line: pos.line as usize,
+            column: pos.column as usize,
             field: field.to_string(),
             message: message.into(),
         });

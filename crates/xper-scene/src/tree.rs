@@ -1,14 +1,12 @@
-//! A small owned TOML tree where every value and key carries its 1-based line/column,
-//! built from `toml_edit`'s span-preserving document.
+//! A small owned TOML tree where every value and key carries its 1-based line/column, built
+//! by [`crate::document`].
 
-use std::ops::Range;
-use toml_edit::{Item, Table, Value};
-
-/// A 1-based position in the scene text.
+/// A 1-based position in the scene text (32 bits each: every value of the tree carries one;
+/// beyond 2^32 - 1 lines or columns the figure saturates).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Default)]
 pub(crate) struct Pos {
-    pub line: usize,
-    pub column: usize,
+    pub line: u32,
+    pub column: u32,
 }
 
 impl Pos {
@@ -27,6 +25,8 @@ pub(crate) struct LineIndex<'a> {
     ascii: Vec<bool>,
     /// The last non-ASCII position computed: (byte offset, its 0-based column).
     last: std::cell::Cell<(usize, usize)>,
+    /// The line of the last position asked for: the next one is usually on it or the next.
+    line: std::cell::Cell<usize>,
 }
 
 impl<'a> LineIndex<'a> {
@@ -44,16 +44,29 @@ impl<'a> LineIndex<'a> {
             starts,
             ascii,
             last: std::cell::Cell::new((0, 0)),
+            line: std::cell::Cell::new(0),
         }
     }
 
     /// Position of a byte offset (clamped to the text).
     pub fn pos(&self, offset: usize) -> Pos {
         let offset = offset.min(self.text.len());
-        let line = match self.starts.binary_search(&offset) {
-            Ok(i) => i,
-            Err(i) => i.saturating_sub(1),
+        let on = |line: usize| {
+            self.starts.get(line).is_some_and(|&s| s <= offset)
+                && self.starts.get(line + 1).is_none_or(|&next| offset < next)
         };
+        let hint = self.line.get();
+        let line = if on(hint) {
+            hint
+        } else if on(hint + 1) {
+            hint + 1
+        } else {
+            match self.starts.binary_search(&offset) {
+                Ok(i) => i,
+                Err(i) => i.saturating_sub(1),
+            }
+        };
+        self.line.set(line);
         let start = self.starts.get(line).copied().unwrap_or(0).min(offset);
         let column = if self.ascii.get(line).copied().unwrap_or(false) {
             offset - start
@@ -69,15 +82,11 @@ impl<'a> LineIndex<'a> {
             self.last.set((offset, column));
             column
         };
+        let narrow = |n: usize| u32::try_from(n + 1).unwrap_or(u32::MAX);
         Pos {
-            line: line + 1,
-            column: column + 1,
+            line: narrow(line),
+            column: narrow(column),
         }
-    }
-
-    /// Position of the start of a span, or `fallback` when there is none.
-    pub fn span_pos(&self, span: Option<Range<usize>>, fallback: Pos) -> Pos {
-        span.map_or(fallback, |r| self.pos(r.start))
     }
 }
 
@@ -128,84 +137,4 @@ impl Node {
             Kind::Table(_) => "a table".to_string(),
         }
     }
-}
-
-/// The root table of a parsed document.
-pub(crate) fn root(table: &Table, idx: &LineIndex) -> Node {
-    Node {
-        kind: Kind::Table(table_entries(table, idx, Pos::START)),
-        pos: Pos::START,
-    }
-}
-
-fn table_entries(t: &Table, idx: &LineIndex, pos: Pos) -> Vec<Entry> {
-    let mut out = Vec::new();
-    for (k, item) in t.iter() {
-        let key_pos = idx.span_pos(t.key(k).and_then(|k| k.span()), pos);
-        if let Some(value) = from_item(item, idx, key_pos) {
-            out.push(Entry {
-                key: k.to_string(),
-                key_pos,
-                value,
-            });
-        }
-    }
-    out
-}
-
-fn from_item(item: &Item, idx: &LineIndex, fallback: Pos) -> Option<Node> {
-    match item {
-        Item::None => None,
-        Item::Value(v) => Some(from_value(v, idx, fallback)),
-        Item::Table(t) => {
-            let pos = idx.span_pos(t.span(), fallback);
-            Some(Node {
-                kind: Kind::Table(table_entries(t, idx, pos)),
-                pos,
-            })
-        }
-        Item::ArrayOfTables(a) => {
-            let pos = idx.span_pos(a.span(), fallback);
-            let elems = a
-                .iter()
-                .map(|t| {
-                    let tpos = idx.span_pos(t.span(), pos);
-                    Node {
-                        kind: Kind::Table(table_entries(t, idx, tpos)),
-                        pos: tpos,
-                    }
-                })
-                .collect();
-            Some(Node {
-                kind: Kind::Array(elems),
-                pos,
-            })
-        }
-    }
-}
-
-fn from_value(v: &Value, idx: &LineIndex, fallback: Pos) -> Node {
-    let pos = idx.span_pos(v.span(), fallback);
-    let kind = match v {
-        Value::String(s) => Kind::Str(s.value().clone()),
-        Value::Integer(i) => Kind::Int(*i.value()),
-        Value::Float(f) => Kind::Float(*f.value()),
-        Value::Boolean(b) => Kind::Bool(*b.value()),
-        Value::Datetime(d) => Kind::Datetime(d.value().to_string()),
-        Value::Array(a) => Kind::Array(a.iter().map(|e| from_value(e, idx, pos)).collect()),
-        Value::InlineTable(t) => {
-            let mut out = Vec::new();
-            for (k, item) in t.iter() {
-                let key_pos = idx.span_pos(t.key(k).and_then(|k| k.span()), pos);
-                let value = from_value(item, idx, key_pos);
-                out.push(Entry {
-                    key: k.to_string(),
-                    key_pos,
-                    value,
-                });
-            }
-            Kind::Table(out)
-        }
-    };
-    Node { kind, pos }
 }

@@ -357,7 +357,8 @@ fn a_syntax_error_names_its_key_or_says_there_is_none() {
             "bodies[1].radius",
         ),
         ("[scene\nname = \"x\"\n", "(table header)"),
-        ("[scene]\n\"quoted\" = [1,\n", "(no key)"),
+        ("[scene]\n\"quoted\" = [1,\n", "scene.quoted"),
+        ("[scene]\n\n# end\n]\n", "(no key)"),
     ] {
         let e = errs(text);
         assert_eq!(e.0.len(), 1, "{text}");

@@ -47,8 +47,8 @@ const COHESIVE_KEYS: &[&str] = &[
 
 pub(crate) fn place(pos: Pos, field: String) -> Place {
     Place {
-        line: pos.line,
-        column: pos.column,
+        line: pos.line as usize,
+        column: pos.column as usize,
         field,
     }
 }
