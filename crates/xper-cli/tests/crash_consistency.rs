@@ -4,7 +4,8 @@
 //!
 //! One scene per physics (rigid: `drop`, fluid: `single_grain_settling`, fracture:
 //! `nooru_mohamed_small`), cut to a few hundred steps. `XPER_KILLS` sets the number of random
-//! kills per physics (20 by default; the long form of the test is `XPER_KILLS=200`).
+//! kills per physics (20 by default; the long form of the test is `XPER_KILLS=200`), and
+//! `XPER_KILL_SCENES` (comma-separated names) keeps only some of the three scenes.
 
 mod common;
 use common::{assert_success as ok, run_scene, shipped_scene, temp_dir};
@@ -28,21 +29,7 @@ fn run(scene: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
 fn without_timing(path: &Path) -> String {
     let text = std::fs::read_to_string(path)
         .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let timing = |c: &str| c.ends_with("_time") && c != "time" || c.ends_with("_seconds");
-    let keep: Vec<bool> = header.iter().map(|c| !timing(c)).collect();
-    let mut kept = String::new();
-    for line in text.lines() {
-        for (field, k) in line.split(',').zip(&keep) {
-            if *k {
-                kept.push_str(field);
-                kept.push(',');
-            }
-        }
-        kept.push('\n');
-    }
-    kept
+    xper_io::without_timing_columns(&text)
 }
 
 /// Fails unless `b` holds the outputs of `a`: checkpoint, tables (timing aside), result.pvd
@@ -173,9 +160,14 @@ fn random_kills_resume_to_the_uninterrupted_outputs() {
         .ok()
         .and_then(|k| k.parse().ok())
         .unwrap_or(20);
+    let only = std::env::var("XPER_KILL_SCENES").ok();
     let dir = temp_dir("crash-kills");
     let mut lcg = Lcg(2026);
-    for (name, steps, every) in SCENES {
+    let chosen = SCENES.into_iter().filter(|(name, ..)| {
+        only.as_ref()
+            .is_none_or(|o| o.split(',').any(|n| n == *name))
+    });
+    for (name, steps, every) in chosen {
         let scene = shipped_scene(name, steps, every, &dir);
         let straight = dir.join(format!("{name}-a"));
         let started = Instant::now();
@@ -190,17 +182,23 @@ fn random_kills_resume_to_the_uninterrupted_outputs() {
             if resume {
                 args.push("--resume");
             }
+            let log = dir.join(format!("{name}-stderr.txt"));
             let mut child = Command::new(env!("CARGO_BIN_EXE_xper"))
                 .args(&args)
                 .stdout(Stdio::null())
-                .stderr(Stdio::null())
+                .stderr(std::fs::File::create(&log).unwrap())
                 .spawn()
                 .unwrap();
             std::thread::sleep(Duration::from_millis(lcg.below(whole + 1)));
             match child.try_wait().unwrap() {
                 Some(status) => {
                     // It ended before the kill: check this chain of resumes, start another.
-                    assert!(status.success(), "{name}: a run exited with {status}");
+                    assert!(
+                        status.success(),
+                        "{name}: a run ({}) exited with {status} after {killed} kills: {}",
+                        args.join(" "),
+                        std::fs::read_to_string(&log).unwrap_or_default()
+                    );
                     assert_same_outputs(&straight, &split, &format!("{name}, {killed} kills"));
                     std::fs::remove_dir_all(&split).unwrap();
                 }

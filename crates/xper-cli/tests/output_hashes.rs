@@ -18,11 +18,6 @@
 mod common;
 use std::path::{Path, PathBuf};
 
-/// Columns of series.csv that hold wall-clock measurements, left out of the hash.
-fn is_timing_column(name: &str) -> bool {
-    name == "wall_time" || name.ends_with("_time") && name != "time" || name.ends_with("_seconds")
-}
-
 /// FNV-1a, 64 bits: a stable hash (std's `DefaultHasher` may change between Rust releases).
 fn fnv1a(bytes: &[u8], mut hash: u64) -> u64 {
     for &b in bytes {
@@ -48,7 +43,10 @@ fn series_hash(path: &Path) -> u64 {
         .expect("series.csv has a header")
         .split(',')
         .collect();
-    let keep: Vec<bool> = header.iter().map(|c| !is_timing_column(c)).collect();
+    let keep: Vec<bool> = header
+        .iter()
+        .map(|c| !xper_io::is_timing_column(c))
+        .collect();
     let mut hash = FNV_OFFSET;
     for line in std::iter::once(header.join(",").as_str()).chain(lines) {
         for (field, keep) in line.split(',').zip(&keep) {

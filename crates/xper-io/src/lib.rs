@@ -22,6 +22,6 @@ pub use memory::{current_heap_bytes, peak_heap_bytes, peak_memory_bytes, Countin
 pub use plot::{plot_panels, Curve, Panel};
 pub use pvd::{PvdCollection, PvdEntry};
 pub use segments::{plot_segments, SegmentLayer};
-pub use series::SeriesTable;
+pub use series::{is_timing_column, without_timing_columns, SeriesTable};
 pub use vti::{write_vti, ImageGrid};
 pub use vtu::{read_vtu, write_vtu, DataArray, DataValues, UnstructuredGrid};

@@ -6,6 +6,32 @@ use std::path::Path;
 
 use crate::atomic::{read_text, with_path, write_atomic};
 
+/// Whether a column of a series holds wall-clock figures (`wall_time`, `solve_time`,
+/// `fluid_time`, ..., `*_seconds`), which differ between two runs of the same scene; the
+/// simulated `time` does not.
+pub fn is_timing_column(name: &str) -> bool {
+    name.ends_with("_time") && name != "time" || name.ends_with("_seconds")
+}
+
+/// The text of a CSV table without its wall-clock columns ([`is_timing_column`], named on the
+/// first line): what two runs of the same scene must agree on byte for byte.
+pub fn without_timing_columns(csv: &str) -> String {
+    let mut lines = csv.lines();
+    let keep: Vec<bool> = (lines.next().unwrap_or("").split(','))
+        .map(|c| !is_timing_column(c))
+        .collect();
+    let mut kept = String::with_capacity(csv.len());
+    for line in csv.lines() {
+        let fields: Vec<&str> = (line.split(',').zip(&keep))
+            .filter(|(_, k)| **k)
+            .map(|(f, _)| f)
+            .collect();
+        kept.push_str(&fields.join(","));
+        kept.push('\n');
+    }
+    kept
+}
+
 /// A table of `f64` values with named columns, one row per recorded step.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct SeriesTable {

@@ -42,7 +42,7 @@ pub use generators::MAX_GENERATED;
 pub use overlap::MAX_OVERLAP_REPORTS;
 pub use rng::SplitMix64;
 pub use types::{
-    Acceleration, BodyDesc, ConvergenceNorm, Drive, FluidDesc, FluidSideDesc, LawDesc,
+    Acceleration, BodyDesc, CheckPass, ConvergenceNorm, Drive, FluidDesc, FluidSideDesc, LawDesc,
     OutputSettings, Scene, ShapeDesc, SolverSettings, TimeFunction, VelocitySolverKind,
 };
 

@@ -3,7 +3,9 @@
 use crate::read::{choose, ensure, int_in, Ctx, Got, Tbl};
 use crate::shared::{Groups, Materials};
 use crate::tree::Kind;
-use crate::types::{Acceleration, ConvergenceNorm, LawDesc, SolverSettings, VelocitySolverKind};
+use crate::types::{
+    Acceleration, CheckPass, ConvergenceNorm, LawDesc, SolverSettings, VelocitySolverKind,
+};
 
 /// The `[scene]` table; `None` fields were invalid (errors reported).
 pub(crate) struct Header {
@@ -142,6 +144,7 @@ const SOLVER_KEYS: &[&str] = &[
     "check_every",
     "relaxation",
     "norm",
+    "check",
     "acceleration",
     "anderson_depth",
     "anderson_period",
@@ -200,7 +203,17 @@ pub(crate) fn solver(ctx: &mut Ctx, root: &Tbl) -> SolverSettings {
         if let Some(n) = choose(ctx, norm, &t.field("norm"), "norm", &norms) {
             s.norm = n;
         }
+        let checks = [("lmgc90", CheckPass::Lmgc90), ("strict", CheckPass::Strict)];
+        let check = t.string(ctx, "check").ok();
+        if let Some(c) = choose(ctx, check, &t.field("check"), "convergence check", &checks) {
+            s.check = c;
+        }
     } else {
+        t.forbid(
+            ctx,
+            "check",
+            "applies to kind = \"nlgs\" only (which updates LMGC90's norms measure)",
+        );
         t.forbid(
             ctx,
             "norm",

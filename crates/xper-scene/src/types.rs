@@ -55,7 +55,7 @@ pub enum ConvergenceNorm {
 
 /// Acceleration of the NLGS sweeps (`acceleration`, `anderson_depth`, `anderson_period`): the
 /// solver's own type, `none` or `anderson` (depth and period 3 unless given).
-pub use xper_solver::Acceleration;
+pub use xper_solver::{Acceleration, CheckPass};
 
 /// Contact solver settings (`[solver]`).
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -77,6 +77,9 @@ pub struct SolverSettings {
     pub norm: ConvergenceNorm,
     /// NLGS acceleration (the velocity problem; the position projection stays plain).
     pub acceleration: Acceleration,
+    /// Which updates the NLGS convergence check measures (LMGC90's separate pass or the
+    /// stricter check sweep itself; as `check_every`).
+    pub check: CheckPass,
     /// Whether interpenetrations are corrected by a position projection after each step.
     pub position_projection: bool,
 }
@@ -105,6 +108,7 @@ impl Default for SolverSettings {
             relaxation: 1.0,
             norm: ConvergenceNorm::Quad,
             acceleration: Acceleration::None,
+            check: CheckPass::default(),
             position_projection: true,
         }
     }

@@ -1,7 +1,10 @@
 //! One run per output directory: `xper.lock` names the process that writes there.
 //!
-//! A run creates the lock (atomically: `create_new`) before writing anything and removes it
-//! when it ends, also when it fails. A second run into the same directory is refused with the
+//! A run creates the lock before writing anything and removes it when it ends, also when it
+//! fails. The lock appears with its content in one step (written to a file of this process,
+//! then hard-linked to `xper.lock`, which fails if the lock exists): a run killed while taking
+//! it never leaves an empty lock that no later run could judge stale. Where hard links are not
+//! supported, the lock is created with `create_new` and then written. A second run into the same directory is refused with the
 //! first run's process id, host and start time. A lock left by a run that was killed (its
 //! process no longer exists on this host) is taken over with a note.
 
@@ -47,22 +50,30 @@ impl OutputLock {
                 .map_or(0, |d| d.as_secs())
         );
         for _ in 0..2 {
-            match std::fs::OpenOptions::new()
-                .write(true)
-                .create_new(true)
-                .open(&path)
-            {
-                Ok(mut file) => {
-                    file.write_all(me.as_bytes())
-                        .map_err(|e| RunError::Runtime(format!("{}: {e}", path.display())))?;
-                    return Ok(OutputLock { path });
-                }
+            match create_with(&path, &me) {
+                Ok(()) => return Ok(OutputLock { path }),
                 Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
                     let holder = std::fs::read_to_string(&path).unwrap_or_default();
                     let holder = holder.trim();
                     let pid = (holder.split_whitespace().nth(1)).and_then(|p| p.parse().ok());
                     let same_host = holder.contains(&format!("on host {} ", host()));
+                    // An empty lock more than a few seconds old was left by a run killed
+                    // between creating and writing it (where locks are not hard-linked).
+                    let abandoned = holder.is_empty()
+                        && (std::fs::metadata(&path).and_then(|m| m.modified()).ok())
+                            .and_then(|t| t.elapsed().ok())
+                            .is_some_and(|age| age.as_secs() >= 10);
                     match pid.filter(|_| same_host).map(alive) {
+                        _ if abandoned => {
+                            notes.push(format!(
+                                "{}: an empty lock left by a run killed while taking it; taken \
+                                 over",
+                                path.display()
+                            ));
+                            std::fs::remove_file(&path).map_err(|e| {
+                                RunError::Runtime(format!("{}: {e}", path.display()))
+                            })?;
+                        }
                         Some(Some(false)) => {
                             notes.push(format!(
                                 "{}: the run that held it ({holder}) no longer runs; taken over",
@@ -100,6 +111,26 @@ impl OutputLock {
             "{}: the lock was taken again while being taken over",
             path.display()
         )))
+    }
+}
+
+/// Creates `path` holding `text`, failing with `AlreadyExists` if it exists: by a hard link
+/// from a file of this process (the lock never exists empty), or by `create_new` where links
+/// are not supported.
+fn create_with(path: &Path, text: &str) -> std::io::Result<()> {
+    let own = path.with_file_name(format!(".{LOCK_FILE}.{}", std::process::id()));
+    std::fs::write(&own, text)?;
+    let linked = std::fs::hard_link(&own, path);
+    let _ = std::fs::remove_file(&own);
+    match linked {
+        Err(e) if e.kind() != std::io::ErrorKind::AlreadyExists => {
+            let mut file = std::fs::OpenOptions::new()
+                .write(true)
+                .create_new(true)
+                .open(path)?;
+            file.write_all(text.as_bytes())
+        }
+        other => other,
     }
 }
 
@@ -148,5 +179,19 @@ mod tests {
         let _lock = OutputLock::take(&d, &mut notes).unwrap();
         assert_eq!(notes.len(), 1, "{notes:?}");
         assert!(notes[0].contains("no longer runs"));
+    }
+
+    #[test]
+    fn the_lock_appears_with_its_content_and_leaves_no_file_of_its_own() {
+        let d = dir("content");
+        let lock = OutputLock::take(&d, &mut Vec::new()).unwrap();
+        let text = std::fs::read_to_string(d.join(LOCK_FILE)).unwrap();
+        assert!(text.starts_with(&format!("pid {} on host ", std::process::id())));
+        let names: Vec<_> = std::fs::read_dir(&d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(names, [LOCK_FILE], "only the lock in the directory");
+        drop(lock);
     }
 }

@@ -13,7 +13,7 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 /// Values a resumed run may take from an edited scene: none changes the state it resumes.
-pub const COMPATIBLE: [&str; 9] = [
+pub const COMPATIBLE: [&str; 10] = [
     "scene.name",
     "scene.duration",
     "scene.steps",
@@ -23,6 +23,7 @@ pub const COMPATIBLE: [&str; 9] = [
     "solver.tolerance",
     "solver.max_iterations",
     "solver.check_every",
+    "solver.check",
 ];
 
 /// One value that differs between two scene texts (`None`: absent on that side).

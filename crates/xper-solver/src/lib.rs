@@ -45,7 +45,7 @@ pub use lemke::{lemke, LemkeParams};
 pub use local::solve_one_contact;
 pub use newton::{newton, NewtonParams, RhoStrategy};
 pub use nlgs::{
-    check_contact_sizes, ConvergenceNorm, NlgsParams, NlgsSweeper, SolveError, SolveInfo,
+    check_contact_sizes, CheckPass, ConvergenceNorm, NlgsParams, NlgsSweeper, SolveError, SolveInfo,
 };
 pub use nsgs::{nsgs, NsgsParams};
 pub use operator::{Block2, ContactOperator, DenseProblem};

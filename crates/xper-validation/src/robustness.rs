@@ -363,24 +363,10 @@ fn kill_rounds(
 /// Whether `b` holds the checkpoint, result.pvd and tables (timing columns aside) of `a`.
 fn same_outputs(a: &Path, b: &Path) -> bool {
     let bytes = |dir: &Path, name: &str| std::fs::read(dir.join(name)).ok();
-    let table = |dir: &Path| -> Option<Vec<String>> {
-        let text = std::fs::read_to_string(dir.join("series.csv")).ok()?;
-        let mut lines = text.lines();
-        let header: Vec<&str> = lines.next()?.split(',').collect();
-        let keep: Vec<bool> = (header.iter())
-            .map(|c| !(c.ends_with("_time") && *c != "time"))
-            .collect();
-        Some(
-            text.lines()
-                .map(|l| {
-                    (l.split(',').zip(&keep))
-                        .filter(|(_, k)| **k)
-                        .map(|(f, _)| f)
-                        .collect::<Vec<_>>()
-                        .join(",")
-                })
-                .collect(),
-        )
+    let table = |dir: &Path| {
+        std::fs::read_to_string(dir.join("series.csv"))
+            .ok()
+            .map(|t| xper_io::without_timing_columns(&t))
     };
     ["checkpoint.bin", "result.pvd"]
         .iter()

@@ -168,6 +168,7 @@ fn nlgs(ctx: &mut Ctx, root: &Tbl) -> NlgsParams {
             ConvergenceNorm::NaturalMap => xper_solver::ConvergenceNorm::NaturalMap,
         },
         acceleration: s.acceleration,
+        check: s.check,
     }
 }
 

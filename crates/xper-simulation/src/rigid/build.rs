@@ -95,6 +95,7 @@ pub fn world_from_scene(scene: &Scene) -> World {
                 xper_scene::ConvergenceNorm::NaturalMap => ConvergenceNorm::NaturalMap,
             },
             acceleration: s.acceleration,
+            check: s.check,
         },
         solver: velocity_solver(s),
         projection_tolerance: (s.position_projection && smallest.is_finite())
