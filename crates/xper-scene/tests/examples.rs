@@ -4,8 +4,8 @@ use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
 use xper_scene::{
-    load_scene, Acceleration, ConvergenceNorm, Drive, ShapeDesc, SplitMix64, TimeFunction,
-    VelocitySolverKind,
+    load_scene, Acceleration, CheckPass, ConvergenceNorm, Drive, ShapeDesc, SplitMix64,
+    TimeFunction, VelocitySolverKind,
 };
 
 fn scene_path(name: &str) -> PathBuf {
@@ -52,6 +52,26 @@ fn box10k_anderson_is_box10k_with_acceleration() {
     let mut same = fast.clone();
     same.name = plain.name.clone();
     same.solver.acceleration = Acceleration::None;
+    assert_eq!(same, plain);
+}
+
+/// The study scenes of issue 39 are box10k with one solver line changed, and nothing else.
+#[test]
+fn box10k_variants_differ_from_box10k_in_one_solver_line() {
+    let plain = load_scene(&scene_path("box10k")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(plain.solver.check, CheckPass::Lmgc90);
+    assert!(plain.solver.position_projection);
+    let strict = load_scene(&scene_path("box10k_strict_check")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(strict.solver.check, CheckPass::Strict);
+    let mut same = strict.clone();
+    same.name = plain.name.clone();
+    same.solver.check = CheckPass::Lmgc90;
+    assert_eq!(same, plain);
+    let free = load_scene(&scene_path("box10k_no_projection")).unwrap_or_else(|e| panic!("{e}"));
+    assert!(!free.solver.position_projection);
+    let mut same = free.clone();
+    same.name = plain.name.clone();
+    same.solver.position_projection = true;
     assert_eq!(same, plain);
 }
 
