@@ -343,6 +343,27 @@ fn read_results<T: serde::de::DeserializeOwned>(
         .collect()
 }
 
+/// The result `file` of a `what` benchmark in `dir`, if that benchmark was run; an error when
+/// the file cannot be read or is not a result of this version.
+fn optional_result<T: serde::de::DeserializeOwned>(
+    dir: &Path,
+    file: &str,
+    what: &str,
+) -> Result<Option<T>, RunError> {
+    let path = dir.join(file);
+    if !path.exists() {
+        return Ok(None);
+    }
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| RunError::Runtime(format!("{}: {e}", path.display())))?;
+    serde_json::from_str(&text).map(Some).map_err(|e| {
+        RunError::Runtime(format!(
+            "{}: not a {what} benchmark result of this version ({e})",
+            path.display()
+        ))
+    })
+}
+
 /// The machine the rows were measured on or, when they differ, each machine with its scenes.
 fn machines_line<'a>(rows: impl Iterator<Item = (&'a str, &'a str)>) -> String {
     let mut machines: Vec<(&str, Vec<&str>)> = Vec::new();
@@ -416,29 +437,11 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), RunError> {
         headlines.extend(headline::solvers(&suite));
         md.push_str(&crate::solvers::markdown(&suite));
     }
-    let fluid_file = dir.join(crate::fluid::RESULTS_FILE);
-    if fluid_file.exists() {
-        let text = std::fs::read_to_string(&fluid_file)
-            .map_err(|e| RunError::Runtime(format!("{}: {e}", fluid_file.display())))?;
-        let fluid = serde_json::from_str(&text).map_err(|e| {
-            RunError::Runtime(format!(
-                "{}: not a fluid benchmark result of this version ({e})",
-                fluid_file.display()
-            ))
-        })?;
+    if let Some(fluid) = optional_result(dir, crate::fluid::RESULTS_FILE, "fluid")? {
         headlines.extend(headline::fluid(&fluid));
         md.push_str(&crate::fluid::markdown(&fluid));
     }
-    let reading_file = dir.join(crate::reading::RESULTS_FILE);
-    if reading_file.exists() {
-        let text = std::fs::read_to_string(&reading_file)
-            .map_err(|e| RunError::Runtime(format!("{}: {e}", reading_file.display())))?;
-        let reading = serde_json::from_str(&text).map_err(|e| {
-            RunError::Runtime(format!(
-                "{}: not a reading benchmark result of this version ({e})",
-                reading_file.display()
-            ))
-        })?;
+    if let Some(reading) = optional_result(dir, crate::reading::RESULTS_FILE, "reading")? {
         headlines.extend(headline::reading(&reading));
         md.push_str(&crate::reading::markdown(&reading));
     }
