@@ -181,8 +181,8 @@ impl Table {
         Ok(())
     }
 
-    /// The table a header's key path names, creating implicit parents; `None` when the path
-    /// goes through a value.
+    /// The table a header's key path names (the last table of an array of tables), creating
+    /// implicit parents; an error when the path goes through a value.
     fn descend<'t>(&'t mut self, path: &[Key]) -> Result<&'t mut Table, SyntaxError> {
         let mut table = self;
         for (k, key) in path.iter().enumerate() {

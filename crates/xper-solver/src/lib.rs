@@ -31,6 +31,7 @@ pub mod newton;
 mod nlgs;
 pub mod nsgs;
 mod operator;
+mod outcome;
 mod problem;
 pub mod proximal;
 mod solve;
