@@ -11,5 +11,5 @@ mod set;
 mod shape;
 
 pub use drive::{Drive, TimeFunction};
-pub use set::{Body, BodyHandle, BodySet, Ownership};
+pub use set::{Body, BodyHandle, BodySet, Configuration, Ownership};
 pub use shape::{ConvexPolygon, Shape};

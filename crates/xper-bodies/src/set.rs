@@ -2,7 +2,7 @@
 
 use crate::{Drive, Shape};
 use serde::{Deserialize, Serialize};
-use xper_math::{Real, Vector, DOFS};
+use xper_math::{AngVector, Real, Vector, DOFS};
 
 /// Index of a body in its [`BodySet`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
@@ -50,6 +50,14 @@ pub struct Body {
     pub group: u16,
     /// Drives of the x, y and rotation degrees of freedom.
     pub drives: [Drive; DOFS],
+}
+
+/// Positions and angles of every body of a [`BodySet`], saved by
+/// [`BodySet::advance_explicitly`].
+#[derive(Clone, Debug)]
+pub struct Configuration {
+    position: Vec<Vector>,
+    angle: Vec<AngVector>,
 }
 
 /// All bodies of a run. Field `k` of every array belongs to body `k`.
@@ -119,6 +127,30 @@ impl BodySet {
             self.driven.push((handle, body.drives));
         }
         handle
+    }
+
+    /// Moves every body by `dt` times its velocity (`q += dt v`) and returns the configuration
+    /// it had, for [`BodySet::restore_configuration`]: Moreau-Jean's detection configuration
+    /// `q_TT = q_i + h (1 - theta) v_i` is `advance_explicitly(h * (1 - theta))`.
+    pub fn advance_explicitly(&mut self, dt: Real) -> Configuration {
+        let saved = Configuration {
+            position: self.position.clone(),
+            angle: self.angle.clone(),
+        };
+        for (q, v) in self.position.iter_mut().zip(&self.velocity) {
+            *q += v * dt;
+        }
+        for (a, w) in self.angle.iter_mut().zip(&self.angular_velocity) {
+            *a += w * dt;
+        }
+        saved
+    }
+
+    /// Puts the bodies back, bit for bit, in a configuration [`BodySet::advance_explicitly`]
+    /// returned.
+    pub fn restore_configuration(&mut self, saved: Configuration) {
+        self.position = saved.position;
+        self.angle = saved.angle;
     }
 
     /// Releases the room the arrays have beyond their bodies (a set filled by

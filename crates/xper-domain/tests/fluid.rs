@@ -360,6 +360,7 @@ fn empty_box(
         theta: 0.5,
         gravity: Vector::zeros(),
         alert_distance: 1e-3,
+        detection: Default::default(),
         nlgs: Default::default(),
         solver: xper_nscd::VelocitySolver::Nlgs,
         projection_tolerance: None,

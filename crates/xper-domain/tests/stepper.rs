@@ -226,3 +226,61 @@ fn a_body_crossing_regions_in_one_step_migrates_to_a_process_that_is_not_a_neigh
     assert_eq!(owned, 9, "bodies owned after the run: {loads:?}");
     assert!(loads.iter().map(|l| l.migrated_in).sum::<u64>() >= 2);
 }
+
+/// With contacts detected on the predicted configuration `q + h (1 - theta) v`, the halo of
+/// shadow bodies grows by the bodies' motion to it. Two disks (r = 1 cm, alert 1 mm, h = 1 ms)
+/// 3 cm apart close at 59 m/s: their centres are farther apart than twice the plain halo
+/// `2 r_max + alert` = 2.1 cm, so a cut between them leaves each out of the other's halo, yet
+/// their predicted gap, 3 cm - 2.95 cm = 0.5 mm, is within the alert distance. The serial run
+/// stops them without overlap; two processes must do the same (without the widening they
+/// miss the contact, and the disks pass through each other as they do when detected on `q`).
+#[test]
+fn predicted_detection_finds_a_fast_pair_across_the_cut() {
+    use xper_bodies::Body;
+    use xper_math::Vector;
+    use xper_nscd::Detection;
+    let mut world = deposit_world();
+    let mut bodies = BodySet::new();
+    for x in [-1.0, -0.9] {
+        bodies.insert(Body::disk(0.01, 1000.0, Vector::new(x, 0.0)));
+    }
+    let (gap, speed) = (0.03, 29.5);
+    let centre = 0.01 + gap / 2.0;
+    bodies.insert(
+        Body::disk(0.01, 1000.0, Vector::new(-centre, 0.0)).with_velocity(Vector::new(speed, 0.0)),
+    );
+    bodies.insert(
+        Body::disk(0.01, 1000.0, Vector::new(centre, 0.0)).with_velocity(Vector::new(-speed, 0.0)),
+    );
+    for x in [0.9, 1.0] {
+        bodies.insert(Body::disk(0.01, 1000.0, Vector::new(x, 0.0)));
+    }
+    world.bodies = bodies;
+    world.contacts.clear();
+    world.params.gravity = Vector::zeros();
+    world.params.nlgs.tolerance = 1e-12;
+    // Signed along the row: negative once the disks overlap or have passed each other.
+    let pair_gap = |w: &World| w.bodies.position[3].x - w.bodies.position[2].x - 0.02;
+    let steps = 4;
+
+    let mut begin = world.clone();
+    begin.params.detection = Detection::Begin;
+    let missed = serial(begin, steps);
+    assert!(pair_gap(&missed) < -0.02, "gap {:e}", pair_gap(&missed));
+
+    world.params.detection = Detection::Predicted;
+    let reference = serial(world.clone(), steps);
+    assert!(
+        pair_gap(&reference).abs() < 1e-12,
+        "gap {:e}",
+        pair_gap(&reference)
+    );
+    let (two, loads) = distributed(&world, 2, steps, 50);
+    assert_eq!(loads.iter().map(|l| l.bodies).sum::<usize>(), 6);
+    assert!(
+        loads.iter().all(|l| l.bodies == 3),
+        "the cut between the two disks: {loads:?}"
+    );
+    let d = distance(&two.bodies, &reference.bodies);
+    assert!(d < 1e-12, "{d:.3e} m from the serial run");
+}

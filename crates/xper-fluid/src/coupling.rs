@@ -277,6 +277,7 @@ mod tests {
             theta: 0.5,
             gravity: Vector::zeros(),
             alert_distance: 1e-3,
+            detection: Default::default(),
             nlgs: Default::default(),
             solver: xper_nscd::VelocitySolver::Nlgs,
             projection_tolerance: None,

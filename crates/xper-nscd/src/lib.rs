@@ -7,7 +7,8 @@
 //! ```text
 //! v_free  = v_i + h M^-1 F_theta
 //! U       = H^T v,  W = H^T M^-1 H,  U = W R + H^T v_free
-//! contacts within the alert distance, g_TT = g_i + h (1 - theta) U_N,i:
+//! contacts within the alert distance, detected on q_i with g_TT = g_i + h (1 - theta) U_N,i,
+//! or (LMGC90's way) on q_TT = q_i + h (1 - theta) v_i with g_TT = g(q_TT):
 //!         Signorini-Coulomb on (U_N + s, U_T) and R        (NLGS, or Newton on the assembled W)
 //!         s = max(g_TT, 0) / h             for e = 0 (LMGC90's IQS law: approach by at most the gap)
 //!         s = e min(U_N,i, 0) if g_TT <= 0 for e > 0 (Newton's impact law; otherwise no contact)
@@ -40,6 +41,6 @@ mod world;
 
 pub use assemble::assemble_problem;
 pub use operator::{ContactRow, RigidContactOperator, RigidProblem, SolverBody};
-pub use select::{contact_owner_body, is_movable, normal_shift};
+pub use select::{contact_owner_body, is_movable, normal_shift, predicted_gap};
 pub use step::{energy_blown_up, ContactSolve, MoreauJean, StageTimes, StepError, StepReport};
-pub use world::{EnergyBudget, StepParams, VelocitySolver, World};
+pub use world::{Detection, EnergyBudget, StepParams, VelocitySolver, World};

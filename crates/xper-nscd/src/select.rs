@@ -1,6 +1,7 @@
 //! Which contacts a step solves: the normal shift of the Signorini condition per interaction
 //! law, and, in a distributed run, the process that owns a contact.
 
+use crate::world::Detection;
 use xper_bodies::BodySet;
 use xper_math::{Real, DOFS};
 
@@ -23,10 +24,27 @@ pub fn contact_owner_body(bodies: &BodySet, i: usize, j: usize) -> usize {
     }
 }
 
+/// The gap after the explicit part of the motion, `g_TT`, of a contact whose detected gap is
+/// `gap` and whose normal velocity at the beginning of the step is `un_begin`: predicted to
+/// first order from a detection on `q_i`, measured by a detection on `q_TT`.
+#[inline]
+pub fn predicted_gap(
+    detection: Detection,
+    gap: Real,
+    un_begin: Real,
+    h: Real,
+    theta: Real,
+) -> Real {
+    match detection {
+        Detection::Begin => gap + h * (1.0 - theta) * un_begin,
+        Detection::Predicted => gap,
+    }
+}
+
 /// The normal shift `s` of a contact in the Signorini condition `U_N + s >= 0 _|_ R_N >= 0`,
 /// or `None` when the contact stays out of the problem this step.
 ///
-/// With `g_TT = g + h (1 - theta) U_N,i` the gap after the explicit part of the motion:
+/// With `g_tt` the gap after the explicit part of the motion ([`predicted_gap`]):
 /// - `e = 0` (LMGC90's inelastic quasi-shock law): every contact within the alert distance is in
 ///   the problem with `s = max(g_TT, 0) / h`, so bodies may approach by at most the open gap;
 ///   the gap then closes in two steps (to `(1 - theta) g_TT`, then exactly to 0) with neither
@@ -35,14 +53,12 @@ pub fn contact_owner_body(bodies: &BodySet, i: usize, j: usize) -> usize {
 ///   `closed`), with `s = e min(U_N,i, 0)`, so an impact restitutes `-e U_N,i` exactly.
 #[inline]
 pub fn normal_shift(
-    gap: Real,
+    g_tt: Real,
     un_begin: Real,
     h: Real,
-    theta: Real,
     restitution: Real,
     closed: Real,
 ) -> Option<Real> {
-    let g_tt = gap + h * (1.0 - theta) * un_begin;
     if restitution == 0.0 {
         Some(g_tt.max(0.0) / h)
     } else if g_tt <= closed {

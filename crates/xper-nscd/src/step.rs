@@ -7,8 +7,8 @@ use crate::contact_solve::reborrow;
 pub use crate::contact_solve::ContactSolve;
 use crate::operator::{ContactRow, RigidContactOperator, RigidProblem};
 pub use crate::report::{energy_blown_up, StageTimes, StepError, StepReport};
-use crate::select::{contact_owner_body, normal_shift};
-use crate::world::{VelocitySolver, World};
+use crate::select::{contact_owner_body, normal_shift, predicted_gap};
+use crate::world::{Detection, VelocitySolver, World};
 use std::time::Instant;
 use xper_bodies::Ownership;
 use xper_geometry::Detector;
@@ -309,7 +309,13 @@ impl MoreauJean {
         let start = Instant::now();
         let (h, theta) = (self.h, world.params.theta);
 
-        // Stage: detect, on the configuration at the beginning of the step.
+        // Stage: detect, on the configuration at the beginning of the step or on the one the
+        // explicit part of the motion reaches (the bodies are put back exactly afterwards).
+        let detection = world.params.detection;
+        let begin = match detection {
+            Detection::Begin => None,
+            Detection::Predicted => Some(world.bodies.advance_explicitly(h * (1.0 - theta))),
+        };
         let laws = &world.laws;
         self.detector.detect(
             &world.bodies,
@@ -317,6 +323,9 @@ impl MoreauJean {
             |a, b| laws.between(a, b),
             &mut world.contacts,
         );
+        if let Some(begin) = begin {
+            world.bodies.restore_configuration(begin);
+        }
         if owned_only {
             let bodies = &world.bodies;
             world.contacts.retain(|c| {
@@ -353,7 +362,8 @@ impl MoreauJean {
             // A contact whose groups no longer interact (a changed scene) is left out.
             let law = world.contact_law(self.op.rows[a].bodies);
             let Some((law, shift)) = law.and_then(|InteractionLaw::SignoriniCoulomb(law)| {
-                let shift = normal_shift(gap, un, h, theta, law.restitution, closed)?;
+                let g_tt = predicted_gap(detection, gap, un, h, theta);
+                let shift = normal_shift(g_tt, un, h, law.restitution, closed)?;
                 Some((law, shift))
             }) else {
                 if !subset {

@@ -18,6 +18,8 @@ pub struct StepParams {
     pub gravity: Vector,
     /// Alert distance (m): pairs closer than this are contacts.
     pub alert_distance: Real,
+    /// The configuration on which contacts are detected and their gaps measured.
+    pub detection: Detection,
     /// NLGS parameters: the velocity solve when `solver` is [`VelocitySolver::Nlgs`], and
     /// always the position projection.
     pub nlgs: NlgsParams,
@@ -26,6 +28,22 @@ pub struct StepParams {
     /// Overlap (m) beyond which the position projection runs; `None` disables it. Contacts with
     /// restitution whose predicted gap is below it count as closed (see `normal_shift`).
     pub projection_tolerance: Option<Real>,
+}
+
+/// The configuration on which a step detects its contacts (pairs within the alert distance)
+/// and measures their gaps, normals and lever arms.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Detection {
+    /// The configuration at the beginning of the step, `q_i`; the Signorini condition uses
+    /// the gap predicted to first order, `g_TT = g(q_i) + h (1 - theta) U_N,i`.
+    #[default]
+    Begin,
+    /// The configuration the explicit part of the motion reaches, `q_TT = q_i + h (1 - theta)
+    /// v_i`, on which the gap `g_TT = g(q_TT)` is measured exactly: LMGC90's detection
+    /// configuration (`coorTT` of its rigid bodies). A pair approaching at speed `V` is then
+    /// found `h (1 - theta) V` earlier than on `q_i`, which matters when a step's approach
+    /// `h V` exceeds the alert distance.
+    Predicted,
 }
 
 /// The solver of the velocity problem of each step.

@@ -45,6 +45,7 @@ fn params(tolerance: Real) -> StepParams {
         theta: 0.5,
         gravity: Vector::new(0.0, -9.81),
         alert_distance: 1e-3,
+        detection: Default::default(),
         nlgs: NlgsParams {
             tolerance,
             max_iterations: 100_000,

@@ -28,6 +28,7 @@ fn settled_column() -> World {
         theta: 0.5,
         gravity: Vector::new(0.0, -9.81),
         alert_distance: 1e-3,
+        detection: Default::default(),
         nlgs: NlgsParams {
             tolerance: 1e-10,
             max_iterations: 10_000,

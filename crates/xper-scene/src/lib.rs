@@ -42,8 +42,8 @@ pub use generators::MAX_GENERATED;
 pub use overlap::MAX_OVERLAP_REPORTS;
 pub use rng::SplitMix64;
 pub use types::{
-    Acceleration, BodyDesc, CheckPass, ConvergenceNorm, Drive, FluidDesc, FluidSideDesc, LawDesc,
-    OutputSettings, Scene, ShapeDesc, SolverSettings, TimeFunction, VelocitySolverKind,
+    Acceleration, BodyDesc, CheckPass, ConvergenceNorm, Detection, Drive, FluidDesc, FluidSideDesc,
+    LawDesc, OutputSettings, Scene, ShapeDesc, SolverSettings, TimeFunction, VelocitySolverKind,
 };
 
 use read::{Ctx, Tbl};
@@ -234,6 +234,7 @@ fn rigid_scene(ctx: &mut Ctx, root: &Tbl) -> Option<Scene> {
         theta: header.theta.unwrap_or(0.5),
         gravity: header.gravity.unwrap_or([0.0, 0.0]),
         alert_distance,
+        detection: header.detection.unwrap_or_default(),
         solver,
         output: OutputSettings {
             frame_every: output

@@ -4,7 +4,8 @@ use crate::read::{choose, ensure, int_in, Ctx, Got, Tbl};
 use crate::shared::{Groups, Materials};
 use crate::tree::Kind;
 use crate::types::{
-    Acceleration, CheckPass, ConvergenceNorm, LawDesc, SolverSettings, VelocitySolverKind,
+    Acceleration, CheckPass, ConvergenceNorm, Detection, LawDesc, SolverSettings,
+    VelocitySolverKind,
 };
 
 /// The `[scene]` table; `None` fields were invalid (errors reported).
@@ -16,6 +17,7 @@ pub(crate) struct Header {
     pub gravity: Option<[f64; 2]>,
     /// `Some(None)`: not given (default computed later).
     pub alert_distance: Option<Option<f64>>,
+    pub detection: Option<Detection>,
 }
 
 const SCENE_KEYS: &[&str] = &[
@@ -26,6 +28,7 @@ const SCENE_KEYS: &[&str] = &[
     "theta",
     "gravity",
     "alert_distance",
+    "detection",
 ];
 
 /// Largest accepted number of steps (2^53, so that step counts are exact in f64).
@@ -116,6 +119,20 @@ pub(crate) fn header(ctx: &mut Ctx, root: &Tbl) -> Header {
         )
         .map(Some),
     };
+    let detections = [
+        ("begin", Detection::Begin),
+        ("predicted", Detection::Predicted),
+    ];
+    let detection = match t.string(ctx, "detection") {
+        Got::Absent => Some(Detection::default()),
+        g => choose(
+            ctx,
+            g.ok(),
+            &t.field("detection"),
+            "detection configuration",
+            &detections,
+        ),
+    };
     Header {
         name,
         dt,
@@ -123,6 +140,7 @@ pub(crate) fn header(ctx: &mut Ctx, root: &Tbl) -> Header {
         theta,
         gravity,
         alert_distance,
+        detection,
     }
 }
 
@@ -133,6 +151,7 @@ fn bad_header() -> Header {
         steps: None,
         theta: None,
         gravity: None,
+        detection: None,
         alert_distance: None,
     }
 }

@@ -17,6 +17,8 @@ pub struct Scene {
     pub gravity: [f64; 2],
     /// Contact detection distance in m (pairs closer than this are candidate contacts).
     pub alert_distance: f64,
+    /// The configuration contacts are detected on (`detection`).
+    pub detection: Detection,
     /// Contact solver settings.
     pub solver: SolverSettings,
     /// Output cadence.
@@ -56,6 +58,19 @@ pub enum ConvergenceNorm {
 /// Acceleration of the NLGS sweeps (`acceleration`, `anderson_depth`, `anderson_period`): the
 /// solver's own type, `none` or `anderson` (depth and period 3 unless given).
 pub use xper_solver::{Acceleration, CheckPass};
+
+/// The configuration on which each step detects its contacts and measures their gaps
+/// (`[scene] detection`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+pub enum Detection {
+    /// `"begin"`: the configuration at the beginning of the step, `q_i`, with the gap
+    /// predicted to first order, `g_i + h (1 - theta) U_N,i`.
+    #[default]
+    Begin,
+    /// `"predicted"`: the configuration `q_i + h (1 - theta) v_i` (LMGC90's `coorTT`), on which
+    /// the gap is measured exactly.
+    Predicted,
+}
 
 /// Contact solver settings (`[solver]`).
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -48,6 +48,19 @@ fn bad_dt_and_theta() {
 }
 
 #[test]
+fn unknown_detection_configuration_names_the_known_ones() {
+    let t = HEADER.replace("dt = 1e-3", "dt = 1e-3\ndetection = \"end\"");
+    expect_error(
+        &t,
+        "scene.detection",
+        "detection",
+        "unknown detection configuration `end` (known: begin, predicted)",
+    );
+    let t = HEADER.replace("dt = 1e-3", "dt = 1e-3\ndetection = 1");
+    expect_error(&t, "scene.detection", "detection", "expected a string");
+}
+
+#[test]
 fn duration_and_steps() {
     let t = HEADER.replace("steps = 10", "steps = 10\nduration = 1.0");
     expect_error(&t, "scene.steps", "steps", "exactly one");

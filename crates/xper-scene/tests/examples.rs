@@ -4,7 +4,7 @@ use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
 use xper_scene::{
-    load_scene, Acceleration, CheckPass, ConvergenceNorm, Drive, ShapeDesc, SplitMix64,
+    load_scene, Acceleration, CheckPass, ConvergenceNorm, Detection, Drive, ShapeDesc, SplitMix64,
     TimeFunction, VelocitySolverKind,
 };
 
@@ -57,7 +57,7 @@ fn box10k_anderson_is_box10k_with_acceleration() {
 
 /// The study scenes of issue 39 are box10k with one solver line changed, and nothing else.
 #[test]
-fn box10k_variants_differ_from_box10k_in_one_solver_line() {
+fn box10k_variants_differ_from_box10k_in_one_line() {
     let plain = load_scene(&scene_path("box10k")).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(plain.solver.check, CheckPass::Lmgc90);
     assert!(plain.solver.position_projection);
@@ -73,6 +73,13 @@ fn box10k_variants_differ_from_box10k_in_one_solver_line() {
     same.name = plain.name.clone();
     same.solver.position_projection = true;
     assert_eq!(same, plain);
+    let lmgc90 = load_scene(&scene_path("box10k_as_lmgc90")).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(plain.detection, Detection::Begin);
+    assert_eq!(lmgc90.detection, Detection::Predicted);
+    let mut same = lmgc90.clone();
+    same.name = free.name.clone();
+    same.detection = Detection::Begin;
+    assert_eq!(same, free);
 }
 
 #[test]

@@ -457,6 +457,8 @@ fn sections_that_do_not_apply_are_errors() {
         "alert_distance",
         "does not apply",
     );
+    let t = NOTCHED.replace("steps = 10", "steps = 10\ndetection = \"predicted\"");
+    expect_error(&t, "scene.detection", "detection", "does not apply");
     let t = format!("{NOTCHED}\n[solver]\nkind = \"newton\"\n");
     expect_error(&t, "solver.kind", "newton", "NLGS only");
     let t = format!("{NOTCHED}\n[[bodies]]\nshape = \"disk\"\n");

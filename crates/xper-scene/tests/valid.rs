@@ -250,6 +250,15 @@ fn steps_from_duration_and_output_defaults() {
 }
 
 #[test]
+fn detection_configuration() {
+    use xper_scene::Detection;
+    let with = |d: &str| ok(&HEADER.replace("steps = 10", &format!("steps = 10\ndetection = {d}")));
+    assert_eq!(with("\"begin\"").detection, Detection::Begin);
+    assert_eq!(with("\"predicted\"").detection, Detection::Predicted);
+    assert_eq!(ok(HEADER).detection, Detection::Begin);
+}
+
+#[test]
 fn alert_distance_default_from_polygons() {
     let t = with_header("[[bodies]]\nshape = \"rectangle\"\ncenter = [0, 0]\nsize = [0.3, 0.4]\nmaterial = \"glass\"\ngroup = \"g\"\n");
     // Polygon size = twice the largest centroid-vertex distance = the diagonal, 0.5 m.

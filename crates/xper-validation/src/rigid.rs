@@ -19,6 +19,7 @@ fn params(dt: Real, gravity: Vector) -> StepParams {
         theta: 0.5,
         gravity,
         alert_distance: 1e-3,
+        detection: Default::default(),
         nlgs: NlgsParams {
             tolerance: 1e-14,
             max_iterations: 20_000,

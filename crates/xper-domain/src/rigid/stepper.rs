@@ -10,7 +10,8 @@
 //!    Contacts follow the body that owns them, carrying their impulses (the warm start);
 //! 2. shadows: each owner sends the state of its bodies to every process whose region lies
 //!    within the halo `2 r_max + alert` (a contact partner of one of that process's bodies
-//!    cannot be farther);
+//!    cannot be farther; with detection on the predicted configuration, plus twice the
+//!    largest displacement to it);
 //!
 //! Between re-partitions every message of stages 1 to 3 goes to the partition's neighbours only
 //! (the regions within the halo of this one, [`Bisection::neighbours`]): a body migrates to a
@@ -38,7 +39,9 @@ use crate::rigid::shared_solve::SharedNlgs;
 use xper_bodies::{BodySet, Ownership};
 use xper_geometry::{Contact, ContactKey, ContactRow, ContactSet};
 use xper_math::{Real, Vector};
-use xper_nscd::{contact_owner_body, EnergyBudget, MoreauJean, StepError, StepReport, World};
+use xper_nscd::{
+    contact_owner_body, Detection, EnergyBudget, MoreauJean, StepError, StepReport, World,
+};
 
 /// Tuning of a distributed run.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -93,7 +96,10 @@ pub struct DistributedStepper<'c, C: Communicator + ?Sized> {
     region: (Vector, Vector),
     partitioned_at: u64,
     halo: Real,
-    /// The ranks whose regions lie within the halo of this one (symmetric).
+    /// The halo of this step's shadows and neighbours: `halo`, widened by the bodies' motion to
+    /// the configuration contacts are detected on ([`Self::widen_halo`]).
+    step_halo: Real,
+    /// The ranks whose regions lie within `step_halo` of this one (symmetric).
     neighbours: Vec<usize>,
     /// Whether a body owned somewhere is now in a region that is not its owner's neighbour
     /// (found by stage 4): the next migration then goes to every process.
@@ -135,6 +141,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
             region: (Vector::zeros(), Vector::zeros()),
             partitioned_at: world.step,
             halo,
+            step_halo: halo,
             neighbours: Vec::new(),
             far_migration: false,
             local_of: vec![u32::MAX; n],
@@ -168,6 +175,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
         } else {
             self.migrate(!self.far_migration);
         }
+        self.widen_halo();
         let shadows = self.exchange_shadows();
         self.build_local(&shadows);
         let mut solver = SharedNlgs::new(self.comm);
@@ -226,6 +234,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
         self.partition = Bisection::distributed(self.comm, &points, self.comm.size());
         self.partitioned_at = self.all.step;
         self.region = self.partition.regions()[me as usize];
+        self.step_halo = self.halo;
         self.neighbours = (self.partition.neighbours(me, self.halo).into_iter())
             .map(|q| q as usize)
             .collect();
@@ -297,6 +306,32 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
             .collect();
     }
 
+    /// Stage 2, first: with contacts detected on the predicted configuration `q + h (1 - theta)
+    /// v` ([`Detection::Predicted`]), two bodies whose centres are `2 r_max + alert` apart may
+    /// come within the alert distance there: the halo grows by twice the largest displacement
+    /// `h (1 - theta) max |v|` over all processes (the same on every process, so the
+    /// neighbours stay symmetric), and the neighbours are found again when it changed.
+    fn widen_halo(&mut self) {
+        let p = &self.all.params;
+        if p.detection == Detection::Begin {
+            return;
+        }
+        let bodies = &self.all.bodies;
+        let fastest = (self.owned.iter())
+            .map(|&b| bodies.velocity[b as usize].norm())
+            .fold(0.0, Real::max);
+        let mut largest = [fastest];
+        self.comm.all_reduce_max(&mut largest);
+        let halo = self.halo + 2.0 * p.dt * (1.0 - p.theta) * largest[0];
+        if halo != self.step_halo {
+            self.step_halo = halo;
+            let me = self.comm.rank() as u32;
+            self.neighbours = (self.partition.neighbours(me, halo).into_iter())
+                .map(|q| q as usize)
+                .collect();
+        }
+    }
+
     /// Stage 2: the states of the bodies of other processes within the halo of this region,
     /// with their owners.
     fn exchange_shadows(&mut self) -> Vec<(u32, u32)> {
@@ -307,10 +342,10 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
         // near (the regions tile space): most bodies, found without walking the tree.
         for &b in &self.owned {
             let x = self.all.bodies.position[b as usize];
-            if in_box(&x, &self.region, self.halo) {
+            if in_box(&x, &self.region, self.step_halo) {
                 continue;
             }
-            self.partition.parts_near(&x, self.halo, &mut near);
+            self.partition.parts_near(&x, self.step_halo, &mut near);
             for &p in near.iter().filter(|&&p| p as usize != me) {
                 write_state(&mut sends[p as usize], &self.all.bodies, b);
             }

@@ -6,7 +6,7 @@ use super::MoreauJean;
 use crate::contact_solve::{reborrow, ContactSolve};
 use crate::operator::RigidContactOperator;
 use crate::report::StepError;
-use crate::world::World;
+use crate::world::{Detection, World};
 use xper_bodies::Ownership;
 use xper_math::buffer::refill;
 use xper_math::{Real, DOFS};
@@ -25,13 +25,16 @@ impl MoreauJean {
     /// returns the largest overlap among them; called before [`Self::update`], while the
     /// bodies hold the velocities at the beginning of the step.
     pub(super) fn end_gaps(&mut self, world: &mut World) -> Real {
-        let (h, theta) = (self.h, world.params.theta);
+        let (h, theta, detection) = (self.h, world.params.theta, world.params.detection);
         self.exchange_rows();
         let mut deepest: Real = 0.0;
         for (a, gap) in world.contacts.gaps.iter_mut().enumerate() {
             let u_end = self.op.local_velocity(a)[0];
             let u_begin = self.op.local_velocity_at(a, &world.bodies)[0];
-            *gap += h * ((1.0 - theta) * u_begin + theta * u_end);
+            *gap += match detection {
+                Detection::Begin => h * ((1.0 - theta) * u_begin + theta * u_end),
+                Detection::Predicted => h * theta * u_end,
+            };
             deepest = deepest.max(-*gap);
         }
         self.exchange_rows();

@@ -108,6 +108,11 @@ pub(crate) fn fracture_scene(ctx: &mut Ctx, root: &Tbl, file: &Path) -> Option<F
             "alert_distance",
             "does not apply to a fracture scene: its interfaces come from the mesh",
         );
+        s.forbid(
+            ctx,
+            "detection",
+            "does not apply to a fracture scene: its interfaces come from the mesh",
+        );
     }
     let nlgs = nlgs(ctx, root);
     let output = output(ctx, root, header.steps);

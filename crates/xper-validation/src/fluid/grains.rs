@@ -53,6 +53,7 @@ fn grain_in_box(
         theta: 0.5,
         gravity: Vector::new(0.0, -G),
         alert_distance: 0.1 * d,
+        detection: Default::default(),
         nlgs: NlgsParams {
             tolerance: 1e-10,
             max_iterations: 1000,
