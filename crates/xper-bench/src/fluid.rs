@@ -196,8 +196,8 @@ pub fn markdown(b: &FluidBench) -> String {
         ));
     }
     md.push_str(&format!(
-        "\nTwo-grain sedimentation at the paper's parameters (`scenes/two_grains_sedimentation`, 64 x 640 cells, \
-         16 per diameter): {:.1} s of wall time per simulated second ({} steps to {:.2} s).\n\nMachine: {}.\n",
+        "\nTwo-grain sedimentation (`scenes/two_grains_sedimentation`, 64 x 640 cells, 16 per diameter): \
+         {:.1} s of wall time per simulated second ({} steps to {:.2} s).\n\nMachine: {}.\n",
         b.two_grains_wall_s_per_simulated_s, b.two_grains_steps, b.two_grains_simulated_s, b.machine
     ));
     md
