@@ -52,42 +52,30 @@ fn falling_disk(detection: Detection) -> World {
     World::new(set, laws, params)
 }
 
-/// The disk's gap to the floor after each of `steps` steps.
-fn gaps(detection: Detection, steps: usize) -> Vec<Real> {
+/// Steps the falling disk and checks its gap to the floor after each step against `expected`
+/// (in alert distances), to round-off.
+fn assert_gaps(detection: Detection, expected: [Real; 5]) {
     let mut world = falling_disk(detection);
     let mut stepper = MoreauJean::new();
-    (0..steps)
-        .map(|_| {
-            stepper.step(&mut world).unwrap();
-            world.bodies.position[1].y - R
-        })
-        .collect()
+    for (k, e) in expected.into_iter().enumerate() {
+        stepper.step(&mut world).unwrap();
+        let (g, e) = (world.bodies.position[1].y - R, e * ALERT);
+        assert!(
+            (g - e).abs() < 1e-12,
+            "{detection:?}, step {}: gap {g:e}, expected {e:e}",
+            k + 1
+        );
+    }
 }
 
 #[test]
 fn detection_on_the_begin_configuration_misses_the_pair_and_keeps_the_overlap() {
-    let g = gaps(Detection::Begin, 5);
-    let expected = [-0.5, -1.5, -1.5, -1.5, -1.5].map(|g| g * ALERT);
-    for (k, (g, e)) in g.iter().zip(expected).enumerate() {
-        assert!(
-            (g - e).abs() < 1e-12,
-            "step {}: gap {g:e}, expected {e:e}",
-            k + 1
-        );
-    }
+    assert_gaps(Detection::Begin, [-0.5, -1.5, -1.5, -1.5, -1.5]);
 }
 
 #[test]
 fn detection_on_the_predicted_configuration_lands_the_disk_without_overlap() {
-    let g = gaps(Detection::Predicted, 5);
-    let expected = [0.25 * ALERT, 0.0, 0.0, 0.0, 0.0];
-    for (k, (g, e)) in g.iter().zip(expected).enumerate() {
-        assert!(
-            (g - e).abs() < 1e-12,
-            "step {}: gap {g:e}, expected {e:e}",
-            k + 1
-        );
-    }
+    assert_gaps(Detection::Predicted, [0.25, 0.0, 0.0, 0.0, 0.0]);
 }
 
 #[test]
