@@ -59,18 +59,9 @@ pub enum ConvergenceNorm {
 /// solver's own type, `none` or `anderson` (depth and period 3 unless given).
 pub use xper_solver::{Acceleration, CheckPass};
 
-/// The configuration on which each step detects its contacts and measures their gaps
-/// (`[scene] detection`).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
-pub enum Detection {
-    /// `"begin"`: the configuration at the beginning of the step, `q_i`, with the gap
-    /// predicted to first order, `g_i + h (1 - theta) U_N,i`.
-    #[default]
-    Begin,
-    /// `"predicted"`: the configuration `q_i + h (1 - theta) v_i` (LMGC90's `coorTT`), on which
-    /// the gap is measured exactly.
-    Predicted,
-}
+/// The configuration each step detects its contacts on (`[scene] detection`: `"begin"` or
+/// `"predicted"`): the stepper's own type.
+pub use xper_nscd::Detection;
 
 /// Contact solver settings (`[solver]`).
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -3,7 +3,7 @@
 use xper_bodies::{Body, BodySet, ConvexPolygon, Drive, Shape};
 use xper_laws::{InteractionLaw, LawTable, SignoriniCoulomb};
 use xper_math::{Real, Vector};
-use xper_nscd::{Detection, StepParams, VelocitySolver, World};
+use xper_nscd::{StepParams, VelocitySolver, World};
 use xper_scene::{Scene, ShapeDesc};
 use xper_solver::{ConvergenceNorm, ErrorScaling, NlgsParams, SolverKind, SolverParams};
 
@@ -84,10 +84,7 @@ pub fn world_from_scene(scene: &Scene) -> World {
         theta: scene.theta,
         gravity: Vector::new(scene.gravity[0], scene.gravity[1]),
         alert_distance: scene.alert_distance,
-        detection: match scene.detection {
-            xper_scene::Detection::Begin => Detection::Begin,
-            xper_scene::Detection::Predicted => Detection::Predicted,
-        },
+        detection: scene.detection,
         nlgs: NlgsParams {
             tolerance: s.tolerance,
             max_iterations: s.max_iterations,
