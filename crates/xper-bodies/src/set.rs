@@ -54,7 +54,7 @@ pub struct Body {
 
 /// Positions and angles of every body of a [`BodySet`], saved by
 /// [`BodySet::advance_explicitly`].
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct Configuration {
     position: Vec<Vector>,
     angle: Vec<AngVector>,
@@ -129,28 +129,26 @@ impl BodySet {
         handle
     }
 
-    /// Moves every body by `dt` times its velocity (`q += dt v`) and returns the configuration
-    /// it had, for [`BodySet::restore_configuration`]: Moreau-Jean's detection configuration
-    /// `q_TT = q_i + h (1 - theta) v_i` is `advance_explicitly(h * (1 - theta))`.
-    pub fn advance_explicitly(&mut self, dt: Real) -> Configuration {
-        let saved = Configuration {
-            position: self.position.clone(),
-            angle: self.angle.clone(),
-        };
+    /// Moves every body by `dt` times its velocity (`q += dt v`) after saving the configuration
+    /// it had in `saved` (whose buffers are reused), for [`BodySet::restore_configuration`]:
+    /// Moreau-Jean's detection configuration `q_TT = q_i + h (1 - theta) v_i` is
+    /// `advance_explicitly(h * (1 - theta), saved)`.
+    pub fn advance_explicitly(&mut self, dt: Real, saved: &mut Configuration) {
+        saved.position.clone_from(&self.position);
+        saved.angle.clone_from(&self.angle);
         for (q, v) in self.position.iter_mut().zip(&self.velocity) {
             *q += v * dt;
         }
         for (a, w) in self.angle.iter_mut().zip(&self.angular_velocity) {
             *a += w * dt;
         }
-        saved
     }
 
-    /// Puts the bodies back, bit for bit, in a configuration [`BodySet::advance_explicitly`]
-    /// returned.
-    pub fn restore_configuration(&mut self, saved: Configuration) {
-        self.position = saved.position;
-        self.angle = saved.angle;
+    /// Puts the bodies back, bit for bit, in the configuration [`BodySet::advance_explicitly`]
+    /// saved.
+    pub fn restore_configuration(&mut self, saved: &Configuration) {
+        self.position.copy_from_slice(&saved.position);
+        self.angle.copy_from_slice(&saved.angle);
     }
 
     /// Releases the room the arrays have beyond their bodies (a set filled by

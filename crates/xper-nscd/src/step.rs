@@ -10,7 +10,7 @@ pub use crate::report::{energy_blown_up, StageTimes, StepError, StepReport};
 use crate::select::{contact_owner_body, normal_shift, predicted_gap};
 use crate::world::{Detection, VelocitySolver, World};
 use std::time::Instant;
-use xper_bodies::Ownership;
+use xper_bodies::{Configuration, Ownership};
 use xper_geometry::Detector;
 use xper_laws::InteractionLaw;
 use xper_math::buffer::{renew, renew_for};
@@ -54,6 +54,9 @@ pub struct MoreauJean {
     /// The length of the step being taken (s): `world.params.dt` for [`MoreauJean::step`],
     /// the caller's for [`MoreauJean::step_by`]; set by [`MoreauJean::prepare`].
     h: Real,
+    /// The bodies' configuration at the beginning of the step while they stand in the
+    /// predicted one for the detection ([`Detection::Predicted`]); kept between steps.
+    begin: Configuration,
 }
 
 impl MoreauJean {
@@ -312,10 +315,9 @@ impl MoreauJean {
         // Stage: detect, on the configuration at the beginning of the step or on the one the
         // explicit part of the motion reaches (the bodies are put back exactly afterwards).
         let detection = world.params.detection;
-        let begin = match detection {
-            Detection::Begin => None,
-            Detection::Predicted => Some(world.bodies.advance_explicitly(h * (1.0 - theta))),
-        };
+        if detection == Detection::Predicted {
+            (world.bodies).advance_explicitly(h * (1.0 - theta), &mut self.begin);
+        }
         let laws = &world.laws;
         self.detector.detect(
             &world.bodies,
@@ -323,8 +325,8 @@ impl MoreauJean {
             |a, b| laws.between(a, b),
             &mut world.contacts,
         );
-        if let Some(begin) = begin {
-            world.bodies.restore_configuration(begin);
+        if detection == Detection::Predicted {
+            world.bodies.restore_configuration(&self.begin);
         }
         if owned_only {
             let bodies = &world.bodies;

@@ -92,7 +92,8 @@ fn the_predicted_detection_leaves_the_bodies_where_they_were() {
         set.angular_velocity[b] = 1.0 / (b + 1) as Real;
     }
     let before = set.clone();
-    let saved = set.advance_explicitly(1.7e-3);
+    let mut saved = xper_bodies::Configuration::default();
+    set.advance_explicitly(1.7e-3, &mut saved);
     for b in 0..set.len() {
         let moved = before.position[b] + before.velocity[b] * 1.7e-3;
         assert_eq!(set.position[b], moved);
@@ -101,6 +102,6 @@ fn the_predicted_detection_leaves_the_bodies_where_they_were() {
             before.angle[b] + before.angular_velocity[b] * 1.7e-3
         );
     }
-    set.restore_configuration(saved);
+    set.restore_configuration(&saved);
     assert_eq!(set, before, "positions and angles restored bit for bit");
 }
