@@ -234,10 +234,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
         self.partition = Bisection::distributed(self.comm, &points, self.comm.size());
         self.partitioned_at = self.all.step;
         self.region = self.partition.regions()[me as usize];
-        self.step_halo = self.halo;
-        self.neighbours = (self.partition.neighbours(me, self.halo).into_iter())
-            .map(|q| q as usize)
-            .collect();
+        self.neighbours = neighbours_within(&self.partition, me, self.step_halo);
         if spread {
             self.migrate(false);
             return;
@@ -325,10 +322,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
         let halo = self.halo + 2.0 * p.dt * (1.0 - p.theta) * largest[0];
         if halo != self.step_halo {
             self.step_halo = halo;
-            let me = self.comm.rank() as u32;
-            self.neighbours = (self.partition.neighbours(me, halo).into_iter())
-                .map(|q| q as usize)
-                .collect();
+            self.neighbours = neighbours_within(&self.partition, self.comm.rank() as u32, halo);
         }
     }
 
@@ -534,6 +528,13 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
             .map(|s| set_state(&mut self.all.bodies, s))
             .collect()
     }
+}
+
+/// The ranks whose regions lie within `halo` of rank `me`'s region.
+fn neighbours_within(partition: &Bisection, me: u32, halo: Real) -> Vec<usize> {
+    (partition.neighbours(me, halo).into_iter())
+        .map(|q| q as usize)
+        .collect()
 }
 
 fn write_state(out: &mut Vec<f64>, bodies: &BodySet, b: u32) {
