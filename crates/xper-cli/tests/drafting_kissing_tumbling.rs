@@ -7,7 +7,7 @@
 //! 0.20 s and swaps at 0.43 s; with 8, at 0.23 s and 0.32 s.
 
 mod common;
-use common::{assert_success, shipped_scene, temp_dir, xper};
+use common::{assert_success, run_scene, shipped_scene, temp_dir};
 
 /// Grain diameter (m), as in the scene.
 const D: f64 = 8e-4;
@@ -24,13 +24,7 @@ fn two_grains_draft_kiss_and_tumble() {
     )
     .unwrap();
     let out = dir.join("out");
-    assert_success(&xper(&[
-        "run",
-        scene.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]));
+    assert_success(&run_scene(&scene, &out, &["--quiet"]));
     let table = xper_io::SeriesTable::read_csv(&out.join("particles.csv")).unwrap();
     let column = |name: &str| table.column(name).unwrap();
     let (time, body, y, x, vy) = (

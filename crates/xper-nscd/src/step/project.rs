@@ -31,6 +31,8 @@ impl MoreauJean {
         for (a, gap) in world.contacts.gaps.iter_mut().enumerate() {
             let u_end = self.op.local_velocity(a)[0];
             let u_begin = self.op.local_velocity_at(a, &world.bodies)[0];
+            // The gap plus the motion still to come: `predicted_gap` and `h theta u_end`, summed
+            // in one expression for a detection on `q_i` (as before the option existed).
             *gap += match detection {
                 Detection::Begin => h * ((1.0 - theta) * u_begin + theta * u_end),
                 Detection::Predicted => h * theta * u_end,
