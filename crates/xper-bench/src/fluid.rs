@@ -6,7 +6,9 @@ use crate::poisson::{run_benchmark, BenchFigures};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::time::Instant;
-use xper_fluid::{FluidBoundary, FluidParams, FluidSolver, FluidState, ImmersedDisk, MacGrid};
+use xper_fluid::{
+    FluidBoundary, FluidParams, FluidSolver, FluidState, ImmersedDisk, MacGrid, TimeScheme,
+};
 use xper_math::{Real, Vector};
 use xper_poisson::{Boundary, PoissonSide as Pressure};
 use xper_simulation::RunError;
@@ -35,6 +37,15 @@ pub struct FluidBench {
     pub(crate) two_grains_wall_s_per_simulated_s: f64,
     pub(crate) two_grains_simulated_s: f64,
     pub(crate) two_grains_steps: u64,
+    /// The same with `time_scheme = "rk3"`, timed alternately with the Euler runs (the
+    /// fastest of two each).
+    #[serde(default)]
+    pub(crate) two_grains_rk3_wall_s_per_simulated_s: f64,
+    #[serde(default)]
+    pub(crate) two_grains_rk3_steps: u64,
+    /// The same with Euler and the lubrication correction (range 1 cell).
+    #[serde(default)]
+    pub(crate) two_grains_lubricated_wall_s_per_simulated_s: f64,
 }
 
 /// Mean of `steps` lid-driven steps on `n x n` cells of a unit box, after 5 warm-up steps,
@@ -105,7 +116,7 @@ pub fn bench_fluid(out: &Path, machine: String) -> Result<(), RunError> {
         }
     }
     let mut steps = Vec::new();
-    for (n, grains) in [(512, 0), (512, 300), (1024, 0), (1024, 300)] {
+    for (n, grains) in [(512, 0), (512, 300), (1024, 0), (1024, 300), (1024, 1000)] {
         let figures = time_steps(n, grains, if n == 512 { 40 } else { 15 })?;
         println!(
             "fluid step {n}^2 with {grains} grains: {:.1} ms, {:.3e} cells/s",
@@ -115,11 +126,30 @@ pub fn bench_fluid(out: &Path, machine: String) -> Result<(), RunError> {
         steps.push(figures);
     }
     let scene = Path::new("scenes/two_grains_sedimentation/scene.toml");
-    let (wall, simulated, count) = two_grains(scene, 0.2)?;
-    println!(
-        "two grains: {:.2} s of wall time per simulated second ({count} steps to {simulated} s)",
-        wall / simulated
-    );
+    let unset: (f64, Real, u64) = (f64::INFINITY, 1.0, 0);
+    let (mut euler, mut rk3, mut lubricated) = (unset, unset, unset);
+    let lubrication = Some(xper_fluid::Lubrication::default());
+    for _ in 0..2 {
+        for (scheme, lubrication, best) in [
+            (TimeScheme::Euler, None, &mut euler),
+            (TimeScheme::Rk3, None, &mut rk3),
+            (TimeScheme::Euler, lubrication, &mut lubricated),
+        ] {
+            let run = two_grains(scene, 0.2, scheme, lubrication)?;
+            println!(
+                "two grains, {scheme:?}, lubrication {}: {:.2} s of wall time per simulated \
+                 second ({} steps to {} s)",
+                lubrication.is_some(),
+                run.0 / run.1,
+                run.2,
+                run.1
+            );
+            if run.0 / run.1 < best.0 / best.1 {
+                *best = run;
+            }
+        }
+    }
+    let (wall, simulated, count) = euler;
     let bench = FluidBench {
         machine,
         multigrid,
@@ -127,19 +157,32 @@ pub fn bench_fluid(out: &Path, machine: String) -> Result<(), RunError> {
         two_grains_wall_s_per_simulated_s: wall / simulated,
         two_grains_simulated_s: simulated,
         two_grains_steps: count,
+        two_grains_rk3_wall_s_per_simulated_s: rk3.0 / rk3.1,
+        two_grains_rk3_steps: rk3.2,
+        two_grains_lubricated_wall_s_per_simulated_s: lubricated.0 / lubricated.1,
     };
     xper_io::write_json_atomic(&out.join(RESULTS_FILE), &bench)
         .map_err(|e| RunError::Runtime(e.to_string()))
 }
 
-/// Runs the first `until` seconds of the two-grain scene without outputs.
-fn two_grains(scene: &Path, until: Real) -> Result<(f64, Real, u64), RunError> {
+/// Runs the first `until` seconds of the two-grain scene without outputs, the fluid stepped by
+/// `scheme`, with `lubrication`: wall time, simulated time, steps.
+fn two_grains(
+    scene: &Path,
+    until: Real,
+    scheme: TimeScheme,
+    lubrication: Option<xper_fluid::Lubrication>,
+) -> Result<(f64, Real, u64), RunError> {
     let scene = xper_scene::load_scene(scene).map_err(|e| RunError::BadInput(e.to_string()))?;
     let desc = scene
         .fluid
         .as_ref()
         .ok_or_else(|| RunError::BadInput("the two-grain scene has no [fluid]".into()))?;
-    let params = xper_simulation::fluid::build::fluid_params(desc, scene.dt);
+    let params = FluidParams {
+        time_scheme: scheme,
+        lubrication,
+        ..xper_simulation::fluid::build::fluid_params(desc, scene.dt)
+    };
     let mut state = xper_simulation::fluid::build::coupled_state(&scene, desc, &params);
     let mut stepper = xper_fluid::CoupledStepper::new(&params, &state)
         .map_err(|e| RunError::Runtime(e.to_string()))?;
@@ -196,9 +239,18 @@ pub fn markdown(b: &FluidBench) -> String {
         ));
     }
     md.push_str(&format!(
-        "\nTwo-grain sedimentation (`scenes/two_grains_sedimentation`, 64 x 640 cells, 16 per diameter): \
-         {:.1} s of wall time per simulated second ({} steps to {:.2} s).\n\nMachine: {}.\n",
-        b.two_grains_wall_s_per_simulated_s, b.two_grains_steps, b.two_grains_simulated_s, b.machine
+        "\nTwo-grain sedimentation (`scenes/two_grains_sedimentation`, 64 x 640 cells, 16 per diameter), \
+         the first {:.2} s, the fastest of two runs of each scheme, alternated: explicit Euler (the default) \
+         {:.1} s of wall time per simulated second ({} steps); `time_scheme = \"rk3\"` {:.1} s ({} steps: \
+         three predictor and pressure solves per step, the step no longer limited by 2 nu / |u|^2); Euler with \
+         the lubrication correction (`lubrication_range = 1`) {:.1} s.\n\nMachine: {}.\n",
+        b.two_grains_simulated_s,
+        b.two_grains_wall_s_per_simulated_s,
+        b.two_grains_steps,
+        b.two_grains_rk3_wall_s_per_simulated_s,
+        b.two_grains_rk3_steps,
+        b.two_grains_lubricated_wall_s_per_simulated_s,
+        b.machine
     ));
     md
 }

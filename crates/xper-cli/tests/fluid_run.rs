@@ -16,9 +16,20 @@ fn scene(duration: f64, viscosity: &str) -> String {
 
 #[test]
 fn fluid_scene_writes_its_outputs_and_resumes_exactly() {
-    let dir = temp_dir("fluid_run");
+    writes_its_outputs_and_resumes_exactly("fluid_run", "1e-2");
+}
+
+/// The Runge-Kutta scheme keeps no state between steps beyond the fluid's: a resumed run ends
+/// as the uninterrupted one.
+#[test]
+fn rk3_fluid_scene_resumes_exactly() {
+    writes_its_outputs_and_resumes_exactly("fluid_run_rk3", "1e-2\ntime_scheme = \"rk3\"");
+}
+
+fn writes_its_outputs_and_resumes_exactly(name: &str, viscosity: &str) {
+    let dir = temp_dir(name);
     let path = dir.join("scene.toml");
-    std::fs::write(&path, scene(0.05, "1e-2")).unwrap();
+    std::fs::write(&path, scene(0.05, viscosity)).unwrap();
     let s = path.to_str().unwrap();
     let (straight, split) = (dir.join("straight"), dir.join("split"));
     let out = xper(&["run", s, "--out", straight.to_str().unwrap()]);
@@ -76,4 +87,48 @@ fn bad_fluid_section_is_reported_with_its_place() {
         err.contains("scene.toml:34:13:") && err.contains("fluid.viscosity") && err.contains("> 0"),
         "{err}"
     );
+}
+
+#[test]
+fn unknown_time_scheme_is_reported_with_the_choices() {
+    let dir = temp_dir("fluid_bad_scheme");
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, scene(0.05, "1e-3\ntime_scheme = \"rk4\"")).unwrap();
+    let out = xper(&["check", path.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("scene.toml:35:15:")
+            && err.contains("fluid.time_scheme")
+            && err.contains("euler")
+            && err.contains("rk3"),
+        "{err}"
+    );
+}
+
+#[test]
+fn lubrication_roughness_without_a_range_is_refused() {
+    let dir = temp_dir("fluid_bad_lubrication");
+    let path = dir.join("scene.toml");
+    for (fluid, field, reason) in [
+        (
+            "1e-3\nlubrication_roughness = 0.01",
+            "fluid.lubrication_roughness",
+            "without `lubrication_range`",
+        ),
+        (
+            "1e-3\nlubrication_range = -1.0",
+            "fluid.lubrication_range",
+            "in (0, 100] cells",
+        ),
+    ] {
+        std::fs::write(&path, scene(0.05, fluid)).unwrap();
+        let out = xper(&["check", path.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains("scene.toml:35:") && err.contains(field) && err.contains(reason),
+            "{err}"
+        );
+    }
 }

@@ -223,7 +223,7 @@ impl<'c, C: Communicator + ?Sized> DistributedFluid<'c, C> {
         let rows = layout.rows(me);
         let mut block_params = params.clone();
         block_params.boundary = params.boundary.block(rows.clone(), domain.ny, size);
-        let stepper = CoupledStepper::new_block(&block_params, &state, domain)?;
+        let stepper = CoupledStepper::new_block(&block_params, &state, domain, &params.boundary)?;
         let (shape, boundary, multigrid_params) = pressure_multigrid(&domain, params);
         let multigrid = StripMultigrid::new(shape, boundary, multigrid_params, layout.clone(), me)
             .map_err(|e| FluidError::Setup(e.to_string()))?;

@@ -7,20 +7,23 @@
 //!    capped by the scene's `dt`;
 //! 2. **fluid**: predictor, forcing towards the grains' rigid velocities, projection
 //!    ([`FluidSolver::step`]), giving `F_p` and `T_p` for every immersed disk;
-//! 3. **grains**: `m_p dU/dt = F_p + (m_p - rho_f A_p) g`, `I_p dw/dt = T_p` with contacts
+//! 3. **lubrication** (optional, [`crate::lubrication`]): the squeeze force the grid misses
+//!    between grains (and with the domain's walls) closer than about a cell, added to `F_p`;
+//! 4. **grains**: `m_p dU/dt = F_p + (m_p - rho_f A_p) g`, `I_p dw/dt = T_p` with contacts
 //!    (grain-grain, grain-wall) by [`MoreauJean::step_by`]; gravity acts through the world's
 //!    `m_p g`, so the coupling adds `F_p - rho_f A_p g`.
 //!
 //! Immersed bodies are the world's disks (moving or fixed, e.g. an obstacle); walls only carry
 //! contacts, the fluid's walls being the sides of its domain.
 
+use crate::lubrication::{LubricatedGrain, LubricatedWall};
 use crate::{
-    BlockLinks, FluidError, FluidParams, FluidSolver, FluidState, FluidStepReport, ImmersedDisk,
-    MacGrid,
+    BlockLinks, FluidBoundary, FluidError, FluidParams, FluidSolver, FluidState, FluidStepReport,
+    ImmersedDisk, MacGrid, SideCondition,
 };
 use serde::{Deserialize, Serialize};
 use xper_bodies::Shape;
-use xper_math::{Real, DIM, DOFS};
+use xper_math::{Real, Vector, DIM, DOFS};
 use xper_nscd::{MoreauJean, StepError, StepReport, World};
 
 /// Everything that evolves in a run with a fluid; serialisable for checkpoints.
@@ -89,6 +92,11 @@ pub struct CoupledStepper {
     immersed: Vec<usize>,
     disks: Vec<ImmersedDisk>,
     forces: Vec<[Real; DOFS]>,
+    /// The walls of the whole domain (no-slip or moving sides), for the lubrication correction.
+    walls: Vec<LubricatedWall>,
+    /// Workspaces of the lubrication correction.
+    lubricated: Vec<LubricatedGrain>,
+    lubrication_forces: Vec<Vector>,
     /// The whole grid's largest fluid speed (m/s) after the last step, with the step count of
     /// the fluid state it was measured on: the next step's time step needs no reduction.
     fluid_speed: Option<(u64, Real)>,
@@ -100,23 +108,54 @@ impl CoupledStepper {
     /// grains' step ([`MoreauJean::step_by`]); `world.params.dt` is not used.
     pub fn new(params: &FluidParams, state: &CoupledState) -> Result<Self, FluidError> {
         let fluid = FluidSolver::new(state.fluid.grid, params)?;
-        Ok(Self::with_solver(fluid, state.fluid.grid, state))
+        Ok(Self::with_solver(
+            fluid,
+            state.fluid.grid,
+            &params.boundary,
+            state,
+        ))
     }
 
     /// A stepper for one block of a grid split among processes: `state.fluid` holds the
     /// block, `domain` is the whole grid and `params` carry the block's sides
-    /// ([`crate::FluidBoundary::block`]); every block holds all the grains. Stepped by
-    /// [`CoupledStepper::step_with`].
+    /// ([`crate::FluidBoundary::block`]), `whole` the whole domain's; every block holds all
+    /// the grains. Stepped by [`CoupledStepper::step_with`].
     pub fn new_block(
         params: &FluidParams,
         state: &CoupledState,
         domain: MacGrid,
+        whole: &FluidBoundary,
     ) -> Result<Self, FluidError> {
         let fluid = FluidSolver::new_block(state.fluid.grid, params)?;
-        Ok(Self::with_solver(fluid, domain, state))
+        Ok(Self::with_solver(fluid, domain, whole, state))
     }
 
-    fn with_solver(fluid: FluidSolver, domain: MacGrid, state: &CoupledState) -> Self {
+    fn with_solver(
+        fluid: FluidSolver,
+        domain: MacGrid,
+        whole: &FluidBoundary,
+        state: &CoupledState,
+    ) -> Self {
+        let mut walls = Vec::new();
+        for axis in 0..DIM {
+            let [low, high] = whole.sides(axis);
+            let ends = [
+                domain.origin[axis],
+                domain.origin[axis] + domain.extent()[axis],
+            ];
+            for ((side, at), towards) in [low, high].into_iter().zip(ends).zip([1.0, -1.0]) {
+                if matches!(
+                    side,
+                    SideCondition::NoSlip | SideCondition::MovingWall { .. }
+                ) {
+                    walls.push(LubricatedWall {
+                        axis,
+                        at,
+                        side: towards,
+                    });
+                }
+            }
+        }
         let bodies = &state.world.bodies;
         let immersed = (0..bodies.len())
             .filter(|&b| matches!(bodies.shape[b], Shape::Disk { .. }))
@@ -128,6 +167,9 @@ impl CoupledStepper {
             immersed,
             disks: Vec::new(),
             forces: Vec::new(),
+            walls,
+            lubricated: Vec::new(),
+            lubrication_forces: Vec::new(),
             fluid_speed: None,
         }
     }
@@ -247,6 +289,43 @@ impl CoupledStepper {
         for ((&b, disk), f) in self.immersed.iter().zip(&self.disks).zip(&fluid.forces) {
             let buoyancy = -params.density * disk.area() * gravity;
             self.forces[b] = [f.force.x + buoyancy.x, f.force.y + buoyancy.y, f.torque];
+        }
+        if let Some(lubrication) = &params.lubrication {
+            let bodies = &world.bodies;
+            self.lubricated.clear();
+            // Each grain's velocity at the end of the step under every force but lubrication
+            // and contacts (hydrodynamic, buoyancy, weight): the correction resists it.
+            for (&b, disk) in self.immersed.iter().zip(&self.disks) {
+                let fixed = bodies.imposed[b] & 3 == 3;
+                let mass = bodies.mass[b];
+                let f = self.forces[b];
+                let predicted = if fixed {
+                    disk.velocity
+                } else {
+                    disk.velocity + (Vector::new(f[0], f[1]) / mass + gravity) * dt
+                };
+                self.lubricated.push(LubricatedGrain {
+                    centre: disk.centre,
+                    radius: disk.radius,
+                    velocity: predicted,
+                    mass: if fixed { Real::INFINITY } else { mass },
+                });
+            }
+            self.lubrication_forces.clear();
+            self.lubrication_forces
+                .resize(self.immersed.len(), Vector::zeros());
+            lubrication.add_forces(
+                params.viscosity,
+                self.domain.h,
+                dt,
+                &self.lubricated,
+                &self.walls,
+                &mut self.lubrication_forces,
+            );
+            for (&b, f) in self.immersed.iter().zip(&self.lubrication_forces) {
+                self.forces[b][0] += f.x;
+                self.forces[b][1] += f.y;
+            }
         }
         self.grains.set_external_forces(&self.forces);
         let grains = self

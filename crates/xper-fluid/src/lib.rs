@@ -23,7 +23,9 @@ pub mod blocks;
 pub mod boundary;
 pub mod grid;
 pub mod immersed;
+pub mod lubrication;
 pub mod momentum;
+pub mod params;
 pub mod projection;
 pub mod solver;
 
@@ -31,6 +33,7 @@ pub use blocks::{BlockLinks, WholeGrid};
 pub use boundary::{FluidBoundary, InflowProfile, SideCondition};
 pub use grid::MacGrid;
 pub use immersed::{HydrodynamicForce, ImmersedDisk, InnerMomentum, SolidIndicator};
-pub use solver::{FluidError, FluidParams, FluidSolver, FluidState, FluidStepReport};
+pub use lubrication::Lubrication;
+pub use solver::{FluidError, FluidParams, FluidSolver, FluidState, FluidStepReport, TimeScheme};
 pub mod coupling;
 pub use coupling::{CoupledError, CoupledReport, CoupledState, CoupledStepper};

@@ -10,6 +10,8 @@
 //! is the second-order central scheme, `gamma = 1` first-order donor cell); diffusion by the
 //! 5-point Laplacian. One stencil serves every component `d`, written with the neighbour
 //! offsets `s_d` (along the component) and `s_e` (across it) of the shared padded layout.
+//! [`predict_stage`] evaluates the same stencils as one stage of a three-stage Runge-Kutta
+//! scheme ([`RK3_STAGES`]).
 
 use crate::boundary::FluidBoundary;
 use crate::grid::MacGrid;
@@ -39,11 +41,119 @@ pub fn predict(
     p: &[Real],
     u_star: &mut [Vec<Real>; DIM],
 ) {
+    let dt = coefficients.dt;
+    let force = coefficients.body_force;
+    each_face(
+        grid,
+        boundary,
+        coefficients,
+        u,
+        p,
+        u_star,
+        |d, _, c, advection, diffusion, pressure| {
+            c + dt * (diffusion - advection - pressure + force[d])
+        },
+    );
+}
+
+/// One stage of a low-storage Runge-Kutta scheme: the weights of the tendency of this stage
+/// and of the last, and of the pressure gradient.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RungeKuttaStage {
+    /// Weight `gamma_k` of this stage's tendency.
+    pub gamma: Real,
+    /// Weight `zeta_k` of the last stage's tendency.
+    pub zeta: Real,
+    /// Weight `2 alpha_k = gamma_k + zeta_k` of the pressure gradient and of the stage's
+    /// projection.
+    pub pressure: Real,
+}
+
+/// Stage `k` of the explicit three-stage Runge-Kutta scheme of Wray (1990) in the form of Rai
+/// and Moin, J. Comput. Phys. 96 (1991) 15, and Uhlmann, J. Comput. Phys. 209 (2005) 448,
+/// eq. 9 (there with the viscous term implicit; here every term is explicit):
+///
+/// ```text
+/// u*  = u^(k-1) + dt ( gamma_k N(u^(k-1)) + zeta_k N(u^(k-2)) - 2 alpha_k grad p^(k-1) / rho )
+/// gamma = (8/15, 5/12, 3/4),  zeta = (0, -17/60, -5/12),  2 alpha_k = gamma_k + zeta_k,
+/// ```
+///
+/// `N(u) = nu lap u - div(u u) + f`, each stage followed by a projection over `2 alpha_k dt`.
+/// Third order for ordinary differential equations; with the pressure of the last stage
+/// (the incremental projection) the velocity is second order (Le and Moin, J. Comput. Phys.
+/// 92 (1991) 369).
+pub const RK3_STAGES: [RungeKuttaStage; 3] = [
+    RungeKuttaStage {
+        gamma: 8.0 / 15.0,
+        zeta: 0.0,
+        pressure: 8.0 / 15.0,
+    },
+    RungeKuttaStage {
+        gamma: 5.0 / 12.0,
+        zeta: -17.0 / 60.0,
+        pressure: 2.0 / 15.0,
+    },
+    RungeKuttaStage {
+        gamma: 3.0 / 4.0,
+        zeta: -5.0 / 12.0,
+        pressure: 1.0 / 3.0,
+    },
+];
+
+/// Writes the Runge-Kutta stage `stage` of `u` into `u_star` on the predicted faces (other
+/// entries are copied from `u`); `tendency` holds `N(u^(k-2))` on entry (read only when
+/// `zeta != 0`) and `N(u^(k-1))` on exit.
+#[allow(clippy::too_many_arguments)]
+pub fn predict_stage(
+    grid: &MacGrid,
+    boundary: &FluidBoundary,
+    coefficients: &PredictorCoefficients,
+    stage: RungeKuttaStage,
+    u: &[Vec<Real>; DIM],
+    p: &[Real],
+    tendency: &mut [Vec<Real>; DIM],
+    u_star: &mut [Vec<Real>; DIM],
+) {
+    let dt = coefficients.dt;
+    let force = coefficients.body_force;
+    let RungeKuttaStage {
+        gamma,
+        zeta,
+        pressure: weight,
+    } = stage;
+    each_face(
+        grid,
+        boundary,
+        coefficients,
+        u,
+        p,
+        u_star,
+        |d, k, c, advection, diffusion, pressure| {
+            let now = diffusion - advection + force[d];
+            let before = if zeta == 0.0 { 0.0 } else { tendency[d][k] };
+            tendency[d][k] = now;
+            c + dt * (gamma * now + zeta * before - weight * pressure)
+        },
+    );
+}
+
+/// Evaluates the stencils at every predicted face of every component and writes
+/// `update(d, k, u_k, advection, diffusion, pressure gradient / rho)` at padded index `k` of
+/// `u_star[d]` (other entries are copied from `u`).
+#[inline(always)]
+fn each_face(
+    grid: &MacGrid,
+    boundary: &FluidBoundary,
+    coefficients: &PredictorCoefficients,
+    u: &[Vec<Real>; DIM],
+    p: &[Real],
+    u_star: &mut [Vec<Real>; DIM],
+    mut update: impl FnMut(usize, usize, Real, Real, Real, Real) -> Real,
+) {
     let h = grid.h;
     let inv_h = 1.0 / h;
     let nu_h2 = coefficients.kinematic_viscosity / (h * h);
     let gamma = coefficients.upwinding;
-    let dt = coefficients.dt;
     let pressure_factor = inv_h / coefficients.density;
     for d in 0..DIM {
         let e = 1 - d;
@@ -51,7 +161,6 @@ pub fn predict(
         let (ud, ue) = (&u[d], &u[e]);
         u_star[d].copy_from_slice(ud);
         let out = &mut u_star[d];
-        let force = coefficients.body_force[d];
         for run in grid.face_rows(d, boundary.predicted_faces(grid, d)) {
             let (r, n) = (run.start, run.len());
             let window = |field, offset| window(field, r, offset, n);
@@ -79,7 +188,7 @@ pub fn predict(
                 let advection = (flux_d + flux_e) * inv_h;
                 let diffusion = nu_h2 * (dp + dm + ep + em - 4.0 * c);
                 let pressure = (p_here[k] - p_back[k]) * pressure_factor;
-                out[k] = c + dt * (diffusion - advection - pressure + force);
+                out[k] = update(d, r + k, c, advection, diffusion, pressure);
             }
         }
     }

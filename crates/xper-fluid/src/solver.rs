@@ -4,114 +4,15 @@
 use crate::blocks::{BlockLinks, WholeGrid};
 use crate::boundary::FluidBoundary;
 use crate::grid::MacGrid;
-use crate::immersed::{
-    HydrodynamicForce, ImmersedDisk, ImmersedForcing, InnerMomentum, SolidIndicator,
-};
-use crate::momentum::{predict, PredictorCoefficients};
-use crate::projection::{exchange_velocity_and_pressure, Projection};
+use crate::immersed::{HydrodynamicForce, ImmersedDisk, ImmersedForcing, InnerMomentum};
+use crate::momentum::{predict, predict_stage, PredictorCoefficients, RK3_STAGES};
+use crate::projection::{exchange_velocity_and_pressure, Projection, ProjectionInfo};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 use xper_math::{Real, Vector, DIM};
-use xper_poisson::{GridShape, Multigrid, MultigridError, MultigridInfo, MultigridParams};
+use xper_poisson::{Multigrid, MultigridError, MultigridInfo};
 
-/// The parameters of the pressure multigrid of `params` over the whole `grid`.
-pub fn pressure_multigrid(
-    grid: &MacGrid,
-    params: &FluidParams,
-) -> (GridShape, xper_poisson::Boundary, MultigridParams) {
-    let shape = GridShape {
-        nx: grid.nx,
-        ny: grid.ny,
-        hx: grid.h,
-        hy: grid.h,
-    };
-    let multigrid_params = MultigridParams {
-        relative_tolerance: params.pressure_tolerance,
-        max_cycles: params.pressure_max_cycles,
-        ..MultigridParams::default()
-    };
-    (shape, params.boundary.pressure_boundary(), multigrid_params)
-}
-
-/// Physical and numerical parameters of the fluid (SI units).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct FluidParams {
-    /// Density rho_f (kg/m^3).
-    pub density: Real,
-    /// Dynamic viscosity mu (Pa s).
-    pub viscosity: Real,
-    /// Body force per unit mass on the fluid (m/s^2); gravity on grains is buoyancy-corrected by
-    /// the coupling instead, so this is usually zero.
-    pub body_force: Vector,
-    /// Conditions on the four sides.
-    pub boundary: FluidBoundary,
-    /// Courant number of the adaptive time step: `dt <= cfl h / max |u|`.
-    pub cfl: Real,
-    /// Fraction of the explicit diffusion limit `h^2 / (2 DIM nu)` (and, for the central scheme,
-    /// of the advection-diffusion limit `2 nu / max |u|^2`) allowed as time step.
-    pub viscous_safety: Real,
-    /// Largest time step (s).
-    pub dt_max: Real,
-    /// Donor-cell blending of the advection, 0 (central, second order) to 1 (donor cell).
-    pub upwinding: Real,
-    /// Solid fraction of the faces near grains.
-    pub indicator: SolidIndicator,
-    /// Relative residual of the pressure solve, `||r|| / ||rhs||`.
-    pub pressure_tolerance: Real,
-    /// Largest number of multigrid cycles per pressure solve.
-    pub pressure_max_cycles: u32,
-}
-
-impl FluidParams {
-    /// Water-like defaults in a closed box: rho 1000, mu 1e-3, central advection, CFL 0.5.
-    pub fn new(density: Real, viscosity: Real, boundary: FluidBoundary) -> Self {
-        FluidParams {
-            density,
-            viscosity,
-            body_force: Vector::zeros(),
-            boundary,
-            cfl: 0.5,
-            viscous_safety: 0.8,
-            dt_max: Real::INFINITY,
-            upwinding: 0.0,
-            indicator: SolidIndicator::default(),
-            pressure_tolerance: 1e-8,
-            pressure_max_cycles: 50,
-        }
-    }
-
-    /// Kinematic viscosity nu = mu / rho (m^2/s).
-    pub fn kinematic_viscosity(&self) -> Real {
-        self.viscosity / self.density
-    }
-
-    /// Checks signs and ranges.
-    pub fn validate(&self) -> Result<(), String> {
-        let positive = [
-            ("density", self.density),
-            ("viscosity", self.viscosity),
-            ("cfl", self.cfl),
-            ("viscous_safety", self.viscous_safety),
-            ("dt_max", self.dt_max),
-            ("pressure_tolerance", self.pressure_tolerance),
-        ];
-        for (name, value) in positive {
-            if value.is_nan() || value <= 0.0 {
-                return Err(format!("{name} must be positive, got {value}"));
-            }
-        }
-        if !(0.0..=1.0).contains(&self.upwinding) {
-            return Err(format!(
-                "upwinding must be in [0, 1], got {}",
-                self.upwinding
-            ));
-        }
-        if self.cfl > 1.0 || self.viscous_safety > 1.0 {
-            return Err("cfl and viscous_safety must be at most 1 (explicit stability)".into());
-        }
-        self.boundary.validate()
-    }
-}
+pub use crate::params::{pressure_multigrid, FluidParams, TimeScheme};
 
 /// The evolving fluid: velocities, pressure, time. Serialisable for checkpoints.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -276,6 +177,8 @@ pub struct FluidSolver {
     projection: Projection,
     forcing: ImmersedForcing,
     predicted: [Vec<Real>; DIM],
+    /// The last Runge-Kutta stage's tendency (empty with Euler).
+    tendency: [Vec<Real>; DIM],
     inner: Vec<InnerMomentum>,
     /// The step count of the state this solver's last step left, its halos exchanged after
     /// its last change: the next step of that state needs no exchange before it starts.
@@ -309,6 +212,10 @@ impl FluidSolver {
             projection: Projection::new(&grid),
             forcing: ImmersedForcing::default(),
             predicted: grid.zero_velocity(),
+            tendency: match params.time_scheme {
+                TimeScheme::Euler => [Vec::new(), Vec::new()],
+                TimeScheme::Rk3 => grid.zero_velocity(),
+            },
             inner: Vec::new(),
             halos_current_at: None,
         })
@@ -329,7 +236,7 @@ impl FluidSolver {
             .min(params.viscous_safety * h * h / (2.0 * DIM as Real * nu));
         if speed > 0.0 {
             dt = dt.min(params.cfl * h / speed);
-            if params.upwinding < 1.0 {
+            if params.upwinding < 1.0 && params.time_scheme == TimeScheme::Euler {
                 dt = dt.min(params.viscous_safety * 2.0 * nu / (DIM as Real * speed * speed));
             }
         }
@@ -401,7 +308,8 @@ impl FluidSolver {
             unpack(&sums, &mut [], &mut state.inner);
         }
 
-        // Stage: momentum predictor.
+        // Stages: momentum predictor, immersed forcing, projection (once, or per
+        // Runge-Kutta stage).
         let coefficients = PredictorCoefficients {
             dt,
             kinematic_viscosity: params.kinematic_viscosity(),
@@ -409,48 +317,68 @@ impl FluidSolver {
             body_force: params.body_force,
             upwinding: params.upwinding,
         };
-        predict(
-            &grid,
-            boundary,
-            &coefficients,
-            &state.velocity,
-            &state.pressure,
-            &mut self.predicted,
-        );
-        boundary.extrapolate_outflow(&grid, &mut self.predicted);
-        report.times[0] = start.elapsed().as_secs_f64();
-
-        // Stage: immersed forcing.
-        let t_forcing = Instant::now();
-        self.forcing.apply(
-            &grid,
-            disks,
-            params.density,
-            dt,
-            &mut self.predicted,
-            &mut report.forces,
-        );
-        let [u0, u1] = &mut self.predicted;
-        links.exchange_halo(&grid, &mut [u0.as_mut_slice(), u1.as_mut_slice()]);
-        report.times[1] = t_forcing.elapsed().as_secs_f64();
-
-        // Stage: projection.
-        let t_projection = Instant::now();
-        let info = self
-            .projection
-            .project(
-                links,
-                &grid,
-                boundary,
-                dt,
-                params.density,
-                &mut self.predicted,
-                &mut state.pressure,
-                &mut state.increment,
-            )
-            .map_err(FluidError::Pressure)?;
-        std::mem::swap(&mut state.velocity, &mut self.predicted);
-        report.times[2] = t_projection.elapsed().as_secs_f64();
+        let info = match params.time_scheme {
+            TimeScheme::Euler => {
+                predict(
+                    &grid,
+                    boundary,
+                    &coefficients,
+                    &state.velocity,
+                    &state.pressure,
+                    &mut self.predicted,
+                );
+                report.times[0] = start.elapsed().as_secs_f64();
+                self.force_and_project(params, state, dt, dt, true, disks, links, &mut report)?
+            }
+            TimeScheme::Rk3 => {
+                let mut info: Option<ProjectionInfo> = None;
+                report.times[0] = start.elapsed().as_secs_f64();
+                for (k, stage) in RK3_STAGES.into_iter().enumerate() {
+                    let t_stage = Instant::now();
+                    predict_stage(
+                        &grid,
+                        boundary,
+                        &coefficients,
+                        stage,
+                        &state.velocity,
+                        &state.pressure,
+                        &mut self.tendency,
+                        &mut self.predicted,
+                    );
+                    report.times[0] += t_stage.elapsed().as_secs_f64();
+                    let previous = std::mem::take(&mut report.forces);
+                    let now = self.force_and_project(
+                        params,
+                        state,
+                        dt,
+                        stage.pressure * dt,
+                        k + 1 == RK3_STAGES.len(),
+                        disks,
+                        links,
+                        &mut report,
+                    )?;
+                    for (sum, stage) in report.forces.iter_mut().zip(&previous) {
+                        sum.force += stage.force;
+                        sum.torque += stage.torque;
+                    }
+                    info = Some(match info {
+                        None => now,
+                        Some(first) => ProjectionInfo {
+                            solve: MultigridInfo {
+                                cycles: first.solve.cycles + now.solve.cycles,
+                                work_units: first.solve.work_units + now.solve.work_units,
+                                ..now.solve
+                            },
+                            divergence_squares: [
+                                first.divergence_squares[0],
+                                now.divergence_squares[1],
+                            ],
+                        },
+                    });
+                }
+                info.expect("three stages")
+            }
+        };
 
         // Stage: grain forces, with the change of the fluid momentum inside each grain.
         self.forcing.inner_momentum(
@@ -491,6 +419,62 @@ impl FluidSolver {
         }
         report.times[3] = start.elapsed().as_secs_f64();
         Ok(report)
+    }
+
+    /// The stages after a predictor wrote `self.predicted`: the outflow values, the direct
+    /// forcing over `dt` (its integrals into `report.forces`), the halos, and the projection
+    /// over `dt_projection`, which leaves the new velocity in `state.velocity`.
+    #[allow(clippy::too_many_arguments)]
+    fn force_and_project(
+        &mut self,
+        params: &FluidParams,
+        state: &mut FluidState,
+        dt: Real,
+        dt_projection: Real,
+        force: bool,
+        disks: &[ImmersedDisk],
+        links: &mut dyn BlockLinks,
+        report: &mut FluidStepReport,
+    ) -> Result<ProjectionInfo, FluidError> {
+        let grid = self.grid;
+        let boundary = &params.boundary;
+        boundary.extrapolate_outflow(&grid, &mut self.predicted);
+        let t_forcing = Instant::now();
+        if force {
+            self.forcing.apply(
+                &grid,
+                disks,
+                params.density,
+                dt,
+                &mut self.predicted,
+                &mut report.forces,
+            );
+        } else {
+            report.forces.clear();
+            report
+                .forces
+                .resize(disks.len(), HydrodynamicForce::default());
+        }
+        let [u0, u1] = &mut self.predicted;
+        links.exchange_halo(&grid, &mut [u0.as_mut_slice(), u1.as_mut_slice()]);
+        report.times[1] += t_forcing.elapsed().as_secs_f64();
+        let t_projection = Instant::now();
+        let info = self
+            .projection
+            .project(
+                links,
+                &grid,
+                boundary,
+                dt_projection,
+                params.density,
+                &mut self.predicted,
+                &mut state.pressure,
+                &mut state.increment,
+            )
+            .map_err(FluidError::Pressure)?;
+        std::mem::swap(&mut state.velocity, &mut self.predicted);
+        report.times[2] += t_projection.elapsed().as_secs_f64();
+        Ok(info)
     }
 }
 

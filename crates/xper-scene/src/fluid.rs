@@ -3,7 +3,7 @@
 
 use crate::read::{choose, ensure, int_in, Ctx, Got, Tbl};
 use crate::shared::Built;
-use crate::types::{BodyDesc, FluidDesc, FluidSideDesc, ShapeDesc};
+use crate::types::{BodyDesc, FluidDesc, FluidSideDesc, Lubrication, ShapeDesc, TimeScheme};
 
 const FLUID_KEYS: &[&str] = &[
     "density",
@@ -18,6 +18,9 @@ const FLUID_KEYS: &[&str] = &[
     "indicator",
     "pressure_tolerance",
     "pressure_max_cycles",
+    "time_scheme",
+    "lubrication_range",
+    "lubrication_roughness",
     "boundary",
 ];
 
@@ -72,6 +75,17 @@ pub(crate) fn fluid(ctx: &mut Ctx, root: &Tbl, built: &Built) -> Option<Option<F
             &[("smoothed", false), ("sharp", true)],
         ),
     };
+    let time_scheme = match t.string(ctx, "time_scheme") {
+        Got::Absent => Some(TimeScheme::Euler),
+        g => choose(
+            ctx,
+            g.ok(),
+            &t.field("time_scheme"),
+            "time scheme",
+            &[("euler", TimeScheme::Euler), ("rk3", TimeScheme::Rk3)],
+        ),
+    };
+    let lubrication = lubrication(ctx, &t);
     let pressure_max_cycles = match t.int(ctx, "pressure_max_cycles") {
         Got::Absent => Some(50),
         g => int_in(ctx, g.ok(), &t.field("pressure_max_cycles"), 1, 10_000).map(|v| v as u32),
@@ -97,8 +111,50 @@ pub(crate) fn fluid(ctx: &mut Ctx, root: &Tbl, built: &Built) -> Option<Option<F
         sharp_indicator: sharp?,
         pressure_tolerance: pressure_tolerance?,
         pressure_max_cycles: pressure_max_cycles?,
+        time_scheme: time_scheme?,
+        lubrication: lubrication?,
         boundary: boundary?,
     }))
+}
+
+/// `lubrication_range` (cells, > 0: the correction is on) and `lubrication_roughness`
+/// (fraction of the smaller radius, in (0, 1), default 1e-3, only with a range).
+fn lubrication(ctx: &mut Ctx, t: &Tbl) -> Option<Option<Lubrication>> {
+    let range = match t.num(ctx, "lubrication_range") {
+        Got::Absent => None,
+        g => Some(ensure(
+            ctx,
+            g.ok(),
+            &t.field("lubrication_range"),
+            |v| v > 0.0 && v <= 100.0,
+            "in (0, 100] cells",
+        )),
+    };
+    let roughness = match t.num(ctx, "lubrication_roughness") {
+        Got::Absent => Some(Lubrication::default().roughness),
+        Got::Val(_, pos) if range.is_none() => {
+            ctx.err(
+                pos,
+                &t.field("lubrication_roughness"),
+                "given without `lubrication_range`, which turns the correction on",
+            );
+            None
+        }
+        g => ensure(
+            ctx,
+            g.ok(),
+            &t.field("lubrication_roughness"),
+            |v| v > 0.0 && v < 1.0,
+            "in (0, 1) (a fraction of the smaller radius)",
+        ),
+    };
+    match range {
+        None => roughness.map(|_| None),
+        Some(range) => Some(Some(Lubrication {
+            range: range?,
+            roughness: roughness?,
+        })),
+    }
 }
 
 /// `domain = [[x0, y0], [x1, y1]]` with `x1 > x0`, `y1 > y0`.

@@ -59,6 +59,11 @@ pub enum ConvergenceNorm {
 /// solver's own type, `none` or `anderson` (depth and period 3 unless given).
 pub use xper_solver::{Acceleration, CheckPass};
 
+/// The lubrication correction (`[fluid] lubrication_range`, `lubrication_roughness`), the
+/// solver's own type.
+pub use xper_fluid::Lubrication;
+/// The fluid's time integration (`[fluid] time_scheme`), the solver's own type.
+pub use xper_fluid::TimeScheme;
 /// The configuration each step detects its contacts on (`[scene] detection`: `"begin"` or
 /// `"predicted"`): the stepper's own type.
 pub use xper_nscd::Detection;
@@ -230,6 +235,10 @@ pub struct FluidDesc {
     pub pressure_tolerance: f64,
     /// Largest number of multigrid cycles per pressure solve.
     pub pressure_max_cycles: u32,
+    /// Time integration of the momentum equation (`"euler"`, the default, or `"rk3"`).
+    pub time_scheme: TimeScheme,
+    /// The lubrication correction, when `lubrication_range` is given.
+    pub lubrication: Option<Lubrication>,
     /// Conditions on the left, right, bottom and top sides.
     pub boundary: [FluidSideDesc; 4],
 }

@@ -37,6 +37,8 @@ pub fn fluid_params(desc: &FluidDesc, dt: Real) -> FluidParams {
         },
         pressure_tolerance: desc.pressure_tolerance,
         pressure_max_cycles: desc.pressure_max_cycles,
+        time_scheme: desc.time_scheme,
+        lubrication: desc.lubrication,
         ..FluidParams::new(
             desc.density,
             desc.viscosity,

@@ -16,9 +16,15 @@ use xper_fluid::{FluidBoundary, FluidParams, FluidSolver, FluidState, MacGrid, S
 use xper_math::{Real, Vector};
 
 pub use crate::Case;
-pub use grains::{resting_grain, settling_convergence};
+pub use grains::{landing_with_lubrication, resting_grain, settling_convergence, settling_in_time};
+pub use published::{
+    dkt_measures, dkt_measures_with, drafting_kissing_tumbling, single_disk_settling, DktMeasures,
+};
+pub use time_order::{taylor_green_in_time, taylor_green_time_errors};
 
 mod grains;
+mod published;
+mod time_order;
 
 /// Largest velocity error of the Taylor-Green vortex on an `n x n` periodic grid of
 /// `[0, 2 pi]^2` at `t = 1` s with `nu = 0.05` m^2/s, relative to the amplitude `F(t)`.
@@ -26,32 +32,11 @@ mod grains;
 /// The time step is `h^2 / 4` (s, with h in m), so the first-order time error of explicit
 /// Euler scales as `h^2` like the space error and the observed order is the spatial one.
 pub fn taylor_green_error(n: usize) -> Result<Real, String> {
-    let two_pi = 2.0 * std::f64::consts::PI;
-    let grid = MacGrid {
-        nx: n,
-        ny: n,
-        h: two_pi / n as Real,
-        origin: Vector::zeros(),
-    };
+    let grid = taylor_green_grid(n);
     let nu = 0.05;
     let params = FluidParams::new(1.0, nu, FluidBoundary::periodic());
     let mut solver = FluidSolver::new(grid, &params).map_err(|e| e.to_string())?;
-    let mut state = FluidState::at_rest(grid, &params.boundary);
-    let exact = |d: usize, x: Vector, f: Real| {
-        if d == 0 {
-            x.x.sin() * x.y.cos() * f
-        } else {
-            -x.x.cos() * x.y.sin() * f
-        }
-    };
-    state.set_velocity(&params.boundary, |d, x| exact(d, x, 1.0));
-    for j in 0..n {
-        for i in 0..n {
-            let x = grid.cell_centre(i, j);
-            let k = grid.index(i as isize, j as isize);
-            state.pressure[k] = 0.25 * ((2.0 * x.x).cos() + (2.0 * x.y).cos());
-        }
-    }
+    let mut state = taylor_green_state(grid, &params);
     let end = 1.0;
     let steps = (end / (0.25 * grid.h * grid.h)).ceil() as usize;
     let dt = end / steps as Real;
@@ -67,11 +52,45 @@ pub fn taylor_green_error(n: usize) -> Result<Real, String> {
             for i in 0..n as isize {
                 let x = grid.face_position(d, i, j);
                 let value = state.velocity[d][grid.index(i, j)];
-                error = error.max((value - exact(d, x, f)).abs() / f);
+                error = error.max((value - taylor_green_exact(d, x, f)).abs() / f);
             }
         }
     }
     Ok(error)
+}
+
+/// The periodic `n x n` grid of `[0, 2 pi]^2`.
+pub fn taylor_green_grid(n: usize) -> MacGrid {
+    MacGrid {
+        nx: n,
+        ny: n,
+        h: 2.0 * std::f64::consts::PI / n as Real,
+        origin: Vector::zeros(),
+    }
+}
+
+/// The Taylor-Green vortex's component `d` at `x` with amplitude `f` (BRIEF.md section 7).
+pub fn taylor_green_exact(d: usize, x: Vector, f: Real) -> Real {
+    if d == 0 {
+        x.x.sin() * x.y.cos() * f
+    } else {
+        -x.x.cos() * x.y.sin() * f
+    }
+}
+
+/// The Taylor-Green vortex at `t = 0` on `grid` (periodic, `[0, 2 pi]^2`): exact velocity and
+/// pressure `(cos 2x + cos 2y) / 4` (density 1).
+pub fn taylor_green_state(grid: MacGrid, params: &FluidParams) -> FluidState {
+    let mut state = FluidState::at_rest(grid, &params.boundary);
+    state.set_velocity(&params.boundary, |d, x| taylor_green_exact(d, x, 1.0));
+    for j in 0..grid.ny {
+        for i in 0..grid.nx {
+            let x = grid.cell_centre(i, j);
+            let k = grid.index(i as isize, j as isize);
+            state.pressure[k] = 0.25 * ((2.0 * x.x).cos() + (2.0 * x.y).cos());
+        }
+    }
+    state
 }
 
 /// Observed order of the Taylor-Green error over the grids `n, 2n, 4n`: the least-squares
