@@ -73,7 +73,9 @@ pub enum TimeScheme {
     /// ([`crate::momentum::RK3_STAGES`]): second order in the velocity (third on the
     /// Taylor-Green vortex), three predictor and pressure solves per step; its stability region
     /// holds the central advection's imaginary eigenvalues, so the step is not limited by
-    /// `2 nu / |u|^2` as Euler's is. The direct forcing acts once, before the last stage's
+    /// `2 nu / |u|^2` as Euler's is (its Courant number is capped at
+    /// [`crate::momentum::RK3_LARGEST_CFL`], 0.866, where the central advection stays stable
+    /// without viscosity). The direct forcing acts once, before the last stage's
     /// projection, with the grains held at their state at the start of the step, as with
     /// Euler: forced before every stage, with grains that move only once per step, the force on
     /// a grain counted the projection's reaction three times, and a grain 1.5 times as dense as

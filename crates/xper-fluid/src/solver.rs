@@ -5,7 +5,7 @@ use crate::blocks::{BlockLinks, WholeGrid};
 use crate::boundary::FluidBoundary;
 use crate::grid::MacGrid;
 use crate::immersed::{HydrodynamicForce, ImmersedDisk, ImmersedForcing, InnerMomentum};
-use crate::momentum::{predict, predict_stage, PredictorCoefficients, RK3_STAGES};
+use crate::momentum::{predict, predict_stage, PredictorCoefficients, RK3_LARGEST_CFL, RK3_STAGES};
 use crate::projection::{exchange_velocity_and_pressure, Projection, ProjectionInfo};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
@@ -235,7 +235,11 @@ impl FluidSolver {
             .dt_max
             .min(params.viscous_safety * h * h / (2.0 * DIM as Real * nu));
         if speed > 0.0 {
-            dt = dt.min(params.cfl * h / speed);
+            let cfl = match params.time_scheme {
+                TimeScheme::Euler => params.cfl,
+                TimeScheme::Rk3 => params.cfl.min(RK3_LARGEST_CFL),
+            };
+            dt = dt.min(cfl * h / speed);
             if params.upwinding < 1.0 && params.time_scheme == TimeScheme::Euler {
                 dt = dt.min(params.viscous_safety * 2.0 * nu / (DIM as Real * speed * speed));
             }
