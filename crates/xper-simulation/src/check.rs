@@ -52,8 +52,17 @@ fn check_rigid(scene: &Scene, path: &Path) {
     );
     if let Some(fluid) = &scene.fluid {
         let grid = crate::fluid::build::fluid_grid(fluid);
+        let scheme = match fluid.time_scheme {
+            xper_fluid::TimeScheme::Euler => "explicit Euler",
+            xper_fluid::TimeScheme::Rk3 => "three-stage Runge-Kutta",
+        };
+        let lubrication = match &fluid.lubrication {
+            Some(l) => format!("lubrication within {} cell(s)", l.range),
+            None => "no lubrication correction".into(),
+        };
         println!(
-            "fluid: {} x {} cells of {} m, density {} kg/m^3, viscosity {} Pa s; runs to t = {} s",
+            "fluid: {} x {} cells of {} m, density {} kg/m^3, viscosity {} Pa s, {scheme}, \
+             {lubrication}; runs to t = {} s",
             grid.nx,
             grid.ny,
             grid.h,
