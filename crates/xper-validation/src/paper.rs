@@ -151,7 +151,8 @@ pub fn paper_section(md: &mut String, full: bool) -> Result<usize, RunError> {
         "\n## The paper's fracture applications at the paper's resolution\n\n\
          Run (or continued from their checkpoints) by `cargo run --release -p xper-cli -- validate \
          --full`, which takes hours; outputs in `validation-runs/<scene>/` (crack pattern, \
-         series, VTK). A plain `xper validate` reports the runs found there as far as they went. \
+         series, VTK). A plain `xper validate` reports the runs found there as far as they went; on a machine \
+         without them, it keeps this section from the report it regenerates. \
          Crack measures on the reference mesh, pre-cracks excluded (`crates/xper-simulation/src/fracture/crack.rs`).\n\n\
          | case | reference | measured | result |\n|---|---|---|---|\n",
     );

@@ -42,7 +42,7 @@ pub fn write_report(path: &std::path::Path, full: bool) -> Result<(), RunError> 
     let suite_failures =
         crate::robustness::robustness_section(&mut md, Path::new("."), xper.as_deref(), KILLS)?
             + suite_failures;
-    let md = with_summary(&md);
+    let md = with_summary(&keep_paper_runs(&md, path));
     xper_io::write_atomic(path, md.as_bytes()).map_err(|e| RunError::Runtime(e.to_string()))?;
     match cases.iter().filter(|c| !c.passed()).count() + suite_failures {
         0 => Ok(()),
@@ -153,6 +153,42 @@ pub fn rewrite_robustness(path: &Path) -> Result<(), RunError> {
     }
 }
 
+/// Heading of the paper-resolution section ([`crate::paper::paper_section`]).
+const PAPER_HEADING: &str = "## The paper's fracture applications at the paper's resolution";
+
+/// The section of `md` opened by `heading`, up to the next `## ` heading.
+fn section<'a>(md: &'a str, heading: &str) -> Option<&'a str> {
+    let start = md.find(&format!("\n{heading}"))? + 1;
+    let after = start + heading.len();
+    let end = md[after..]
+        .find("\n## ")
+        .map_or(md.len(), |e| after + e + 1);
+    Some(&md[start..end])
+}
+
+/// `md`, whose paper-resolution section found no run (`validation-runs/` holds none here),
+/// with that section taken instead from the report already at `path` when that one has runs:
+/// the hours-long runs are not lost by a regeneration on a machine without them.
+fn keep_paper_runs(md: &str, path: &Path) -> String {
+    let Some(fresh) = section(md, PAPER_HEADING) else {
+        return md.to_string();
+    };
+    let ran = |s: &str| {
+        s.lines()
+            .any(|l| l.starts_with("| ") && l.contains(": run |"))
+    };
+    if ran(fresh) {
+        return md.to_string();
+    }
+    let Ok(existing) = std::fs::read_to_string(path) else {
+        return md.to_string();
+    };
+    match section(&existing, PAPER_HEADING) {
+        Some(kept) if ran(kept) => replace_section(md, PAPER_HEADING, &format!("\n{kept}")),
+        _ => md.to_string(),
+    }
+}
+
 /// `md` with the section opened by `heading` (up to the next `## ` heading) replaced by
 /// `section`, or `section` appended when there is none.
 fn replace_section(md: &str, heading: &str, section: &str) -> String {
@@ -239,6 +275,33 @@ fn suite_section(md: &mut String) -> Result<usize, RunError> {
 mod tests {
 
     #[test]
+    fn paper_runs_found_before_are_kept_when_none_is_found_now() {
+        let dir = std::env::temp_dir().join(format!("xper_keep_paper_{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("VALIDATION.md");
+        let with_runs = format!(
+            "# V\n\n## A\n\nold a\n\n{PAPER_HEADING}\n\n| x: run | r | done | - |\n\n## B\n\nold b\n"
+        );
+        std::fs::write(&path, &with_runs).unwrap();
+        let fresh = format!(
+            "# V\n\n## A\n\nnew a\n\n{PAPER_HEADING}\n\n| x | - | not run here | - |\n\n## B\n\nnew b\n"
+        );
+        let kept = keep_paper_runs(&fresh, &path);
+        assert_eq!(
+            kept,
+            format!(
+                "# V\n\n## A\n\nnew a\n\n{PAPER_HEADING}\n\n| x: run | r | done | - |\n\n## B\n\nnew b\n"
+            )
+        );
+        assert!(kept.contains("| x: run | r | done | - |") && !kept.contains("not run here"));
+        // Runs found now replace the old ones; no old report leaves the fresh one as it is.
+        let ran_now = fresh.replace("| x | - | not run here | - |", "| x: run | r | new | - |");
+        assert_eq!(keep_paper_runs(&ran_now, &path), ran_now);
+        assert_eq!(keep_paper_runs(&fresh, &dir.join("absent.md")), fresh);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
     fn a_section_is_replaced_in_place_or_appended() {
         let md = "# R\n\n## A\na\n\n## B\nold\n\n## C\nc\n";
         let new = replace_section(md, "## B", "\n## B\nnew\n");
@@ -247,7 +310,7 @@ mod tests {
         assert_eq!(appended, "# R\n\n## A\na\n\n## B\nnew\n");
     }
 
-    use super::{replace_section, with_summary};
+    use super::{keep_paper_runs, replace_section, with_summary, PAPER_HEADING};
 
     #[test]
     fn the_summary_counts_each_section_and_is_replaced_not_repeated() {

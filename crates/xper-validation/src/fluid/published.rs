@@ -13,8 +13,10 @@
 //!   speeds of the trailing and the leading disk, the time of the collision and the time the
 //!   trailing disk passes below the leading one, in `u_ref` and `t_ref = d / u_ref`. The
 //!   disks touch without friction (Signorini), as the published runs keep them apart by a
-//!   frictionless short-range repulsion: with friction 0.5 the pair tumbles later (16
-//!   cells per diameter: the order swaps at 15.7 t_ref instead of 15.0).
+//!   frictionless short-range repulsion. Friction changes the tumbling: the same set-up
+//!   written as a scene (16 cells per diameter, the scene's solver defaults) swapped at
+//!   15.7 t_ref with friction 0.5 and 15.0 without, and with this case's solver settings and
+//!   friction 0.5 the pair had not tumbled by 17 t_ref.
 //!
 //! The published curves were read from the digitised figures in A. Ghigo's Basilisk sandbox
 //! (`sandbox/ghigo/src/test-particle-multicolor/data/`, Uhlmann2005 and Koblitz2017): Uhlmann
