@@ -137,14 +137,18 @@ fn list(cells: &[usize]) -> String {
         .join(", ")
 }
 
-/// `; observed order p` with three grids (`not monotone` when it has none), else nothing.
+/// `; observed order p` with three grids, or why there is none; nothing with fewer grids.
 fn order_text(cells: &[usize], f: &[Real]) -> String {
     if cells.len() != 3 {
         return String::new();
     }
     let order = observed_order(cells, f);
-    if order.is_nan() {
+    if f.iter().any(|v| v.is_nan()) {
+        "; no observed order (a grid has no value)".into()
+    } else if (f[0] - f[1]) * (f[1] - f[2]) <= 0.0 {
         "; not monotone (no observed order)".into()
+    } else if order.is_nan() {
+        "; monotone, but the differences do not shrink as any positive order".into()
     } else {
         format!("; observed order {order:.2}")
     }
