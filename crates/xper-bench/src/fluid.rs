@@ -46,6 +46,9 @@ pub struct FluidBench {
     /// The same with Euler and the lubrication correction (range 1 cell).
     #[serde(default)]
     pub(crate) two_grains_lubricated_wall_s_per_simulated_s: f64,
+    /// The Glowinski scene under each option.
+    #[serde(default)]
+    pub(crate) glowinski: Option<OptionTimes>,
 }
 
 /// Mean of `steps` lid-driven steps on `n x n` cells of a unit box, after 5 warm-up steps,
@@ -125,20 +128,52 @@ pub fn bench_fluid(out: &Path, machine: String) -> Result<(), RunError> {
         );
         steps.push(figures);
     }
-    let scene = Path::new("scenes/two_grains_sedimentation/scene.toml");
+    let two = time_options(Path::new("scenes/two_grains_sedimentation/scene.toml"), 0.2)?;
+    let glowinski = time_options(Path::new("scenes/glowinski_sedimentation/scene.toml"), 0.5)?;
+    let bench = FluidBench {
+        machine,
+        multigrid,
+        steps,
+        two_grains_wall_s_per_simulated_s: two.wall_s_per_simulated_s[0],
+        two_grains_simulated_s: two.simulated_s,
+        two_grains_steps: two.steps[0],
+        two_grains_rk3_wall_s_per_simulated_s: two.wall_s_per_simulated_s[1],
+        two_grains_rk3_steps: two.steps[1],
+        two_grains_lubricated_wall_s_per_simulated_s: two.wall_s_per_simulated_s[2],
+        glowinski: Some(glowinski),
+    };
+    xper_io::write_json_atomic(&out.join(RESULTS_FILE), &bench)
+        .map_err(|e| RunError::Runtime(e.to_string()))
+}
+
+/// A scene's first seconds under each option: explicit Euler, rk3, Euler with lubrication.
+#[derive(Serialize, Deserialize)]
+pub struct OptionTimes {
+    pub(crate) scene: String,
+    pub(crate) simulated_s: f64,
+    /// Wall time per simulated second (s), per option.
+    pub(crate) wall_s_per_simulated_s: [f64; 3],
+    pub(crate) steps: [u64; 3],
+}
+
+/// The first `until` seconds of `scene` under each option of [`OptionTimes`], alternated,
+/// the fastest of two runs each.
+fn time_options(scene: &Path, until: Real) -> Result<OptionTimes, RunError> {
     let unset: (f64, Real, u64) = (f64::INFINITY, 1.0, 0);
-    let (mut euler, mut rk3, mut lubricated) = (unset, unset, unset);
+    let mut best = [unset; 3];
     let lubrication = Some(xper_fluid::Lubrication::default());
+    let options = [
+        (TimeScheme::Euler, None),
+        (TimeScheme::Rk3, None),
+        (TimeScheme::Euler, lubrication),
+    ];
     for _ in 0..2 {
-        for (scheme, lubrication, best) in [
-            (TimeScheme::Euler, None, &mut euler),
-            (TimeScheme::Rk3, None, &mut rk3),
-            (TimeScheme::Euler, lubrication, &mut lubricated),
-        ] {
-            let run = two_grains(scene, 0.2, scheme, lubrication)?;
+        for ((scheme, lubrication), best) in options.into_iter().zip(&mut best) {
+            let run = run_fluid_scene(scene, until, scheme, lubrication)?;
             println!(
-                "two grains, {scheme:?}, lubrication {}: {:.2} s of wall time per simulated \
-                 second ({} steps to {} s)",
+                "{}, {scheme:?}, lubrication {}: {:.2} s of wall time per simulated second ({} \
+                 steps to {} s)",
+                scene.display(),
                 lubrication.is_some(),
                 run.0 / run.1,
                 run.2,
@@ -149,35 +184,27 @@ pub fn bench_fluid(out: &Path, machine: String) -> Result<(), RunError> {
             }
         }
     }
-    let (wall, simulated, count) = euler;
-    let bench = FluidBench {
-        machine,
-        multigrid,
-        steps,
-        two_grains_wall_s_per_simulated_s: wall / simulated,
-        two_grains_simulated_s: simulated,
-        two_grains_steps: count,
-        two_grains_rk3_wall_s_per_simulated_s: rk3.0 / rk3.1,
-        two_grains_rk3_steps: rk3.2,
-        two_grains_lubricated_wall_s_per_simulated_s: lubricated.0 / lubricated.1,
-    };
-    xper_io::write_json_atomic(&out.join(RESULTS_FILE), &bench)
-        .map_err(|e| RunError::Runtime(e.to_string()))
+    Ok(OptionTimes {
+        scene: scene.display().to_string(),
+        simulated_s: best[0].1,
+        wall_s_per_simulated_s: best.map(|b| b.0 / b.1),
+        steps: best.map(|b| b.2),
+    })
 }
 
-/// Runs the first `until` seconds of the two-grain scene without outputs, the fluid stepped by
+/// Runs the first `until` seconds of a fluid scene without outputs, the fluid stepped by
 /// `scheme`, with `lubrication`: wall time, simulated time, steps.
-fn two_grains(
+fn run_fluid_scene(
     scene: &Path,
     until: Real,
     scheme: TimeScheme,
     lubrication: Option<xper_fluid::Lubrication>,
 ) -> Result<(f64, Real, u64), RunError> {
+    let path = scene;
     let scene = xper_scene::load_scene(scene).map_err(|e| RunError::BadInput(e.to_string()))?;
-    let desc = scene
-        .fluid
-        .as_ref()
-        .ok_or_else(|| RunError::BadInput("the two-grain scene has no [fluid]".into()))?;
+    let desc = scene.fluid.as_ref().ok_or_else(|| {
+        RunError::BadInput(format!("{}: the scene has no [fluid]", path.display()))
+    })?;
     let params = FluidParams {
         time_scheme: scheme,
         lubrication,
@@ -243,13 +270,24 @@ pub fn markdown(b: &FluidBench) -> String {
          the first {:.2} s, the fastest of two runs of each scheme, alternated: explicit Euler (the default) \
          {:.1} s of wall time per simulated second ({} steps); `time_scheme = \"rk3\"` {:.1} s ({} steps: \
          three predictor and pressure solves per step, the step no longer limited by 2 nu / |u|^2); Euler with \
-         the lubrication correction (`lubrication_range = 1`) {:.1} s.\n\nMachine: {}.\n",
+         the lubrication correction (`lubrication_range = 1`) {:.1} s.\n{}\nMachine: {}.\n",
         b.two_grains_simulated_s,
         b.two_grains_wall_s_per_simulated_s,
         b.two_grains_steps,
         b.two_grains_rk3_wall_s_per_simulated_s,
         b.two_grains_rk3_steps,
         b.two_grains_lubricated_wall_s_per_simulated_s,
+        b.glowinski.as_ref().map_or(String::new(), |g| format!(
+            "\nGlowinski et al.'s sedimentation (`scenes/glowinski_sedimentation`, 160 x 640 cells), the first \
+             {:.2} s, the same way: Euler {:.1} s of wall time per simulated second ({} steps), rk3 {:.1} s ({} \
+             steps), Euler with lubrication {:.1} s.\n",
+            g.simulated_s,
+            g.wall_s_per_simulated_s[0],
+            g.steps[0],
+            g.wall_s_per_simulated_s[1],
+            g.steps[1],
+            g.wall_s_per_simulated_s[2]
+        )),
         b.machine
     ));
     md
