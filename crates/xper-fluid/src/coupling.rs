@@ -294,21 +294,25 @@ impl CoupledStepper {
             let bodies = &world.bodies;
             self.lubricated.clear();
             // Each grain's velocity at the end of the step under every force but lubrication
-            // and contacts (hydrodynamic, buoyancy, weight): the correction resists it.
+            // and contacts (hydrodynamic, buoyancy, weight) on its free degrees of freedom:
+            // the correction resists it. A grain with an imposed translation counts as fixed.
             for (&b, disk) in self.immersed.iter().zip(&self.disks) {
-                let fixed = bodies.imposed[b] & 3 == 3;
-                let mass = bodies.mass[b];
+                let inverse = bodies.inv_mass(b);
                 let f = self.forces[b];
-                let predicted = if fixed {
-                    disk.velocity
-                } else {
-                    disk.velocity + (Vector::new(f[0], f[1]) / mass + gravity) * dt
-                };
+                let mut predicted = disk.velocity;
+                for d in 0..DIM {
+                    if inverse[d] > 0.0 {
+                        predicted[d] += (f[d] / bodies.mass[b] + gravity[d]) * dt;
+                    }
+                }
                 self.lubricated.push(LubricatedGrain {
                     centre: disk.centre,
                     radius: disk.radius,
                     velocity: predicted,
-                    mass: if fixed { Real::INFINITY } else { mass },
+                    inverse_mass: inverse[..DIM]
+                        .iter()
+                        .copied()
+                        .fold(Real::INFINITY, Real::min),
                 });
             }
             self.lubrication_forces.clear();

@@ -61,8 +61,8 @@ pub struct LubricatedGrain {
     pub radius: Real,
     /// Velocity (m/s) at the end of the step under every force but this correction's.
     pub velocity: Vector,
-    /// Mass per unit thickness (kg/m); infinite for a fixed grain.
-    pub mass: Real,
+    /// Inverse mass per unit thickness (m/kg); 0 for a grain whose translation is imposed.
+    pub inverse_mass: Real,
 }
 
 /// A plane wall of the fluid domain: the points `x` with `x[axis] = at`, the fluid on the side
@@ -134,7 +134,7 @@ impl Lubrication {
                 let normal = between / distance;
                 let reduced = a.radius * b.radius / (a.radius + b.radius);
                 let c = self.coefficient(mu, reduced, a.radius.min(b.radius), delta, h);
-                let mobility = 1.0 / a.mass + 1.0 / b.mass;
+                let mobility = a.inverse_mass + b.inverse_mass;
                 let approach = (b.velocity - a.velocity).dot(&normal) / (1.0 + dt * c * mobility);
                 let on_a = normal * (c * approach);
                 forces[p] += on_a;
@@ -149,7 +149,7 @@ impl Lubrication {
                 // The normal from the grain to the wall, and the wall at rest along it.
                 let mut normal = Vector::zeros();
                 normal[wall.axis] = -wall.side;
-                let approach = -a.velocity.dot(&normal) / (1.0 + dt * c / a.mass);
+                let approach = -a.velocity.dot(&normal) / (1.0 + dt * c * a.inverse_mass);
                 forces[p] += normal * (c * approach);
             }
         }
@@ -227,7 +227,7 @@ mod tests {
             centre: Vector::new(0.0, a + delta0),
             radius: a,
             velocity: Vector::new(0.0, -u0),
-            mass: m,
+            inverse_mass: 1.0 / m,
         };
         let dt = 1e-6;
         let mut closest = delta0;
@@ -254,7 +254,7 @@ mod tests {
             centre: Vector::new(x, y),
             radius: 1e-3,
             velocity: Vector::new(vx, 0.3),
-            mass: 1e-3,
+            inverse_mass: 1e3,
         };
         for (gap, v, sign) in [(2e-5, 0.01, -1.0), (2e-5, -0.01, 1.0), (2e-4, 0.01, 0.0)] {
             let grains = [grain(0.0, 0.5, v), grain(2e-3 + gap, 0.5, -v)];
@@ -302,7 +302,7 @@ mod weight_tests {
                     centre: Vector::new(0.0, a + delta),
                     radius: a,
                     velocity: Vector::new(0.0, predicted),
-                    mass: m,
+                    inverse_mass: 1.0 / m,
                 };
                 let mut force = [Vector::zeros()];
                 lub.add_forces(mu, h, dt, &[grain], &[wall], &mut force);

@@ -350,7 +350,6 @@ impl FluidSolver {
                         &mut self.predicted,
                     );
                     report.times[0] += t_stage.elapsed().as_secs_f64();
-                    let previous = std::mem::take(&mut report.forces);
                     let now = self.force_and_project(
                         params,
                         state,
@@ -361,10 +360,6 @@ impl FluidSolver {
                         links,
                         &mut report,
                     )?;
-                    for (sum, stage) in report.forces.iter_mut().zip(&previous) {
-                        sum.force += stage.force;
-                        sum.torque += stage.torque;
-                    }
                     info = Some(match info {
                         None => now,
                         Some(first) => ProjectionInfo {
@@ -426,7 +421,8 @@ impl FluidSolver {
     }
 
     /// The stages after a predictor wrote `self.predicted`: the outflow values, the direct
-    /// forcing over `dt` (its integrals into `report.forces`), the halos, and the projection
+    /// forcing over `dt` when `force` (its integrals into `report.forces`, the step's only
+    /// forcing: with rk3 the last stage's), the halos, and the projection
     /// over `dt_projection`, which leaves the new velocity in `state.velocity`.
     #[allow(clippy::too_many_arguments)]
     fn force_and_project(
@@ -453,11 +449,6 @@ impl FluidSolver {
                 &mut self.predicted,
                 &mut report.forces,
             );
-        } else {
-            report.forces.clear();
-            report
-                .forces
-                .resize(disks.len(), HydrodynamicForce::default());
         }
         let [u0, u1] = &mut self.predicted;
         links.exchange_halo(&grid, &mut [u0.as_mut_slice(), u1.as_mut_slice()]);

@@ -169,15 +169,6 @@ pub struct DktMeasures {
 
 /// Runs Uhlmann's drafting-kissing-tumbling case to 17 t_ref on `cells` per diameter.
 pub fn dkt_measures(cells: usize, scheme: TimeScheme) -> Result<DktMeasures, String> {
-    dkt_measures_with(cells, scheme, None)
-}
-
-/// [`dkt_measures`] with the lubrication correction `lubrication`.
-pub fn dkt_measures_with(
-    cells: usize,
-    scheme: TimeScheme,
-    lubrication: Option<xper_fluid::Lubrication>,
-) -> Result<DktMeasures, String> {
     let ratio = 1.5;
     let (u_ref, offset) = (velocity_scale(ratio), D / 250.0);
     let t_ref = D / u_ref;
@@ -189,7 +180,6 @@ pub fn dkt_measures_with(
     let (fluid, mut state) = disks_in_box(D, ratio, 1e-3, SIZE, &centres, cells, 0.0)?;
     let fluid = FluidParams {
         time_scheme: scheme,
-        lubrication,
         ..fluid
     };
     let mut stepper = CoupledStepper::new(&fluid, &state).map_err(|e| e.to_string())?;
