@@ -198,7 +198,10 @@ fn check_hashes(list: &str, ranks: usize, every_scene: bool) {
         }
         entry.series = series;
         entry.frame = frame;
+        // One scene's outputs at a time: box1m's frames alone take 1.5 GB, and CI disks are small.
+        let _ = std::fs::remove_dir_all(&out);
     }
+    let _ = std::fs::remove_dir_all(&tmp);
     if update {
         let mut text = format!(
             "# scene, steps run, FNV-1a of series.csv without timing columns, of the last frame\n\
