@@ -7,7 +7,7 @@ use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::time::Instant;
 use xper_fluid::{
-    FluidBoundary, FluidParams, FluidSolver, FluidState, ImmersedDisk, MacGrid, TimeScheme,
+    FluidBoundary, FluidParams, FluidSolver, FluidState, Forcing, ImmersedDisk, MacGrid, TimeScheme,
 };
 use xper_math::{Real, Vector};
 use xper_poisson::{Boundary, PoissonSide as Pressure};
@@ -46,6 +46,9 @@ pub struct FluidBench {
     /// The same with Euler and the lubrication correction (range 1 cell).
     #[serde(default)]
     pub(crate) two_grains_lubricated_wall_s_per_simulated_s: f64,
+    /// The same with Euler and the marker forcing (2 passes, markers 0.3 cells inside).
+    #[serde(default)]
+    pub(crate) two_grains_markers_wall_s_per_simulated_s: Option<f64>,
     /// The Glowinski scene under each option.
     #[serde(default)]
     pub(crate) glowinski: Option<OptionTimes>,
@@ -140,39 +143,43 @@ pub fn bench_fluid(out: &Path, machine: String) -> Result<(), RunError> {
         two_grains_rk3_wall_s_per_simulated_s: two.wall_s_per_simulated_s[1],
         two_grains_rk3_steps: two.steps[1],
         two_grains_lubricated_wall_s_per_simulated_s: two.wall_s_per_simulated_s[2],
+        two_grains_markers_wall_s_per_simulated_s: Some(two.wall_s_per_simulated_s[3]),
         glowinski: Some(glowinski),
     };
     xper_io::write_json_atomic(&out.join(RESULTS_FILE), &bench)
         .map_err(|e| RunError::Runtime(e.to_string()))
 }
 
-/// A scene's first seconds under each option: explicit Euler, rk3, Euler with lubrication.
+/// A scene's first seconds under each option: explicit Euler, rk3, Euler with lubrication,
+/// Euler with the marker forcing (the last absent from results saved before it existed).
 #[derive(Serialize, Deserialize)]
 pub struct OptionTimes {
     pub(crate) scene: String,
     pub(crate) simulated_s: f64,
     /// Wall time per simulated second (s), per option.
-    pub(crate) wall_s_per_simulated_s: [f64; 3],
-    pub(crate) steps: [u64; 3],
+    pub(crate) wall_s_per_simulated_s: Vec<f64>,
+    pub(crate) steps: Vec<u64>,
 }
 
 /// The first `until` seconds of `scene` under each option of [`OptionTimes`], alternated,
 /// the fastest of two runs each.
 fn time_options(scene: &Path, until: Real) -> Result<OptionTimes, RunError> {
     let unset: (f64, Real, u64) = (f64::INFINITY, 1.0, 0);
-    let mut best = [unset; 3];
+    let mut best = [unset; 4];
     let lubrication = Some(xper_fluid::Lubrication::default());
+    let (fraction, markers) = (Forcing::Fraction, Forcing::Markers(Default::default()));
     let options = [
-        (TimeScheme::Euler, None),
-        (TimeScheme::Rk3, None),
-        (TimeScheme::Euler, lubrication),
+        (TimeScheme::Euler, None, fraction),
+        (TimeScheme::Rk3, None, fraction),
+        (TimeScheme::Euler, lubrication, fraction),
+        (TimeScheme::Euler, None, markers),
     ];
     for _ in 0..2 {
-        for ((scheme, lubrication), best) in options.into_iter().zip(&mut best) {
-            let run = run_fluid_scene(scene, until, scheme, lubrication)?;
+        for ((scheme, lubrication, forcing), best) in options.into_iter().zip(&mut best) {
+            let run = run_fluid_scene(scene, until, scheme, lubrication, forcing)?;
             println!(
-                "{}, {scheme:?}, lubrication {}: {:.2} s of wall time per simulated second ({} \
-                 steps to {} s)",
+                "{}, {scheme:?}, lubrication {}, {forcing:?}: {:.2} s of wall time per simulated \
+                 second ({} steps to {} s)",
                 scene.display(),
                 lubrication.is_some(),
                 run.0 / run.1,
@@ -187,18 +194,19 @@ fn time_options(scene: &Path, until: Real) -> Result<OptionTimes, RunError> {
     Ok(OptionTimes {
         scene: scene.display().to_string(),
         simulated_s: best[0].1,
-        wall_s_per_simulated_s: best.map(|b| b.0 / b.1),
-        steps: best.map(|b| b.2),
+        wall_s_per_simulated_s: best.iter().map(|b| b.0 / b.1).collect(),
+        steps: best.iter().map(|b| b.2).collect(),
     })
 }
 
 /// Runs the first `until` seconds of a fluid scene without outputs, the fluid stepped by
-/// `scheme`, with `lubrication`: wall time, simulated time, steps.
+/// `scheme`, with `lubrication` and `forcing`: wall time, simulated time, steps.
 fn run_fluid_scene(
     scene: &Path,
     until: Real,
     scheme: TimeScheme,
     lubrication: Option<xper_fluid::Lubrication>,
+    forcing: Forcing,
 ) -> Result<(f64, Real, u64), RunError> {
     let path = scene;
     let scene = xper_scene::load_scene(scene).map_err(|e| RunError::BadInput(e.to_string()))?;
@@ -208,6 +216,7 @@ fn run_fluid_scene(
     let params = FluidParams {
         time_scheme: scheme,
         lubrication,
+        forcing,
         ..xper_simulation::fluid::build::fluid_params(desc, scene.dt)
     };
     let mut state = xper_simulation::fluid::build::coupled_state(&scene, desc, &params);
@@ -265,28 +274,35 @@ pub fn markdown(b: &FluidBench) -> String {
             100.0 * s.share_projection
         ));
     }
+    let markers = |time: Option<f64>| {
+        time.map_or(String::new(), |t| {
+            format!("; Euler with the marker forcing (`forcing = \"markers\"`) {t:.1} s")
+        })
+    };
     md.push_str(&format!(
         "\nTwo-grain sedimentation (`scenes/two_grains_sedimentation`, 64 x 640 cells, 16 per diameter), \
-         the first {:.2} s, the fastest of two runs of each scheme, alternated: explicit Euler (the default) \
+         the first {:.2} s, the fastest of two runs of each option, alternated: explicit Euler (the default) \
          {:.1} s of wall time per simulated second ({} steps); `time_scheme = \"rk3\"` {:.1} s ({} steps: \
          three predictor and pressure solves per step, the step no longer limited by 2 nu / |u|^2); Euler with \
-         the lubrication correction (`lubrication_range = 1`) {:.1} s.\n{}\nMachine: {}.\n",
+         the lubrication correction (`lubrication_range = 1`) {:.1} s{}.\n{}\nMachine: {}.\n",
         b.two_grains_simulated_s,
         b.two_grains_wall_s_per_simulated_s,
         b.two_grains_steps,
         b.two_grains_rk3_wall_s_per_simulated_s,
         b.two_grains_rk3_steps,
         b.two_grains_lubricated_wall_s_per_simulated_s,
+        markers(b.two_grains_markers_wall_s_per_simulated_s),
         b.glowinski.as_ref().map_or(String::new(), |g| format!(
             "\nGlowinski et al.'s sedimentation (`scenes/glowinski_sedimentation`, 160 x 640 cells), the first \
              {:.2} s, the same way: Euler {:.1} s of wall time per simulated second ({} steps), rk3 {:.1} s ({} \
-             steps), Euler with lubrication {:.1} s.\n",
+             steps), Euler with lubrication {:.1} s{}.\n",
             g.simulated_s,
             g.wall_s_per_simulated_s[0],
             g.steps[0],
             g.wall_s_per_simulated_s[1],
             g.steps[1],
-            g.wall_s_per_simulated_s[2]
+            g.wall_s_per_simulated_s[2],
+            markers(g.wall_s_per_simulated_s.get(3).copied())
         )),
         b.machine
     ));

@@ -26,6 +26,15 @@ fn rk3_fluid_scene_resumes_exactly() {
     writes_its_outputs_and_resumes_exactly("fluid_run_rk3", "1e-2\ntime_scheme = \"rk3\"");
 }
 
+/// The marker forcing keeps no state between steps either.
+#[test]
+fn marker_forcing_scene_resumes_exactly() {
+    writes_its_outputs_and_resumes_exactly(
+        "fluid_run_markers",
+        "1e-2\nforcing = \"markers\"\nforcing_iterations = 3",
+    );
+}
+
 fn writes_its_outputs_and_resumes_exactly(name: &str, viscosity: &str) {
     let dir = temp_dir(name);
     let path = dir.join("scene.toml");
@@ -128,6 +137,34 @@ fn lubrication_roughness_without_a_range_is_refused() {
         assert_eq!(out.status.code(), Some(2), "{err}");
         assert!(
             err.contains("scene.toml:35:") && err.contains(field) && err.contains(reason),
+            "{err}"
+        );
+    }
+}
+
+#[test]
+fn marker_settings_are_checked() {
+    let dir = temp_dir("fluid_bad_forcing");
+    let path = dir.join("scene.toml");
+    for (fluid, field, reason) in [
+        (
+            "1e-3\nforcing_iterations = 3",
+            "fluid.forcing_iterations",
+            "without `forcing = \"markers\"`",
+        ),
+        (
+            "1e-3\nforcing = \"markers\"\nmarker_retraction = 0.7",
+            "fluid.marker_retraction",
+            "in [0, 0.5] cells",
+        ),
+        ("1e-3\nforcing = \"delta\"", "fluid.forcing", "markers"),
+    ] {
+        std::fs::write(&path, scene(0.05, fluid)).unwrap();
+        let out = xper(&["check", path.to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains("scene.toml:3") && err.contains(field) && err.contains(reason),
             "{err}"
         );
     }

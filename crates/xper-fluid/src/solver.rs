@@ -5,6 +5,7 @@ use crate::blocks::{BlockLinks, WholeGrid};
 use crate::boundary::FluidBoundary;
 use crate::grid::MacGrid;
 use crate::immersed::{HydrodynamicForce, ImmersedDisk, ImmersedForcing, InnerMomentum};
+use crate::markers::MarkerForcing;
 use crate::momentum::{predict, predict_stage, PredictorCoefficients, RK3_LARGEST_CFL, RK3_STAGES};
 use crate::projection::{exchange_velocity_and_pressure, Projection, ProjectionInfo};
 use serde::{Deserialize, Serialize};
@@ -12,7 +13,7 @@ use std::time::Instant;
 use xper_math::{Real, Vector, DIM};
 use xper_poisson::{Multigrid, MultigridError, MultigridInfo};
 
-pub use crate::params::{pressure_multigrid, FluidParams, TimeScheme};
+pub use crate::params::{pressure_multigrid, FluidParams, Forcing, TimeScheme};
 
 /// The evolving fluid: velocities, pressure, time. Serialisable for checkpoints.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -176,10 +177,13 @@ pub struct FluidSolver {
     whole: Option<WholeGrid>,
     projection: Projection,
     forcing: ImmersedForcing,
+    markers: MarkerForcing,
     predicted: [Vec<Real>; DIM],
     /// The last Runge-Kutta stage's tendency (empty with Euler).
     tendency: [Vec<Real>; DIM],
     inner: Vec<InnerMomentum>,
+    /// The forces of the Runge-Kutta stages so far, weighted by their lengths.
+    stage_forces: Vec<HydrodynamicForce>,
     /// The step count of the state this solver's last step left, its halos exchanged after
     /// its last change: the next step of that state needs no exchange before it starts.
     halos_current_at: Option<u64>,
@@ -211,12 +215,14 @@ impl FluidSolver {
             whole: None,
             projection: Projection::new(&grid),
             forcing: ImmersedForcing::default(),
+            markers: MarkerForcing::default(),
             predicted: grid.zero_velocity(),
             tendency: match params.time_scheme {
                 TimeScheme::Euler => [Vec::new(), Vec::new()],
                 TimeScheme::Rk3 => grid.zero_velocity(),
             },
             inner: Vec::new(),
+            stage_forces: Vec::new(),
             halos_current_at: None,
         })
     }
@@ -336,6 +342,10 @@ impl FluidSolver {
             }
             TimeScheme::Rk3 => {
                 let mut info: Option<ProjectionInfo> = None;
+                // The marker forcing acts at every stage over the stage's length (Uhlmann
+                // 2005), the fraction forcing once, before the last stage's projection
+                // ([`TimeScheme::Rk3`]).
+                let every_stage = matches!(params.forcing, Forcing::Markers(_));
                 report.times[0] = start.elapsed().as_secs_f64();
                 for (k, stage) in RK3_STAGES.into_iter().enumerate() {
                     let t_stage = Instant::now();
@@ -350,16 +360,32 @@ impl FluidSolver {
                         &mut self.predicted,
                     );
                     report.times[0] += t_stage.elapsed().as_secs_f64();
+                    let last = k + 1 == RK3_STAGES.len();
                     let now = self.force_and_project(
                         params,
                         state,
-                        dt,
+                        if every_stage { stage.pressure * dt } else { dt },
                         stage.pressure * dt,
-                        k + 1 == RK3_STAGES.len(),
+                        every_stage || last,
                         disks,
                         links,
                         &mut report,
                     )?;
+                    if every_stage {
+                        // The step's force is the stages' forces weighted by their lengths.
+                        self.stage_forces
+                            .resize(report.forces.len(), Default::default());
+                        for (sum, f) in self.stage_forces.iter_mut().zip(&report.forces) {
+                            if k == 0 {
+                                *sum = HydrodynamicForce::default();
+                            }
+                            sum.force += f.force * stage.pressure;
+                            sum.torque += f.torque * stage.pressure;
+                        }
+                        if last {
+                            report.forces.clone_from(&self.stage_forces);
+                        }
+                    }
                     info = Some(match info {
                         None => now,
                         Some(first) => ProjectionInfo {
@@ -421,8 +447,8 @@ impl FluidSolver {
     }
 
     /// The stages after a predictor wrote `self.predicted`: the outflow values, the direct
-    /// forcing over `dt` when `force` (its integrals into `report.forces`, the step's only
-    /// forcing: with rk3 the last stage's), the halos, and the projection
+    /// forcing over `dt` when `force` (its integrals into `report.forces`), the halos, and the
+    /// projection
     /// over `dt_projection`, which leaves the new velocity in `state.velocity`.
     #[allow(clippy::too_many_arguments)]
     fn force_and_project(
@@ -440,15 +466,27 @@ impl FluidSolver {
         let boundary = &params.boundary;
         boundary.extrapolate_outflow(&grid, &mut self.predicted);
         let t_forcing = Instant::now();
-        if force {
-            self.forcing.apply(
+        match (force, &params.forcing) {
+            (false, _) => {}
+            (true, Forcing::Fraction) => self.forcing.apply(
                 &grid,
                 disks,
                 params.density,
                 dt,
                 &mut self.predicted,
                 &mut report.forces,
-            );
+            ),
+            (true, Forcing::Markers(markers)) => self.markers.apply(
+                &grid,
+                boundary,
+                disks,
+                markers,
+                params.density,
+                dt,
+                &mut self.predicted,
+                &mut report.forces,
+                links,
+            ),
         }
         let [u0, u1] = &mut self.predicted;
         links.exchange_halo(&grid, &mut [u0.as_mut_slice(), u1.as_mut_slice()]);

@@ -3,7 +3,10 @@
 
 use crate::read::{choose, ensure, int_in, Ctx, Got, Tbl};
 use crate::shared::Built;
-use crate::types::{BodyDesc, FluidDesc, FluidSideDesc, Lubrication, ShapeDesc, TimeScheme};
+use crate::types::{
+    BodyDesc, FluidDesc, FluidSideDesc, Forcing, Lubrication, MarkerForcingParams, ShapeDesc,
+    TimeScheme,
+};
 
 const FLUID_KEYS: &[&str] = &[
     "density",
@@ -21,6 +24,9 @@ const FLUID_KEYS: &[&str] = &[
     "time_scheme",
     "lubrication_range",
     "lubrication_roughness",
+    "forcing",
+    "forcing_iterations",
+    "marker_retraction",
     "boundary",
 ];
 
@@ -86,6 +92,7 @@ pub(crate) fn fluid(ctx: &mut Ctx, root: &Tbl, built: &Built) -> Option<Option<F
         ),
     };
     let lubrication = lubrication(ctx, &t);
+    let forcing = forcing(ctx, &t);
     let pressure_max_cycles = match t.int(ctx, "pressure_max_cycles") {
         Got::Absent => Some(50),
         g => int_in(ctx, g.ok(), &t.field("pressure_max_cycles"), 1, 10_000).map(|v| v as u32),
@@ -113,6 +120,7 @@ pub(crate) fn fluid(ctx: &mut Ctx, root: &Tbl, built: &Built) -> Option<Option<F
         pressure_max_cycles: pressure_max_cycles?,
         time_scheme: time_scheme?,
         lubrication: lubrication?,
+        forcing: forcing?,
         boundary: boundary?,
     }))
 }
@@ -155,6 +163,60 @@ fn lubrication(ctx: &mut Ctx, t: &Tbl) -> Option<Option<Lubrication>> {
             roughness: roughness?,
         })),
     }
+}
+
+/// `forcing` (`"fraction"`, the default, or `"markers"`), with `forcing_iterations` (1 to 100,
+/// default 2) and `marker_retraction` (cells, in [0, 1/2], default 0.3) only with markers.
+fn forcing(ctx: &mut Ctx, t: &Tbl) -> Option<Forcing> {
+    let markers = match t.string(ctx, "forcing") {
+        Got::Absent => Some(false),
+        g => choose(
+            ctx,
+            g.ok(),
+            &t.field("forcing"),
+            "forcing",
+            &[("fraction", false), ("markers", true)],
+        ),
+    };
+    let defaults = MarkerForcingParams::default();
+    let only_with_markers = |ctx: &mut Ctx, key: &str| match (markers, t.get(key)) {
+        (Some(false), Some(n)) => {
+            ctx.err(
+                n.pos,
+                &t.field(key),
+                "given without `forcing = \"markers\"`, the only forcing it tunes",
+            );
+            false
+        }
+        _ => true,
+    };
+    let iterations_allowed = only_with_markers(ctx, "forcing_iterations");
+    let retraction_allowed = only_with_markers(ctx, "marker_retraction");
+    let iterations = match t.int(ctx, "forcing_iterations") {
+        Got::Absent => Some(defaults.iterations),
+        g => int_in(ctx, g.ok(), &t.field("forcing_iterations"), 1, 100).map(|v| v as u32),
+    };
+    let retraction = match t.num(ctx, "marker_retraction") {
+        Got::Absent => Some(defaults.retraction),
+        g => ensure(
+            ctx,
+            g.ok(),
+            &t.field("marker_retraction"),
+            |v| (0.0..=0.5).contains(&v),
+            "in [0, 0.5] cells",
+        ),
+    };
+    if !(iterations_allowed && retraction_allowed) {
+        return None;
+    }
+    Some(if markers? {
+        Forcing::Markers(MarkerForcingParams {
+            iterations: iterations?,
+            retraction: retraction?,
+        })
+    } else {
+        Forcing::Fraction
+    })
 }
 
 /// `domain = [[x0, y0], [x1, y1]]` with `x1 > x0`, `y1 > y0`.

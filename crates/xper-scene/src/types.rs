@@ -64,6 +64,9 @@ pub use xper_solver::{Acceleration, CheckPass};
 pub use xper_fluid::Lubrication;
 /// The fluid's time integration (`[fluid] time_scheme`), the solver's own type.
 pub use xper_fluid::TimeScheme;
+/// The fluid's direct forcing (`[fluid] forcing`, `forcing_iterations`, `marker_retraction`),
+/// the solver's own types.
+pub use xper_fluid::{Forcing, MarkerForcingParams};
 /// The configuration each step detects its contacts on (`[scene] detection`: `"begin"` or
 /// `"predicted"`): the stepper's own type.
 pub use xper_nscd::Detection;
@@ -239,6 +242,8 @@ pub struct FluidDesc {
     pub time_scheme: TimeScheme,
     /// The lubrication correction, when `lubrication_range` is given.
     pub lubrication: Option<Lubrication>,
+    /// The direct forcing (`"fraction"`, the default, or `"markers"`).
+    pub forcing: Forcing,
     /// Conditions on the left, right, bottom and top sides.
     pub boundary: [FluidSideDesc; 4],
 }

@@ -60,9 +60,16 @@ fn check_rigid(scene: &Scene, path: &Path) {
             Some(l) => format!("lubrication within {} cell(s)", l.range),
             None => "no lubrication correction".into(),
         };
+        let forcing = match &fluid.forcing {
+            xper_fluid::Forcing::Fraction => "forcing by solid fraction".into(),
+            xper_fluid::Forcing::Markers(m) => format!(
+                "forcing on markers {} cell(s) inside, {} pass(es)",
+                m.retraction, m.iterations
+            ),
+        };
         println!(
             "fluid: {} x {} cells of {} m, density {} kg/m^3, viscosity {} Pa s, {scheme}, \
-             {lubrication}; runs to t = {} s",
+             {forcing}, {lubrication}; runs to t = {} s",
             grid.nx,
             grid.ny,
             grid.h,

@@ -39,6 +39,7 @@ pub fn fluid_params(desc: &FluidDesc, dt: Real) -> FluidParams {
         pressure_max_cycles: desc.pressure_max_cycles,
         time_scheme: desc.time_scheme,
         lubrication: desc.lubrication,
+        forcing: desc.forcing,
         ..FluidParams::new(
             desc.density,
             desc.viscosity,

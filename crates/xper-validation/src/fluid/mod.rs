@@ -17,7 +17,9 @@ use xper_math::{Real, Vector};
 
 pub use crate::Case;
 pub use grains::{landing_with_lubrication, resting_grain, settling_convergence, settling_in_time};
-pub use published::{dkt_measures, drafting_kissing_tumbling, single_disk_settling, DktMeasures};
+pub use published::{
+    dkt_measures, drafting_kissing_tumbling, single_disk_settling, DktMeasures, Options,
+};
 pub use time_order::{taylor_green_in_time, taylor_green_time_errors};
 
 mod grains;

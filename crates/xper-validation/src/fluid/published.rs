@@ -25,7 +25,7 @@
 
 use super::grains::disks_in_box;
 use crate::Case;
-use xper_fluid::{CoupledStepper, FluidParams, TimeScheme};
+use xper_fluid::{CoupledStepper, FluidParams, Forcing, TimeScheme};
 use xper_math::{Real, Vector};
 
 /// Gravity (m/s^2).
@@ -34,6 +34,49 @@ const G: Real = 9.81;
 const D: Real = 2.5e-3;
 /// Channel of both cases: 8 d x 24 d (m).
 const SIZE: [Real; 2] = [8.0 * D, 24.0 * D];
+
+/// The solver options a published case runs with.
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    /// Time integration.
+    pub scheme: TimeScheme,
+    /// Direct forcing.
+    pub forcing: Forcing,
+}
+
+impl Options {
+    /// `scheme` with the fraction forcing (the default).
+    pub fn scheme(scheme: TimeScheme) -> Self {
+        Options {
+            scheme,
+            forcing: Forcing::Fraction,
+        }
+    }
+
+    /// `fluid` with these options.
+    fn apply(&self, fluid: FluidParams) -> FluidParams {
+        FluidParams {
+            time_scheme: self.scheme,
+            forcing: self.forcing,
+            ..fluid
+        }
+    }
+}
+
+impl std::fmt::Display for Options {
+    /// `Euler`, `Rk3`, followed by the marker forcing's settings when it is used.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{:?}", self.scheme)?;
+        match self.forcing {
+            Forcing::Fraction => Ok(()),
+            Forcing::Markers(m) => write!(
+                f,
+                ", marker forcing ({} passes, markers {} cells inside)",
+                m.iterations, m.retraction
+            ),
+        }
+    }
+}
 
 /// The settling-velocity scale `sqrt(pi d / 2 (ratio - 1) g)` (m/s).
 fn velocity_scale(ratio: Real) -> Real {
@@ -70,7 +113,7 @@ fn observed_order(cells: &[usize], f: &[Real]) -> Real {
 
 /// Largest fall speed (m/s) of the single disk before 0.6 s (before the floor slows it: Koblitz
 /// et al.'s plateau lasts to about 0.66 s), on `cells` per diameter.
-fn single_disk_speed(cells: usize, scheme: TimeScheme) -> Result<Real, String> {
+fn single_disk_speed(cells: usize, options: Options) -> Result<Real, String> {
     let (fluid, mut state) = disks_in_box(
         D,
         1.25,
@@ -80,10 +123,7 @@ fn single_disk_speed(cells: usize, scheme: TimeScheme) -> Result<Real, String> {
         cells,
         0.5,
     )?;
-    let fluid = FluidParams {
-        time_scheme: scheme,
-        ..fluid
-    };
+    let fluid = options.apply(fluid);
     let mut stepper = CoupledStepper::new(&fluid, &state).map_err(|e| e.to_string())?;
     let mut fastest: Real = 0.0;
     while state.world.time < 0.6 {
@@ -97,18 +137,18 @@ fn single_disk_speed(cells: usize, scheme: TimeScheme) -> Result<Real, String> {
 
 /// The terminal Reynolds number of the single disk on each of `cells` per diameter (the
 /// observed order with three) against Koblitz et al.'s 14.0, tolerance 3 % on the last grid.
-pub fn single_disk_settling(cells: &[usize], scheme: TimeScheme) -> Result<Case, String> {
+pub fn single_disk_settling(cells: &[usize], options: Options) -> Result<Case, String> {
     let nu = 1e-5;
     let reference = 0.570 * velocity_scale(1.25) * D / nu;
     let re: Vec<Real> = cells
         .iter()
-        .map(|&c| single_disk_speed(c, scheme).map(|v| v * D / nu))
+        .map(|&c| single_disk_speed(c, options).map(|v| v * D / nu))
         .collect::<Result<_, _>>()?;
     let finest = *re.last().ok_or("no grid")?;
     Ok(Case {
         name: format!(
             "single disk settling in a channel (rho_s/rho_f 1.25, 8 d x 24 d), terminal Reynolds \
-             number, {} cells per diameter, {scheme:?}",
+             number, {} cells per diameter, {options}",
             list(cells)
         ),
         reference: format!(
@@ -168,7 +208,7 @@ pub struct DktMeasures {
 }
 
 /// Runs Uhlmann's drafting-kissing-tumbling case to 17 t_ref on `cells` per diameter.
-pub fn dkt_measures(cells: usize, scheme: TimeScheme) -> Result<DktMeasures, String> {
+pub fn dkt_measures(cells: usize, options: Options) -> Result<DktMeasures, String> {
     let ratio = 1.5;
     let (u_ref, offset) = (velocity_scale(ratio), D / 250.0);
     let t_ref = D / u_ref;
@@ -178,10 +218,7 @@ pub fn dkt_measures(cells: usize, scheme: TimeScheme) -> Result<DktMeasures, Str
     ];
     // Frictionless between the disks, as the published short-range repulsion.
     let (fluid, mut state) = disks_in_box(D, ratio, 1e-3, SIZE, &centres, cells, 0.0)?;
-    let fluid = FluidParams {
-        time_scheme: scheme,
-        ..fluid
-    };
+    let fluid = options.apply(fluid);
     let mut stepper = CoupledStepper::new(&fluid, &state).map_err(|e| e.to_string())?;
     let mut m = DktMeasures {
         kiss: Real::NAN,
@@ -216,10 +253,10 @@ pub fn dkt_measures(cells: usize, scheme: TimeScheme) -> Result<DktMeasures, Str
 /// The measures of [`dkt_measures`] on each of `cells` per diameter (the observed order with
 /// three) against Uhlmann (2005) and Koblitz et al. (2017): each within 5 % of the nearer
 /// published value on the last grid. A swap that has not happened by 17 t_ref fails.
-pub fn drafting_kissing_tumbling(cells: &[usize], scheme: TimeScheme) -> Result<Vec<Case>, String> {
+pub fn drafting_kissing_tumbling(cells: &[usize], options: Options) -> Result<Vec<Case>, String> {
     let runs: Vec<DktMeasures> = cells
         .iter()
-        .map(|&c| dkt_measures(c, scheme))
+        .map(|&c| dkt_measures(c, options))
         .collect::<Result<_, _>>()?;
     type Pick = fn(&DktMeasures) -> Real;
     let rows: [(&str, Pick, [Real; 2]); 6] = [
@@ -263,7 +300,7 @@ pub fn drafting_kissing_tumbling(cells: &[usize], scheme: TimeScheme) -> Result<
             Case {
                 name: format!(
                     "drafting, kissing, tumbling (Uhlmann 2005, rho_s/rho_f 1.5): {what}, {} cells \
-                     per diameter, {scheme:?}",
+                     per diameter, {options}",
                     list(cells)
                 ),
                 reference: format!(
