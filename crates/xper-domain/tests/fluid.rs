@@ -554,6 +554,39 @@ fn a_recut_moves_the_rows_to_their_new_owners_exactly() {
     }
 }
 
+/// Runs `case(pressure tolerance, option on)` for 40 steps serially with the option at 1e-5
+/// (the reference) and 1e-7 (the reference's own error), without it, and on 2 and 3
+/// processes, asserting that those agree with the reference within ten times its error.
+/// Returns the reference, the run without the option and the reference's grain error (m).
+fn option_on_blocks(
+    case: &dyn Fn(f64, bool) -> (FluidParams, CoupledState),
+) -> (CoupledState, CoupledState, f64) {
+    let steps = 40;
+    let (params, start) = case(1e-5, true);
+    let reference = serial(&params, start.clone(), steps);
+    let (tight, tight_start) = case(1e-7, true);
+    let tight = serial(&tight, tight_start, steps);
+    let (grain_error, fluid_error) = (
+        grain_difference(&reference, &tight),
+        velocity_difference(&reference, &tight),
+    );
+    let (off, off_start) = case(1e-5, false);
+    let off = serial(&off, off_start, steps);
+    for ranks in [2, 3] {
+        let (whole, _) = distributed(&params, &start, ranks, steps);
+        let (grains, fluid) = (
+            grain_difference(&whole, &reference),
+            velocity_difference(&whole, &reference),
+        );
+        assert!(
+            grains <= 10.0 * grain_error.max(1e-15) && fluid <= 10.0 * fluid_error,
+            "{ranks} processes: grains {grains:e} m (serial error {grain_error:e}), fluid \
+             {fluid:e} m/s (serial error {fluid_error:e})"
+        );
+    }
+    (reference, off, grain_error.max(1e-15))
+}
+
 /// Two grains half a cell apart across the cut between two blocks (row 160 of 320), one
 /// falling onto the other, stepped by the Runge-Kutta scheme with the lubrication correction:
 /// on 2 and 3 processes the grains and the fluid agree with the serial run within ten times
@@ -583,40 +616,19 @@ fn rk3_with_lubrication_on_blocks_agrees_with_the_serial_run() {
         state.world.bodies.velocity[1] = Vector::new(0.0, -0.05);
         (params, state)
     };
-    let steps = 40;
-    let (params, start) = case(1e-5, true);
-    let reference = serial(&params, start.clone(), steps);
-    let (tight, tight_start) = case(1e-7, true);
-    let tight = serial(&tight, tight_start, steps);
-    let (grain_error, fluid_error) = (
-        grain_difference(&reference, &tight),
-        velocity_difference(&reference, &tight),
-    );
-    let (dry, dry_start) = case(1e-5, false);
-    let dry = serial(&dry, dry_start, steps);
+    let (reference, dry, grain_error) = option_on_blocks(&case);
     let pushed = dry.world.bodies.position[0].y - reference.world.bodies.position[0].y;
     assert!(
-        pushed > 100.0 * grain_error.max(1e-15),
+        pushed > 100.0 * grain_error,
         "the correction does not act: {pushed:e} m"
     );
-    for ranks in [2, 3] {
-        let (whole, _) = distributed(&params, &start, ranks, steps);
-        let (grains, fluid) = (
-            grain_difference(&whole, &reference),
-            velocity_difference(&whole, &reference),
-        );
-        assert!(
-            grains <= 10.0 * grain_error.max(1e-15) && fluid <= 10.0 * fluid_error,
-            "{ranks} processes: grains {grains:e} m (serial error {grain_error:e}), fluid \
-             {fluid:e} m/s (serial error {fluid_error:e})"
-        );
-    }
 }
 
-/// The marker forcing on blocks: a grain whose markers' kernels straddle the cut between two
-/// blocks (row 160 of 320) falls towards a second one; on 2 and 3 processes the grains and
-/// the fluid agree with the serial run within ten times the serial run's own
-/// pressure-tolerance error, and the run differs from the fraction forcing's (the option acts).
+/// The marker forcing on blocks, at every stage of the Runge-Kutta scheme: a grain whose
+/// markers' kernels straddle the cut between two blocks (row 160 of 320) falls towards a
+/// second one; on 2 and 3 processes the grains and the fluid agree with the serial run within
+/// ten times the serial run's own pressure-tolerance error, and the run differs from the
+/// fraction forcing's (the option acts).
 #[test]
 fn marker_forcing_on_blocks_agrees_with_the_serial_run() {
     let case = |tolerance: f64, markers: bool| {
@@ -635,38 +647,17 @@ fn marker_forcing_on_blocks_agrees_with_the_serial_run() {
         ];
         let (mut params, mut state) =
             xper_domain::fixtures::grains_in_a_box(grid, &disks, tolerance);
+        params.time_scheme = xper_fluid::TimeScheme::Rk3;
         if markers {
             params.forcing = xper_fluid::Forcing::Markers(Default::default());
         }
         state.world.bodies.velocity[1] = Vector::new(0.0, -0.05);
         (params, state)
     };
-    let steps = 40;
-    let (params, start) = case(1e-5, true);
-    let reference = serial(&params, start.clone(), steps);
-    let (tight, tight_start) = case(1e-7, true);
-    let tight = serial(&tight, tight_start, steps);
-    let (grain_error, fluid_error) = (
-        grain_difference(&reference, &tight),
-        velocity_difference(&reference, &tight),
-    );
-    let (fraction, fraction_start) = case(1e-5, false);
-    let fraction = serial(&fraction, fraction_start, steps);
+    let (reference, fraction, grain_error) = option_on_blocks(&case);
     let changed = grain_difference(&fraction, &reference);
     assert!(
-        changed > 100.0 * grain_error.max(1e-15),
+        changed > 100.0 * grain_error,
         "the marker forcing changes nothing: {changed:e} m"
     );
-    for ranks in [2, 3] {
-        let (whole, _) = distributed(&params, &start, ranks, steps);
-        let (grains, fluid) = (
-            grain_difference(&whole, &reference),
-            velocity_difference(&whole, &reference),
-        );
-        assert!(
-            grains <= 10.0 * grain_error.max(1e-15) && fluid <= 10.0 * fluid_error,
-            "{ranks} processes: grains {grains:e} m (serial error {grain_error:e}), fluid \
-             {fluid:e} m/s (serial error {fluid_error:e})"
-        );
-    }
 }

@@ -272,6 +272,33 @@ mod tests {
         }
     }
 
+    const DENSITY: Real = 1000.0;
+
+    /// One forcing of `u` on a whole closed box: the forcing (for its slip) and the forces.
+    fn force(
+        grid: &MacGrid,
+        disks: &[ImmersedDisk],
+        params: MarkerForcingParams,
+        dt: Real,
+        u: &mut [Vec<Real>; DIM],
+    ) -> (MarkerForcing, Vec<HydrodynamicForce>) {
+        let mut forcing = MarkerForcing::default();
+        let mut forces = Vec::new();
+        let boundary = FluidBoundary::closed_box();
+        forcing.apply(
+            grid,
+            &boundary,
+            disks,
+            &params,
+            DENSITY,
+            dt,
+            u,
+            &mut forces,
+            &mut whole(grid),
+        );
+        (forcing, forces)
+    }
+
     /// Roma et al.'s kernel is a partition of unity with zero first moment and sum of squares
     /// 1/2 wherever the marker stands (the conditions it was built from).
     #[test]
@@ -314,23 +341,8 @@ mod tests {
         let v = Vector::new(0.3, -0.7);
         let mut u = uniform(&grid, v);
         let before = u.clone();
-        let mut forcing = MarkerForcing::default();
-        let mut forces = Vec::new();
         let disks = [disk(&grid, v, 0.0)];
-        let params = MarkerForcingParams::default();
-        let boundary = FluidBoundary::closed_box();
-        let mut links = whole(&grid);
-        forcing.apply(
-            &grid,
-            &boundary,
-            &disks,
-            &params,
-            1000.0,
-            1e-3,
-            &mut u,
-            &mut forces,
-            &mut links,
-        );
+        let (_, forces) = force(&grid, &disks, MarkerForcingParams::default(), 1e-3, &mut u);
         for d in 0..DIM {
             let change = u[d]
                 .iter()
@@ -349,29 +361,15 @@ mod tests {
         let grid = MacGrid::square(32, 1.0);
         let flow = Vector::new(1.0, 0.0);
         let disks = [disk(&grid, Vector::zeros(), 0.0)];
-        let boundary = FluidBoundary::closed_box();
-        let (density, dt) = (1000.0, 1e-3);
+        let (density, dt) = (DENSITY, 1e-3);
         let mut slips = Vec::new();
         for iterations in 1..=6 {
             let mut u = uniform(&grid, flow);
-            let mut forcing = MarkerForcing::default();
-            let mut forces = Vec::new();
             let params = MarkerForcingParams {
                 iterations,
                 retraction: 0.3,
             };
-            let mut links = whole(&grid);
-            forcing.apply(
-                &grid,
-                &boundary,
-                &disks,
-                &params,
-                density,
-                dt,
-                &mut u,
-                &mut forces,
-                &mut links,
-            );
+            let (forcing, forces) = force(&grid, &disks, params, dt, &mut u);
             slips.push(forcing.last_slip(&disks));
             let mut momentum = Vector::zeros();
             for d in 0..DIM {

@@ -73,8 +73,8 @@ pub fn fluid_section(md: &mut String, full: bool) -> Result<usize, RunError> {
          passes of multi-direct forcing, as Breugem 2012) settles the single disk within 0.2 % of Koblitz et al.'s speed on every grid \
          (row below); the fraction forcing is 2.2 % fast on 16 cells per diameter and converges to it from above. With markers on the \
          surface (no retraction) the disk is slow: 13.722, 13.803, 13.831 (order 2.17), the grain acting about a third of a cell larger. \
-         On Uhlmann's two disks with rk3 the marker forcing acts at every stage (as Uhlmann's): its rows below match both \
-         published runs within 2.4 % on 24 and 32 cells per diameter, tumbling included, where the fraction forcing has not \
+         On Uhlmann's two disks with rk3 the marker forcing acts at every stage (as Uhlmann's): its rows below are within \
+         2.4 % of the nearer published run on 24 and 32 cells per diameter, tumbling included, where the fraction forcing has not \
          tumbled by 17 t_ref on 24. Forced only before rk3's last stage, the markers left the fluid free during the first two \
          stages and the pair drafted too slowly (trailing peak 1.305, 1.288, 1.278 u_ref on 16, 24, 32) and never tumbled; \
          the fraction forcing applied at every stage blows up (both published cases, 16 cells per diameter). \
