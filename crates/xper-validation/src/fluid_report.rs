@@ -6,7 +6,7 @@ use crate::fluid::{self as validation, resting_grain, settling_convergence};
 use crate::Case;
 use crate::RunError;
 use std::path::Path;
-use xper_fluid::TimeScheme;
+use xper_fluid::{Forcing, TimeScheme};
 
 /// Appends the fluid table to `md`; returns the number of failed cases.
 pub fn fluid_section(md: &mut String, full: bool) -> Result<usize, RunError> {
@@ -23,10 +23,15 @@ pub fn fluid_section(md: &mut String, full: bool) -> Result<usize, RunError> {
         // Re 1000 needs 128^2 in any case (about 3 minutes; Ghia used 129^2).
         cases.extend(validation::lid_driven_cavity(1000, 128, refs, 0.02).map_err(run)?);
     }
-    cases.push(validation::schaefer_turek(0.0025, if full { 6.0 } else { 3.0 }).map_err(run)?);
+    cases.push(
+        validation::schaefer_turek(0.0025, if full { 6.0 } else { 3.0 }, Forcing::Fraction)
+            .map_err(run)?,
+    );
     if full {
-        cases.push(validation::schaefer_turek(0.00125, 3.0).map_err(run)?);
+        cases.push(validation::schaefer_turek(0.00125, 3.0, Forcing::Fraction).map_err(run)?);
     }
+    let marker_forcing = Forcing::Markers(Default::default());
+    cases.push(validation::schaefer_turek(0.0025, 3.0, marker_forcing).map_err(run)?);
     cases.push(resting_grain().map_err(run)?);
     cases.push(settling_convergence(8).map_err(run)?);
     cases.extend(validation::settling_in_time(if full { 16 } else { 8 }).map_err(run)?);
@@ -56,9 +61,11 @@ pub fn fluid_section(md: &mut String, full: bool) -> Result<usize, RunError> {
          relative residual of 1e-8, direct forcing with the smoothed solid fraction (BRIEF.md section 4). \
          {} The same cases at reduced resolution are asserted by `cargo test -p xper-validation`. Ghia's \
          values are compared at their 17 points per line by linear interpolation between faces. \
-         The Schaefer-Turek drag at 20 cells per diameter is 6.06 (8.6 % high: the smoothed \
-         interface thickens the body by about half a cell), at 40 cells per diameter 5.495 (1.5 % low), \
-         at 80 cells per diameter (`--full`) 5.540 (0.7 % low).\n\n\
+         The Schaefer-Turek drag with the fraction forcing is 5.406 at 20 cells per diameter (3.1 % low), 5.495 at 40 \
+         (1.5 % low), 5.540 at 80 (`--full`, 0.7 % low); with the marker forcing 5.639 at 20 (1.1 % high) and 5.611 at \
+         40 (0.6 % high, row below). The runs end on a whole step: a step's force counts the slip the previous \
+         projection left on the cylinder over the step's length, and an earlier 6.06 at 20 cells per diameter came \
+         from a last step cut short to land on t = 3 s.\n\n\
          Published immersed-grain runs (`xper_validation::fluid::published`): the single disk of Glowinski et al. \
          (2001) as rerun by Koblitz et al. (2017), and the two-dimensional drafting, kissing and tumbling of \
          Uhlmann (2005), also rerun by Koblitz et al.; their curves as digitised in A. Ghigo's Basilisk sandbox. \

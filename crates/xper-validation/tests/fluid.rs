@@ -52,7 +52,7 @@ fn settling_velocity_converges_under_refinement() {
 /// diameter give 6.06, outside the 3 % band (see VALIDATION.md).
 #[test]
 fn schaefer_turek_drag_within_three_percent() {
-    check(validation::schaefer_turek(0.0025, 3.0).unwrap());
+    check(validation::schaefer_turek(0.0025, 3.0, xper_fluid::Forcing::Fraction).unwrap());
 }
 
 /// Explicit Euler is first order in time and the Runge-Kutta scheme at least second order, on
