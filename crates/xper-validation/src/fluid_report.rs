@@ -62,8 +62,8 @@ pub fn fluid_section(md: &mut String, full: bool) -> Result<usize, RunError> {
          {} The same cases at reduced resolution are asserted by `cargo test -p xper-validation`. Ghia's \
          values are compared at their 17 points per line by linear interpolation between faces. \
          The Schaefer-Turek drag with the fraction forcing is 5.406 at 20 cells per diameter (3.1 % low), 5.495 at 40 \
-         (1.5 % low), 5.540 at 80 (`--full`, 0.7 % low); with the marker forcing 5.639 at 20 (1.1 % high) and 5.611 at \
-         40 (0.6 % high, row below). The runs end on a whole step: a step's force counts the slip the previous \
+         (1.5 % low), 5.540 at 80 (`--full`, 0.7 % low); with the marker forcing 5.639 at 20 (1.1 % high), 5.611 at \
+         40 (0.6 % high, row below) and 5.597 at 80 (0.3 % high); both first order, both extrapolating into the benchmark's interval (5.586 and 5.583). The runs end on a whole step: a step's force counts the slip the previous \
          projection left on the cylinder over the step's length, and an earlier 6.06 at 20 cells per diameter came \
          from a last step cut short to land on t = 3 s.\n\n\
          Published immersed-grain runs (`xper_validation::fluid::published`): the single disk of Glowinski et al. \
