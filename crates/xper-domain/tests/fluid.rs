@@ -554,6 +554,16 @@ fn a_recut_moves_the_rows_to_their_new_owners_exactly() {
     }
 }
 
+/// 32 x 320 cells of 8 per diameter, cut between rows 159 and 160 on two blocks.
+fn tall_grid() -> MacGrid {
+    MacGrid {
+        nx: 32,
+        ny: 320,
+        h: DIAMETER / 8.0,
+        origin: Vector::zeros(),
+    }
+}
+
 /// Runs `case(pressure tolerance, option on)` for 40 steps serially with the option at 1e-5
 /// (the reference) and 1e-7 (the reference's own error), without it, and on 2 and 3
 /// processes, asserting that those agree with the reference within ten times its error.
@@ -595,12 +605,7 @@ fn option_on_blocks(
 #[test]
 fn rk3_with_lubrication_on_blocks_agrees_with_the_serial_run() {
     let case = |tolerance: f64, lubrication: bool| {
-        let grid = MacGrid {
-            nx: 32,
-            ny: 320,
-            h: DIAMETER / 8.0,
-            origin: Vector::zeros(),
-        };
+        let grid = tall_grid();
         let gap = 0.5 * grid.h;
         let disks = [
             (DIAMETER / 2.0, Vector::new(2.0 * DIAMETER, 20.0 * DIAMETER)),
@@ -632,12 +637,7 @@ fn rk3_with_lubrication_on_blocks_agrees_with_the_serial_run() {
 #[test]
 fn marker_forcing_on_blocks_agrees_with_the_serial_run() {
     let case = |tolerance: f64, markers: bool| {
-        let grid = MacGrid {
-            nx: 32,
-            ny: 320,
-            h: DIAMETER / 8.0,
-            origin: Vector::zeros(),
-        };
+        let grid = tall_grid();
         let disks = [
             (DIAMETER / 2.0, Vector::new(2.0 * DIAMETER, 18.8 * DIAMETER)),
             (

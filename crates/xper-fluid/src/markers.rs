@@ -109,9 +109,10 @@ pub struct MarkerForcing {
 }
 
 impl MarkerForcing {
-    /// Places the markers of `disks` and finds their kernels on the faces of `grid` the
-    /// predictor updates.
-    fn place(
+    /// Places the markers of `disks`, `retraction` cells inside their surfaces, and finds
+    /// their kernels on the faces of `grid` the predictor updates: once per step, before
+    /// [`MarkerForcing::apply`] (which rk3 calls at every stage).
+    pub fn place(
         &mut self,
         grid: &MacGrid,
         boundary: &FluidBoundary,
@@ -183,17 +184,17 @@ impl MarkerForcing {
         }
     }
 
-    /// Forces `u` (after the predictor) towards the rigid velocities of `disks` over a step
-    /// `dt` and returns in `forces` minus what the fluid received on this block's faces (the
-    /// caller sums it over the blocks). The shares of the marker velocities are summed over
-    /// the blocks through `links`.
+    /// Forces `u` (after the predictor) towards the rigid velocities of `disks` (placed by
+    /// [`MarkerForcing::place`]) in `iterations` passes over a step `dt` and returns in
+    /// `forces` minus what the fluid received on this block's faces (the caller sums it over
+    /// the blocks). The shares of the marker velocities are summed over the blocks through
+    /// `links`.
     #[allow(clippy::too_many_arguments)]
     pub fn apply(
         &mut self,
         grid: &MacGrid,
-        boundary: &FluidBoundary,
         disks: &[ImmersedDisk],
-        params: &MarkerForcingParams,
+        iterations: u32,
         density: Real,
         dt: Real,
         u: &mut [Vec<Real>; DIM],
@@ -202,9 +203,8 @@ impl MarkerForcing {
     ) {
         forces.clear();
         forces.resize(disks.len(), HydrodynamicForce::default());
-        self.place(grid, boundary, disks, params.retraction);
         let cell = grid.h * grid.h;
-        for _ in 0..params.iterations {
+        for _ in 0..iterations {
             self.interpolated.clear();
             self.interpolated.resize(DIM * self.markers.len(), 0.0);
             for (d, ud) in u.iter().enumerate() {
@@ -284,12 +284,11 @@ mod tests {
     ) -> (MarkerForcing, Vec<HydrodynamicForce>) {
         let mut forcing = MarkerForcing::default();
         let mut forces = Vec::new();
-        let boundary = FluidBoundary::closed_box();
+        forcing.place(grid, &FluidBoundary::closed_box(), disks, params.retraction);
         forcing.apply(
             grid,
-            &boundary,
             disks,
-            &params,
+            params.iterations,
             DENSITY,
             dt,
             u,

@@ -305,6 +305,10 @@ impl FluidSolver {
             exchange_velocity_and_pressure(links, &grid, &mut state.velocity, &mut state.pressure);
         }
         self.forcing.mark(&grid, boundary, disks, params.indicator);
+        if let Forcing::Markers(markers) = &params.forcing {
+            self.markers
+                .place(&grid, boundary, disks, markers.retraction);
+        }
         if state.inner.len() != disks.len() {
             self.forcing.inner_momentum(
                 &grid,
@@ -373,12 +377,11 @@ impl FluidSolver {
                     )?;
                     if every_stage {
                         // The step's force is the stages' forces weighted by their lengths.
-                        self.stage_forces
-                            .resize(report.forces.len(), Default::default());
+                        if k == 0 {
+                            self.stage_forces.clear();
+                            self.stage_forces.resize(disks.len(), Default::default());
+                        }
                         for (sum, f) in self.stage_forces.iter_mut().zip(&report.forces) {
-                            if k == 0 {
-                                *sum = HydrodynamicForce::default();
-                            }
                             sum.force += f.force * stage.pressure;
                             sum.torque += f.torque * stage.pressure;
                         }
@@ -448,8 +451,7 @@ impl FluidSolver {
 
     /// The stages after a predictor wrote `self.predicted`: the outflow values, the direct
     /// forcing over `dt` when `force` (its integrals into `report.forces`), the halos, and the
-    /// projection
-    /// over `dt_projection`, which leaves the new velocity in `state.velocity`.
+    /// projection over `dt_projection`, which leaves the new velocity in `state.velocity`.
     #[allow(clippy::too_many_arguments)]
     fn force_and_project(
         &mut self,
@@ -478,9 +480,8 @@ impl FluidSolver {
             ),
             (true, Forcing::Markers(markers)) => self.markers.apply(
                 &grid,
-                boundary,
                 disks,
-                markers,
+                markers.iterations,
                 params.density,
                 dt,
                 &mut self.predicted,

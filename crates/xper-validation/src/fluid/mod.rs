@@ -289,8 +289,8 @@ pub fn projection_divergence(n: usize) -> Result<Case, String> {
 /// Drag and lift coefficients of the Schaefer-Turek 2D-1 cylinder (Schaefer and Turek, Notes
 /// Numer. Fluid Mech. 52 (1996) 547): channel `[0, 2.2] x [0, 0.41]` m, cylinder `D = 0.1` m at
 /// `(0.2, 0.2)` as a fixed immersed disk, parabolic inflow `U_max = 0.3` m/s, `nu = 1e-3`
-/// m^2/s, run with cell size `h` (m) by whole steps to `end` (s) under `forcing`; `C = 2 F / (rho U_mean^2 D)`,
-/// `U_mean = 0.2` m/s. Returns `(C_D, C_L)` at the end.
+/// m^2/s, run with cell size `h` (m) by whole steps to `end` (s) under `forcing`;
+/// `C = 2 F / (rho U_mean^2 D)`, `U_mean = 0.2` m/s. Returns `(C_D, C_L)` at the end.
 pub fn schaefer_turek_coefficients(
     h: Real,
     end: Real,
