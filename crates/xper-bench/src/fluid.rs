@@ -26,6 +26,9 @@ pub struct StepFigures {
     pub(crate) cells_per_second: f64,
     pub(crate) mean_pressure_cycles: f64,
     pub(crate) share_projection: f64,
+    /// The forcing, when it is not the default (absent from results saved before this field).
+    #[serde(default)]
+    pub(crate) forcing: Option<String>,
 }
 
 /// Everything `--fluid` measures.
@@ -55,11 +58,19 @@ pub struct FluidBench {
 }
 
 /// Mean of `steps` lid-driven steps on `n x n` cells of a unit box, after 5 warm-up steps,
-/// with `grains` disks of 8 cells diameter on a lattice moving at 0.1 m/s.
-fn time_steps(n: usize, grains: usize, steps: usize) -> Result<StepFigures, RunError> {
+/// with `grains` disks of 8 cells diameter on a lattice moving at 0.1 m/s, forced by `forcing`.
+fn time_steps(
+    n: usize,
+    grains: usize,
+    steps: usize,
+    forcing: Forcing,
+) -> Result<StepFigures, RunError> {
     let boundary = FluidBoundary::lid_driven(1.0);
     let grid = MacGrid::square(n, 1.0);
-    let params = FluidParams::new(1.0, 1e-3, boundary);
+    let params = FluidParams {
+        forcing,
+        ..FluidParams::new(1.0, 1e-3, boundary)
+    };
     let mut solver =
         FluidSolver::new(grid, &params).map_err(|e| RunError::Runtime(e.to_string()))?;
     let mut state = FluidState::at_rest(grid, &params.boundary);
@@ -97,6 +108,7 @@ fn time_steps(n: usize, grains: usize, steps: usize) -> Result<StepFigures, RunE
         cells_per_second: (n * n) as f64 / mean,
         mean_pressure_cycles: cycles / steps as f64,
         share_projection: projection / total,
+        forcing: (forcing != Forcing::default()).then(|| format!("{forcing:?}")),
     })
 }
 
@@ -122,10 +134,18 @@ pub fn bench_fluid(out: &Path, machine: String) -> Result<(), RunError> {
         }
     }
     let mut steps = Vec::new();
-    for (n, grains) in [(512, 0), (512, 300), (1024, 0), (1024, 300), (1024, 1000)] {
-        let figures = time_steps(n, grains, if n == 512 { 40 } else { 15 })?;
+    let (markers, fraction) = (Forcing::default(), Forcing::Fraction);
+    for (n, grains, forcing) in [
+        (512, 0, markers),
+        (512, 300, markers),
+        (1024, 0, markers),
+        (1024, 300, markers),
+        (1024, 1000, markers),
+        (1024, 1000, fraction),
+    ] {
+        let figures = time_steps(n, grains, if n == 512 { 40 } else { 15 }, forcing)?;
         println!(
-            "fluid step {n}^2 with {grains} grains: {:.1} ms, {:.3e} cells/s",
+            "fluid step {n}^2 with {grains} grains, {forcing:?}: {:.1} ms, {:.3e} cells/s",
             figures.mean_step_s * 1e3,
             figures.cells_per_second
         );
@@ -150,8 +170,9 @@ pub fn bench_fluid(out: &Path, machine: String) -> Result<(), RunError> {
         .map_err(|e| RunError::Runtime(e.to_string()))
 }
 
-/// A scene's first seconds under each option: explicit Euler, rk3, Euler with lubrication,
-/// Euler with the marker forcing (the last absent from results saved before it existed).
+/// A scene's first seconds under each option: explicit Euler with the fraction forcing (the
+/// paper's), rk3, Euler with lubrication, Euler with the marker forcing (the default; absent
+/// from results saved before it existed).
 #[derive(Serialize, Deserialize)]
 pub struct OptionTimes {
     pub(crate) scene: String,
@@ -258,16 +279,17 @@ pub fn markdown(b: &FluidBench) -> String {
         ));
     }
     md.push_str(
-        "\nWhole fluid step (predictor, forcing, projection to 1e-8 relative residual), lid-driven box, grains \
+        "\nWhole fluid step (predictor, forcing on markers as by default, projection to 1e-8 relative residual), lid-driven box, grains \
          of 8 cells diameter moving through it. Target >= 1e7 cells/s.\n\n\
-         | grid | grains | mean step (ms) | cells/s | pressure cycles per step | projection share |\n|---|---|---|---|---|---|\n",
+         | grid | grains | forcing | mean step (ms) | cells/s | pressure cycles per step | projection share |\n|---|---|---|---|---|---|---|\n",
     );
     for s in &b.steps {
         md.push_str(&format!(
-            "| {} x {} | {} | {:.1} | {:.2e} | {:.1} | {:.0} % |\n",
+            "| {} x {} | {} | {} | {:.1} | {:.2e} | {:.1} | {:.0} % |\n",
             s.cells[0],
             s.cells[1],
             s.grains,
+            s.forcing.as_deref().unwrap_or("default"),
             s.mean_step_s * 1e3,
             s.cells_per_second,
             s.mean_pressure_cycles,
@@ -276,15 +298,15 @@ pub fn markdown(b: &FluidBench) -> String {
     }
     let markers = |time: Option<f64>| {
         time.map_or(String::new(), |t| {
-            format!("; Euler with the marker forcing (`forcing = \"markers\"`) {t:.1} s")
+            format!("; Euler with the marker forcing (the default since 2026-11-27) {t:.1} s")
         })
     };
     md.push_str(&format!(
         "\nTwo-grain sedimentation (`scenes/two_grains_sedimentation`, 64 x 640 cells, 16 per diameter), \
-         the first {:.2} s, the fastest of two runs of each option, alternated: explicit Euler (the default) \
-         {:.1} s of wall time per simulated second ({} steps); `time_scheme = \"rk3\"` {:.1} s ({} steps: \
+         the first {:.2} s, the fastest of two runs of each option, alternated: explicit Euler with the paper's \
+         forcing by solid fraction (`forcing = \"fraction\"`) {:.1} s of wall time per simulated second ({} steps); `time_scheme = \"rk3\"` (fraction forcing) {:.1} s ({} steps: \
          three predictor and pressure solves per step, the step no longer limited by 2 nu / |u|^2); Euler with \
-         the lubrication correction (`lubrication_range = 1`) {:.1} s{}.\n{}\nMachine: {}.\n",
+         the lubrication correction (`lubrication_range = 1`, fraction forcing) {:.1} s{}.\n{}\nMachine: {}.\n",
         b.two_grains_simulated_s,
         b.two_grains_wall_s_per_simulated_s,
         b.two_grains_steps,

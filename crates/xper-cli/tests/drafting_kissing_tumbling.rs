@@ -1,10 +1,11 @@
-//! The shipped two-grain scene, reduced to 8 cells per diameter and 0.5 s, must show the
+//! The shipped two-grain scene, reduced to 8 cells per diameter and 0.7 s, must show the
 //! sequence its README describes: the trailing (upper) grain falls faster than the leading one
 //! (drafting), the gap between them closes until they touch (kissing), and then the pair turns
 //! across the channel (centres more than 1.5 d apart sideways) and their vertical order swaps
 //! (the trailing grain at least 0.2 d below the leading one: tumbling), in that order, well
 //! above the floor. With the scene's 16 cells per diameter the full run comes within 1.01 d at
-//! 0.20 s and swaps at 0.43 s; with 8, at 0.23 s and 0.32 s.
+//! 0.207 s and swaps at 0.607 s; with 8, at 0.239 s and 0.513 s, and is 1.5 d sideways at
+//! 0.544 s (the marker forcing, the default; the paper's fraction forcing swapped at 0.32 s).
 
 mod common;
 use common::{assert_success, run_scene, shipped_scene, temp_dir};
@@ -15,7 +16,7 @@ const D: f64 = 8e-4;
 #[test]
 fn two_grains_draft_kiss_and_tumble() {
     let dir = temp_dir("drafting_kissing_tumbling");
-    let scene = shipped_scene("two_grains_sedimentation", 5000, [5000, 5000], &dir);
+    let scene = shipped_scene("two_grains_sedimentation", 7000, [7000, 7000], &dir);
     let text = std::fs::read_to_string(&scene).unwrap();
     assert!(text.contains("cells_per_diameter = 16"), "{text}");
     std::fs::write(

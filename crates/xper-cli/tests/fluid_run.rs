@@ -26,13 +26,10 @@ fn rk3_fluid_scene_resumes_exactly() {
     writes_its_outputs_and_resumes_exactly("fluid_run_rk3", "1e-2\ntime_scheme = \"rk3\"");
 }
 
-/// The marker forcing keeps no state between steps either.
+/// The fraction forcing (the marker forcing is the default) keeps no state between steps either.
 #[test]
-fn marker_forcing_scene_resumes_exactly() {
-    writes_its_outputs_and_resumes_exactly(
-        "fluid_run_markers",
-        "1e-2\nforcing = \"markers\"\nforcing_iterations = 3",
-    );
+fn fraction_forcing_scene_resumes_exactly() {
+    writes_its_outputs_and_resumes_exactly("fluid_run_fraction", "1e-2\nforcing = \"fraction\"");
 }
 
 fn writes_its_outputs_and_resumes_exactly(name: &str, viscosity: &str) {
@@ -148,12 +145,12 @@ fn marker_settings_are_checked() {
     let path = dir.join("scene.toml");
     for (fluid, field, reason) in [
         (
-            "1e-3\nforcing_iterations = 3",
+            "1e-3\nforcing = \"fraction\"\nforcing_iterations = 3",
             "fluid.forcing_iterations",
-            "without `forcing = \"markers\"`",
+            "with `forcing = \"fraction\"`: it tunes only the marker forcing",
         ),
         (
-            "1e-3\nforcing = \"markers\"\nmarker_retraction = 0.7",
+            "1e-3\nmarker_retraction = 0.7",
             "fluid.marker_retraction",
             "in [0, 0.5] cells",
         ),

@@ -427,7 +427,7 @@ fn a_periodic_vortex_on_blocks_agrees_with_the_serial_run() {
 }
 
 /// Twelve grains 3 times denser than the fluid, at rest around the middle of the two-grain
-/// box (rows 128 to 164 of 320), where the cuts of 2 and 4 blocks lie.
+/// box (rows 126 to 162 of 320), where the cuts of 2 and 4 blocks lie.
 fn falling_cloud(tolerance: f64) -> (FluidParams, CoupledState) {
     let (params, mut state) = two_grains(tolerance);
     let mut bodies = BodySet::new();
@@ -435,7 +435,7 @@ fn falling_cloud(tolerance: f64) -> (FluidParams, CoupledState) {
         let (column, row) = ((k % 3) as f64, (k / 3) as f64);
         let centre = Vector::new(
             (0.8 + 1.2 * column) * DIAMETER,
-            (16.0 + 1.5 * row) * DIAMETER,
+            (15.8 + 1.5 * row) * DIAMETER,
         );
         bodies.insert(Body::disk(DIAMETER / 2.0, 3000.0, centre));
     }
@@ -648,9 +648,11 @@ fn marker_forcing_on_blocks_agrees_with_the_serial_run() {
         let (mut params, mut state) =
             xper_domain::fixtures::grains_in_a_box(grid, &disks, tolerance);
         params.time_scheme = xper_fluid::TimeScheme::Rk3;
-        if markers {
-            params.forcing = xper_fluid::Forcing::Markers(Default::default());
-        }
+        params.forcing = if markers {
+            xper_fluid::Forcing::Markers(Default::default())
+        } else {
+            xper_fluid::Forcing::Fraction
+        };
         state.world.bodies.velocity[1] = Vector::new(0.0, -0.05);
         (params, state)
     };

@@ -7,8 +7,9 @@
 //!
 //! discretised on a staggered Marker-And-Cell grid (Harlow and Welch 1965, [`grid`]) with an
 //! explicit Euler (or three-stage Runge-Kutta) momentum predictor ([`momentum`]), a direct
-//! forcing towards the grains' rigid velocities weighted by their solid fraction `eta`
-//! ([`immersed`], the paper's) or on Lagrangian markers ([`markers`]) and an incremental
+//! forcing towards the grains' rigid velocities on Lagrangian markers ([`markers`], the
+//! default) or weighted by their solid fraction `eta` ([`immersed`], the paper's, written
+//! above) and an incremental
 //! pressure-correction projection whose Poisson equation is solved by geometric multigrid
 //! ([`projection`], `xper_poisson`). [`FluidSolver::step`] runs the stages in that order; the
 //! force of the fluid on each grain comes out of the step for the contact dynamics to use.

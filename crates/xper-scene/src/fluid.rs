@@ -165,17 +165,17 @@ fn lubrication(ctx: &mut Ctx, t: &Tbl) -> Option<Option<Lubrication>> {
     }
 }
 
-/// `forcing` (`"fraction"`, the default, or `"markers"`), with `forcing_iterations` (1 to 100,
+/// `forcing` (`"markers"`, the default, or `"fraction"`), with `forcing_iterations` (1 to 100,
 /// default 2) and `marker_retraction` (cells, in [0, 1/2], default 0.3) only with markers.
 fn forcing(ctx: &mut Ctx, t: &Tbl) -> Option<Forcing> {
     let markers = match t.string(ctx, "forcing") {
-        Got::Absent => Some(false),
+        Got::Absent => Some(true),
         g => choose(
             ctx,
             g.ok(),
             &t.field("forcing"),
             "forcing",
-            &[("fraction", false), ("markers", true)],
+            &[("markers", true), ("fraction", false)],
         ),
     };
     let defaults = MarkerForcingParams::default();
@@ -184,7 +184,7 @@ fn forcing(ctx: &mut Ctx, t: &Tbl) -> Option<Forcing> {
             ctx.err(
                 n.pos,
                 &t.field(key),
-                "given without `forcing = \"markers\"`, the only forcing it tunes",
+                "given with `forcing = \"fraction\"`: it tunes only the marker forcing",
             );
             false
         }

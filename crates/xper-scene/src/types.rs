@@ -242,7 +242,7 @@ pub struct FluidDesc {
     pub time_scheme: TimeScheme,
     /// The lubrication correction, when `lubrication_range` is given.
     pub lubrication: Option<Lubrication>,
-    /// The direct forcing (`"fraction"`, the default, or `"markers"`).
+    /// The direct forcing (`"markers"`, the default, or `"fraction"`).
     pub forcing: Forcing,
     /// Conditions on the left, right, bottom and top sides.
     pub boundary: [FluidSideDesc; 4],

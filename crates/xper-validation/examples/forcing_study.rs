@@ -1,8 +1,9 @@
 //! The published immersed-grain cases under a forcing and a time scheme given on the command
 //! line, for the convergence study of the marker forcing:
-//! `cargo run --release -p xper-validation --example forcing_study -- single markers euler 16 24 32`
+//! `cargo run --release -p xper-validation --example forcing_study -- single markers euler lub 16 24 32`
 //! (case `single` or `dkt`, forcing `fraction` or `markers[:passes[:retraction]]`, scheme
-//! `euler` or `rk3`, then the grids in cells per diameter).
+//! `euler` or `rk3`, lubrication `lub` (one cell) or `nolub`, then the grids in cells per
+//! diameter).
 use xper_fluid::{Forcing, MarkerForcingParams, TimeScheme};
 use xper_validation::fluid::{drafting_kissing_tumbling, single_disk_settling, Options};
 
@@ -15,8 +16,8 @@ fn main() {
 }
 
 fn run(args: &[String]) -> Result<(), String> {
-    let [case, forcing, scheme, grids @ ..] = args else {
-        return Err("usage: CASE FORCING SCHEME GRIDS..".into());
+    let [case, forcing, scheme, lubrication, grids @ ..] = args else {
+        return Err("usage: CASE FORCING SCHEME LUBRICATION GRIDS..".into());
     };
     let forcing = match forcing.split(':').collect::<Vec<_>>().as_slice() {
         ["fraction"] => Forcing::Fraction,
@@ -45,7 +46,16 @@ fn run(args: &[String]) -> Result<(), String> {
         .iter()
         .map(|g| g.parse().map_err(|_| format!("grid: {g}")))
         .collect::<Result<_, _>>()?;
-    let options = Options { scheme, forcing };
+    let lubrication = match lubrication.as_str() {
+        "lub" => Some(xper_fluid::Lubrication::default()),
+        "nolub" => None,
+        _ => return Err(format!("lubrication: {lubrication} (lub or nolub)")),
+    };
+    let options = Options {
+        scheme,
+        forcing,
+        lubrication,
+    };
     let cases = match case.as_str() {
         "single" => vec![single_disk_settling(&grids, options)?],
         "dkt" => drafting_kissing_tumbling(&grids, options)?,

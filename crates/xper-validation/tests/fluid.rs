@@ -82,12 +82,14 @@ fn coupled_step_converges_in_time() {
 fn immersed_grains_match_published_runs_at_16_cells_per_diameter() {
     use xper_fluid::TimeScheme;
     check(
-        validation::single_disk_settling(&[16], validation::Options::scheme(TimeScheme::Euler))
+        validation::single_disk_settling(&[16], validation::Options::fraction(TimeScheme::Euler))
             .unwrap(),
     );
-    let cases =
-        validation::drafting_kissing_tumbling(&[16], validation::Options::scheme(TimeScheme::Rk3))
-            .unwrap();
+    let cases = validation::drafting_kissing_tumbling(
+        &[16],
+        validation::Options::fraction(TimeScheme::Rk3),
+    )
+    .unwrap();
     for k in [0, 4] {
         check(cases[k].clone());
     }
@@ -99,14 +101,11 @@ fn immersed_grains_match_published_runs_at_16_cells_per_diameter() {
 /// and 32 cells per diameter).
 #[test]
 fn marker_forcing_settles_the_single_disk_closer_to_the_published_speed() {
-    use xper_fluid::{Forcing, TimeScheme};
+    use xper_fluid::TimeScheme;
     let fraction =
-        validation::single_disk_settling(&[16], validation::Options::scheme(TimeScheme::Euler))
+        validation::single_disk_settling(&[16], validation::Options::fraction(TimeScheme::Euler))
             .unwrap();
-    let markers = validation::Options {
-        scheme: TimeScheme::Euler,
-        forcing: Forcing::Markers(Default::default()),
-    };
+    let markers = validation::Options::markers(TimeScheme::Euler);
     let markers = validation::single_disk_settling(&[16], markers).unwrap();
     assert!(
         markers.error < 0.5 * fraction.error,
@@ -122,11 +121,8 @@ fn marker_forcing_settles_the_single_disk_closer_to_the_published_speed() {
 /// within 5 % of the nearer published run (measured: at most 2.4 %).
 #[test]
 fn marker_forcing_drafts_kisses_and_tumbles_as_published() {
-    use xper_fluid::{Forcing, TimeScheme};
-    let markers = validation::Options {
-        scheme: TimeScheme::Rk3,
-        forcing: Forcing::Markers(Default::default()),
-    };
+    use xper_fluid::TimeScheme;
+    let markers = validation::Options::markers(TimeScheme::Rk3);
     for case in validation::drafting_kissing_tumbling(&[24], markers).unwrap() {
         check(case);
     }

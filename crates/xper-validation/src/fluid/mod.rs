@@ -16,7 +16,9 @@ use xper_fluid::{FluidBoundary, FluidParams, FluidSolver, FluidState, MacGrid, S
 use xper_math::{Real, Vector};
 
 pub use crate::Case;
-pub use grains::{landing_with_lubrication, resting_grain, settling_convergence, settling_in_time};
+pub use grains::{
+    landing_times, landing_with_lubrication, resting_grain, settling_convergence, settling_in_time,
+};
 pub use published::{
     dkt_measures, drafting_kissing_tumbling, single_disk_settling, DktMeasures, Options,
 };
@@ -343,7 +345,7 @@ pub fn schaefer_turek_coefficients(
 pub fn schaefer_turek(h: Real, end: Real, forcing: xper_fluid::Forcing) -> Result<Case, String> {
     let (drag, lift) = schaefer_turek_coefficients(h, end, forcing)?;
     let with = match forcing {
-        xper_fluid::Forcing::Fraction => "",
+        xper_fluid::Forcing::Fraction => ", fraction forcing",
         xper_fluid::Forcing::Markers(_) => ", marker forcing",
     };
     Ok(Case {

@@ -25,7 +25,7 @@
 
 use super::grains::disks_in_box;
 use crate::Case;
-use xper_fluid::{CoupledStepper, FluidParams, Forcing, TimeScheme};
+use xper_fluid::{CoupledStepper, FluidParams, Forcing, Lubrication, TimeScheme};
 use xper_math::{Real, Vector};
 
 /// Gravity (m/s^2).
@@ -42,14 +42,27 @@ pub struct Options {
     pub scheme: TimeScheme,
     /// Direct forcing.
     pub forcing: Forcing,
+    /// The lubrication correction, if any.
+    pub lubrication: Option<Lubrication>,
 }
 
 impl Options {
-    /// `scheme` with the fraction forcing (the default).
-    pub fn scheme(scheme: TimeScheme) -> Self {
+    /// `scheme` with the paper's fraction forcing and no lubrication correction.
+    pub fn fraction(scheme: TimeScheme) -> Self {
         Options {
             scheme,
             forcing: Forcing::Fraction,
+            lubrication: None,
+        }
+    }
+
+    /// `scheme` with the default forcing (markers, two passes, 0.3 cells inside) and no
+    /// lubrication correction: the defaults of [`FluidParams::new`].
+    pub fn markers(scheme: TimeScheme) -> Self {
+        Options {
+            scheme,
+            forcing: Forcing::default(),
+            lubrication: None,
         }
     }
 
@@ -58,22 +71,28 @@ impl Options {
         FluidParams {
             time_scheme: self.scheme,
             forcing: self.forcing,
+            lubrication: self.lubrication,
             ..fluid
         }
     }
 }
 
 impl std::fmt::Display for Options {
-    /// `Euler`, `Rk3`, followed by the marker forcing's settings when it is used.
+    /// `Euler` or `Rk3`, followed by the forcing (with the marker forcing's settings) and the
+    /// lubrication correction's range when it is on.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "{:?}", self.scheme)?;
         match self.forcing {
-            Forcing::Fraction => Ok(()),
+            Forcing::Fraction => write!(f, ", fraction forcing")?,
             Forcing::Markers(m) => write!(
                 f,
                 ", marker forcing ({} passes, markers {} cells inside)",
                 m.iterations, m.retraction
-            ),
+            )?,
+        }
+        match self.lubrication {
+            Some(l) => write!(f, ", lubrication over {} cell(s)", l.range),
+            None => Ok(()),
         }
     }
 }
