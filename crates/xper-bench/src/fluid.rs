@@ -26,7 +26,8 @@ pub struct StepFigures {
     pub(crate) cells_per_second: f64,
     pub(crate) mean_pressure_cycles: f64,
     pub(crate) share_projection: f64,
-    /// The forcing, when it is not the default (absent from results saved before this field).
+    /// The forcing when it is not the default, `None` for the default (markers). Results saved
+    /// before 2026-11-27 have no such field and ran the fraction forcing, then the default.
     #[serde(default)]
     pub(crate) forcing: Option<String>,
 }

@@ -30,20 +30,13 @@ pub fn fluid_section(md: &mut String, full: bool) -> Result<usize, RunError> {
     if full {
         cases.push(validation::schaefer_turek(0.00125, 3.0, Forcing::Fraction).map_err(run)?);
     }
-    let marker_forcing = Forcing::Markers(Default::default());
-    cases.push(validation::schaefer_turek(0.0025, 3.0, marker_forcing).map_err(run)?);
+    cases.push(validation::schaefer_turek(0.0025, 3.0, Forcing::default()).map_err(run)?);
     cases.push(resting_grain().map_err(run)?);
     cases.push(settling_convergence(8).map_err(run)?);
     cases.extend(validation::settling_in_time(if full { 16 } else { 8 }).map_err(run)?);
     cases.push(validation::landing_with_lubrication(&[8, 16, 32]).map_err(run)?);
     let landing = validation::landing_times(&[8, 16, 32], Forcing::default()).map_err(run)?;
-    let list = |t: &[f64]| {
-        t.iter()
-            .map(|v| format!("{v:.4}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    let change = |t: &[f64]| (t[2] - t[1]).abs() / t[2];
+    let (list, change) = (validation::times_list, validation::last_change);
     let grids = [16, 24, 32];
     cases.push(
         validation::single_disk_settling(&grids, validation::Options::fraction(TimeScheme::Euler))

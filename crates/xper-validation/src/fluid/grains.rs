@@ -312,6 +312,20 @@ pub fn landing_times(cells: &[usize], forcing: Forcing) -> Result<(Vec<Real>, Ve
     Ok((with, without))
 }
 
+/// Times (s) as printed in the landing rows: four decimals, comma-separated.
+pub fn times_list(t: &[Real]) -> String {
+    t.iter()
+        .map(|v| format!("{v:.4}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The relative change of a refinement series between its two finest grids (the last two).
+pub fn last_change(t: &[Real]) -> Real {
+    let n = t.len();
+    (t[n - 1] - t[n - 2]).abs() / t[n - 1]
+}
+
 /// The landing of a settling disk on the floor, at the end of which the fluid film under it is
 /// thinner than a cell: the time to a gap of 0.01 d on each of `cells` per diameter, with the
 /// fraction forcing, with the lubrication correction (range one cell; `crate::fluid` cites the
@@ -321,14 +335,7 @@ pub fn landing_times(cells: &[usize], forcing: Forcing) -> Result<(Vec<Real>, Ve
 /// ([`landing_times`], VALIDATION.md), which is why the correction is not a default.
 pub fn landing_with_lubrication(cells: &[usize]) -> Result<Case, String> {
     let (with, without) = landing_times(cells, Forcing::Fraction)?;
-    let n = cells.len();
-    let change = |t: &[Real]| (t[n - 1] - t[n - 2]).abs() / t[n - 1];
-    let list = |t: &[Real]| {
-        t.iter()
-            .map(|v| format!("{v:.4}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
+    let (list, change) = (times_list, last_change);
     Ok(Case {
         name: format!(
             "a settling disk landing on the floor: time to a gap of 0.01 d, {} cells per diameter, \

@@ -17,7 +17,8 @@ use xper_math::{Real, Vector};
 
 pub use crate::Case;
 pub use grains::{
-    landing_times, landing_with_lubrication, resting_grain, settling_convergence, settling_in_time,
+    landing_times, landing_with_lubrication, last_change, resting_grain, settling_convergence,
+    settling_in_time, times_list,
 };
 pub use published::{
     dkt_measures, drafting_kissing_tumbling, single_disk_settling, DktMeasures, Options,
