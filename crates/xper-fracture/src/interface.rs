@@ -2,7 +2,8 @@
 //! points each (the edge's end nodes, one copy in each element), each standing for half the
 //! edge. Small-displacement kinematics: the frame is the reference edge's and the two copies
 //! of a node coincide in the reference configuration, so the displacement jump at a point is
-//! `[u] = (u_b - u_a) . (n, t)`.
+//! `[u] = (u_b - u_a) . (n, t)`. In a periodic cell ([`crate::cell`]) the boundary edges of
+//! opposite sides are joined the same way, their node copies one period `T` apart.
 
 use xper_laws::cohesive::CohesiveZone;
 use xper_mesh::{Mesh, Topology};
@@ -72,19 +73,7 @@ pub(crate) fn build_interfaces(
         let length = (dx * dx + dy * dy).sqrt();
         let normal = [dy / length, -dx / length];
         let local = |tri: [u32; 3], n: u32| tri.iter().position(|&m| m == n).unwrap_or(0) as u8;
-        let intensity = match laws[law as usize] {
-            InterfaceLaw::Cohesive(z) if !broken[i] => z.initial_damage,
-            _ => 0.0,
-        };
-        let max_jump = match laws[law as usize] {
-            InterfaceLaw::Cohesive(z) if broken[i] => z.dc(),
-            _ => 0.0,
-        };
-        let point = PointState {
-            intensity,
-            max_jump,
-            ..Default::default()
-        };
+        let point = initial_point(&laws[law as usize], broken[i]);
         interfaces.push(Interface {
             elements: edge.triangles,
             local_nodes: [[local(ta, p), local(tb, p)], [local(ta, q), local(tb, q)]],
@@ -92,9 +81,57 @@ pub(crate) fn build_interfaces(
             length,
             law,
             points: [point; 2],
+            period: [0.0; 2],
         });
     }
+    if let Some(periodic) = &spec.periodic {
+        let pairs = mesh
+            .periodic_edges(&periodic.cell)
+            .map_err(|e| BuildError(format!("periodic cell: {e}")))?;
+        let broken_keys: std::collections::HashSet<[u32; 2]> = (spec.broken_edge_sets.iter())
+            .filter_map(|name| mesh.edge_sets.get(name))
+            .flatten()
+            .copied()
+            .collect();
+        for pair in pairs {
+            let [ta, tb] = pair.triangles.map(|t| mesh.triangles[t as usize]);
+            let [ra, rb] = pair.triangles.map(|t| mesh.triangle_region[t as usize]);
+            let Some(law) = table[(ra * regions + rb) as usize] else {
+                return Err(BuildError(format!(
+                    "no interface law between regions '{}' and '{}' (across the periodic sides)",
+                    mesh.regions[ra as usize].name, mesh.regions[rb as usize].name
+                )));
+            };
+            let [[p, _], [q, _]] = pair.nodes;
+            let broken = broken_keys.contains(&[p.min(q), p.max(q)]);
+            let point = initial_point(&laws[law as usize], broken);
+            let local = |tri: [u32; 3], n: u32| tri.iter().position(|&m| m == n).unwrap_or(0) as u8;
+            interfaces.push(Interface {
+                elements: pair.triangles,
+                local_nodes: pair.nodes.map(|[a, b]| [local(ta, a), local(tb, b)]),
+                normal: pair.normal,
+                length: pair.length,
+                law,
+                points: [point; 2],
+                period: pair.period,
+            });
+        }
+    }
     Ok((interfaces, laws))
+}
+
+/// The state of a point of a new interface of law `law`, broken (a pre-crack) or not.
+fn initial_point(law: &InterfaceLaw, broken: bool) -> PointState {
+    let (intensity, max_jump) = match law {
+        InterfaceLaw::Cohesive(z) if broken => (0.0, z.dc()),
+        InterfaceLaw::Cohesive(z) => (z.initial_damage, 0.0),
+        InterfaceLaw::Contact { .. } => (0.0, 0.0),
+    };
+    PointState {
+        intensity,
+        max_jump,
+        ..Default::default()
+    }
 }
 
 /// The cohesive zone of a law, if it has one.

@@ -12,7 +12,9 @@
 // Dense 6x6 kernels read best with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
+mod cell;
 mod dense;
+mod homogenize;
 mod interface;
 mod model;
 mod operator;
@@ -20,12 +22,16 @@ mod part;
 mod step;
 mod update;
 
+pub use cell::{
+    drift_response, strain_times, tensor_weights, CellState, MacroDrive, PeriodicSpec, SHEAR_WEIGHT,
+};
 pub use dense::{masked_spd_inverse, Mat6};
+pub use homogenize::{effective_tensor, HomogenizeError, Homogenized};
 pub use model::{
     BuildError, ElementBody, FractureEnergy, FractureModel, FractureSpec, Interface, InterfaceLaw,
     InterfaceRule, MassMatrix, NodeLoad, PointState,
 };
-pub use operator::{ElementContactOperator, ElementWork, InterfaceRow};
+pub use operator::{CellWork, ElementContactOperator, ElementWork, InterfaceRow};
 
 pub use step::{
     elastic_energy, stored_energy, FractureStepError, FractureStepReport, FractureStepper,

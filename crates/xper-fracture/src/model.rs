@@ -8,6 +8,7 @@ use xper_laws::cohesive::CohesiveZone;
 use xper_mesh::{Mesh, Topology};
 use xper_solver::NlgsParams;
 
+use crate::cell::{CellState, MacroDrive, PeriodicSpec};
 use crate::dense::{add_scaled, Mat6};
 
 /// The law of an interface between two elements.
@@ -91,6 +92,9 @@ pub struct FractureSpec {
     pub theta: f64,
     /// NLGS parameters of the interface problem.
     pub nlgs: NlgsParams,
+    /// A periodic cell and its macroscopic loading ([`crate::cell`]); `None` for a specimen.
+    #[serde(default)]
+    pub periodic: Option<PeriodicSpec>,
 }
 
 /// Why a model cannot be built.
@@ -165,6 +169,9 @@ pub struct Interface {
     pub law: u16,
     /// The two points.
     pub points: [PointState; 2],
+    /// `X_b - X_a` (m): the period of an interface across the sides of a periodic cell, zero
+    /// for one inside the mesh.
+    pub period: [f64; 2],
 }
 
 /// Energies (J), accumulated since the start of the run.
@@ -256,6 +263,8 @@ pub struct FractureModel {
     /// [`FractureModel::part`]): stepped like the others but left out of the energies and
     /// loads, which their owner counts. Empty for a whole model.
     pub shadow: Vec<bool>,
+    /// The macroscopic state of a periodic cell (`None` without `spec.periodic`).
+    pub cell: Option<CellState>,
 }
 
 const NO_LOAD: u16 = u16::MAX;
@@ -363,6 +372,10 @@ impl FractureModel {
             .map_err(|e| BuildError(format!("mesh adjacency: {e}")))?;
         load_shares(&mesh, &topology, &spec, &node_load, &mut elements);
         let (interfaces, laws) = crate::interface::build_interfaces(&mesh, &topology, &spec)?;
+        let cell = match &spec.periodic {
+            Some(p) => Some(initial_cell(p)?),
+            None => None,
+        };
         Ok(FractureModel {
             mesh,
             spec,
@@ -373,6 +386,7 @@ impl FractureModel {
             step: 0,
             energy: FractureEnergy::default(),
             shadow: Vec::new(),
+            cell,
         })
     }
 
@@ -387,9 +401,42 @@ impl FractureModel {
         l != NO_LOAD && self.spec.loads[l as usize].drives[d % 2].is_imposed_velocity()
     }
 
-    /// Kinetic energy `v^T M v / 2` summed over the elements, shadows excepted (J).
+    /// Mass of the whole mesh (kg).
+    pub fn total_mass(&self) -> f64 {
+        (0..self.mesh.triangles.len())
+            .map(|t| {
+                let region = self.mesh.triangle_region[t] as usize;
+                self.spec.materials[region].density()
+                    * self.mesh.triangle_area(t)
+                    * self.spec.thickness
+            })
+            .sum()
+    }
+
+    /// Mass of each component of the macroscopic strain of a periodic cell (kg m^2), see
+    /// [`crate::cell`]; zeros without one.
+    pub fn cell_mass(&self) -> [f64; 3] {
+        match &self.spec.periodic {
+            Some(p) => p.component_mass(self.total_mass()),
+            None => [0.0; 3],
+        }
+    }
+
+    /// Kinetic energy `v^T M v / 2` summed over the elements, shadows excepted, plus that of
+    /// the free components of a periodic cell's strain, `M_k E'_k^2 / 2` (J).
     pub fn kinetic_energy(&self) -> f64 {
-        self.elements
+        let cell: f64 = match (&self.spec.periodic, &self.cell) {
+            (Some(p), Some(c)) => {
+                let mass = self.cell_mass();
+                (0..3)
+                    .filter(|&k| p.is_free(k))
+                    .map(|k| 0.5 * mass[k] * c.rate[k] * c.rate[k])
+                    .sum()
+            }
+            _ => 0.0,
+        };
+        cell + self
+            .elements
             .iter()
             .enumerate()
             .filter(|(k, _)| !self.is_shadow(*k))
@@ -397,7 +444,7 @@ impl FractureModel {
                 let mv = crate::dense::mul_vec(&e.mass, &e.velocity);
                 0.5 * mv.iter().zip(&e.velocity).map(|(a, b)| a * b).sum::<f64>()
             })
-            .sum()
+            .sum::<f64>()
     }
 
     /// Effective mass `M + h^2 theta^2 K` of an element.
@@ -435,6 +482,24 @@ impl FractureModel {
     pub fn broken_interfaces(&self) -> usize {
         self.interfaces.iter().filter(|i| self.is_broken(i)).count()
     }
+}
+
+/// The state of a periodic cell at time 0; an imposed strain must start from zero (the
+/// elements start undeformed).
+fn initial_cell(p: &PeriodicSpec) -> Result<CellState, BuildError> {
+    for (k, d) in p.drives.iter().enumerate() {
+        if let MacroDrive::Strain(f) = d {
+            let e0 = f.eval(0.0);
+            if e0 != 0.0 {
+                return Err(BuildError(format!(
+                    "periodic cell: the imposed strain {} starts at {e0}, not 0 (the cell \
+                     starts undeformed)",
+                    ["xx", "yy", "xy"][k]
+                )));
+            }
+        }
+    }
+    Ok(CellState::default())
 }
 
 /// `a, b, c` list of the region names, for messages.

@@ -5,10 +5,24 @@
 //! one node of element a to one node of element b, so applying an impulse updates the two
 //! velocities with two 6x2 products and a local velocity reads two nodes: O(1) per contact
 //! update, as for rigid bodies (M. Jean, CMAME 177, 1999, section 6).
+//!
+//! A row across the sides of a periodic cell (period `T != 0`) also reads the macroscopic
+//! strain rate `E'` ([`crate::cell`]): `U = (v_b - v_a - E' T) . (n, t)`; an impulse on it
+//! moves the free components of `E'` as it moves the two elements.
 
 use xper_solver::{Block2, ContactOperator};
 
+use crate::cell::{drift_response, strain_times, tensor_weights};
 use crate::dense::Mat6;
+
+/// The macroscopic strain rate of a periodic cell as the solver sees it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CellWork {
+    /// `[E'_xx, E'_yy, E'_xy]` (1/s).
+    pub rate: [f64; 3],
+    /// Inverse mass of each component (1/(kg m^2)); zero for an imposed strain.
+    pub inv_mass: [f64; 3],
+}
 
 /// Working state of one element: velocity and inverse effective mass.
 #[derive(Clone, Copy, Debug, Default)]
@@ -28,6 +42,8 @@ pub struct InterfaceRow {
     pub nodes: [u8; 2],
     /// Unit normal; the tangent is `(-n_y, n_x)`.
     pub normal: [f64; 2],
+    /// The period `X_b - X_a` (m) of a row across the sides of a periodic cell, zero inside.
+    pub period: [f64; 2],
     /// `W_aa`.
     pub block: Block2,
 }
@@ -39,13 +55,26 @@ pub struct ElementContactOperator {
     pub bodies: Vec<ElementWork>,
     /// One row per contact point.
     pub rows: Vec<InterfaceRow>,
+    /// The macroscopic strain rate (zero without a periodic cell).
+    pub cell: CellWork,
 }
 
 impl ElementContactOperator {
-    /// The row of a contact point, its block computed from the current inverse masses.
-    pub fn row(&self, elements: [u32; 2], nodes: [u8; 2], normal: [f64; 2]) -> InterfaceRow {
+    /// The row of a contact point, its block computed from the current inverse masses (and
+    /// those of the cell's free components when `period` is not zero).
+    pub fn row(
+        &self,
+        elements: [u32; 2],
+        nodes: [u8; 2],
+        normal: [f64; 2],
+        period: [f64; 2],
+    ) -> InterfaceRow {
         let (n, t) = (normal, [-normal[1], normal[0]]);
-        let mut s = [0.0; 4];
+        let mut s = if period == [0.0; 2] {
+            [0.0; 4]
+        } else {
+            drift_response(&self.cell.inv_mass, period)
+        };
         for (e, node) in elements.iter().zip(nodes) {
             let m = &self.bodies[*e as usize].inv_mass;
             let c = 2 * node as usize;
@@ -61,15 +90,26 @@ impl ElementContactOperator {
             elements,
             nodes,
             normal,
+            period,
             block: [quad(n, n), quad(n, t), quad(t, n), quad(t, t)],
         }
     }
 
-    /// Local velocity `[U_N, U_T]` of a row for arbitrary element velocities.
+    /// Local velocity `[U_N, U_T]` of a row for arbitrary element velocities and strain rate
+    /// `rate` (1/s, Voigt order).
     #[inline(always)]
-    pub fn local_velocity_of(row: &InterfaceRow, va: &[f64; 6], vb: &[f64; 6]) -> [f64; 2] {
+    pub fn local_velocity_of(
+        row: &InterfaceRow,
+        va: &[f64; 6],
+        vb: &[f64; 6],
+        rate: &[f64; 3],
+    ) -> [f64; 2] {
         let (ca, cb) = (2 * row.nodes[0] as usize, 2 * row.nodes[1] as usize);
-        let d = [vb[cb] - va[ca], vb[cb + 1] - va[ca + 1]];
+        let drift = strain_times(rate, row.period);
+        let d = [
+            vb[cb] - va[ca] - drift[0],
+            vb[cb + 1] - va[ca + 1] - drift[1],
+        ];
         let [nx, ny] = row.normal;
         [nx * d[0] + ny * d[1], -ny * d[0] + nx * d[1]]
     }
@@ -98,7 +138,7 @@ impl ContactOperator for ElementContactOperator {
         let row = &self.rows[a];
         let va = &self.bodies[row.elements[0] as usize].velocity;
         let vb = &self.bodies[row.elements[1] as usize].velocity;
-        Self::local_velocity_of(row, va, vb)
+        Self::local_velocity_of(row, va, vb, &self.cell.rate)
     }
 
     #[inline(always)]
@@ -113,6 +153,12 @@ impl ContactOperator for ElementContactOperator {
             let (col_x, col_y) = (body.inv_mass[c], body.inv_mass[c + 1]);
             for i in 0..6 {
                 body.velocity[i] += col_x[i] * px + col_y[i] * py;
+            }
+        }
+        if row.period != [0.0; 2] {
+            let weights = tensor_weights(p, row.period);
+            for k in 0..3 {
+                self.cell.rate[k] -= self.cell.inv_mass[k] * weights[k];
             }
         }
     }

@@ -46,6 +46,7 @@ impl FractureModel {
             step: self.step,
             energy,
             shadow: shadow.to_vec(),
+            cell: self.cell,
         }
     }
 }

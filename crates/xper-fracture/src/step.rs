@@ -21,10 +21,11 @@ use std::time::Instant;
 use xper_bodies::Drive;
 use xper_solver::{CohesiveTerm, SolveError};
 
+use crate::cell::{MacroDrive, SHEAR_WEIGHT};
 use crate::dense::{masked_spd_inverse, mul_vec, Mat6};
 use crate::interface::cohesive;
 use crate::model::{FractureEnergy, FractureModel};
-use crate::operator::{ElementContactOperator, ElementWork, InterfaceRow};
+use crate::operator::{CellWork, ElementContactOperator, ElementWork, InterfaceRow};
 use xper_solver::ContactSolve;
 use xper_solver::OneProcessSolve;
 
@@ -113,6 +114,9 @@ pub struct FractureStepper {
     cohesion: Vec<CohesiveTerm>,
     impulses: Vec<[f64; 2]>,
     points: Vec<PointWork>,
+    /// The strain rate at the start of the step (the step's increment over h for an
+    /// imposed component).
+    cell_begin: [f64; 3],
     started: bool,
 }
 
@@ -144,6 +148,7 @@ impl FractureStepper {
         self.prepare(m);
         let (t_begin, t_end) = (m.time, m.time + m.spec.dt);
         let ext = self.free_velocity(m, t_begin, t_end)?;
+        self.free_cell(m, t_begin, t_end);
         self.assemble(m);
         let t_solve = Instant::now();
         let info = solver
@@ -159,9 +164,14 @@ impl FractureStepper {
         let solve_time = t_solve.elapsed().as_secs_f64();
         let load_sums = self.update(m, ext)?;
         crate::update::interfaces(self, m);
+        let cell_sums = crate::update::cell(self, m);
         m.step += 1;
         m.time = t_end;
-        let totals = crate::update::StepTotals::sum(m, self.op.rows.len(), load_sums, solver);
+        let totals =
+            crate::update::StepTotals::sum(m, self.op.rows.len(), load_sums, cell_sums, solver);
+        if let Some(cell) = &mut m.cell {
+            totals.apply_to(cell);
+        }
         if let Some(why) = totals.energy.divergence() {
             return Err(FractureStepError::Diverging(why));
         }
@@ -248,6 +258,35 @@ impl FractureStepper {
         Ok(ext_all)
     }
 
+    /// Stage: the strain rate of a periodic cell before the interfaces act: the increment of
+    /// an imposed component over h; for a free one, the rate so far plus the impulse of the
+    /// imposed stress, `h c_k V Sigma_k(t_theta) / M_k` ([`crate::cell`]).
+    fn free_cell(&mut self, m: &FractureModel, t_begin: f64, t_end: f64) {
+        self.op.cell = CellWork::default();
+        let (Some(p), Some(state)) = (&m.spec.periodic, &m.cell) else {
+            return;
+        };
+        let (h, th) = (m.spec.dt, m.spec.theta);
+        let volume = p.cell.area() * m.spec.thickness;
+        let mass = m.cell_mass();
+        for (k, drive) in p.drives.iter().enumerate() {
+            match drive {
+                MacroDrive::Strain(f) => {
+                    let rate = (f.eval(t_end) - f.eval(t_begin)) / h;
+                    self.cell_begin[k] = rate;
+                    self.op.cell.rate[k] = rate;
+                }
+                MacroDrive::Stress(f) => {
+                    let sigma = f.eval(t_begin + th * h);
+                    self.cell_begin[k] = state.rate[k];
+                    self.op.cell.inv_mass[k] = 1.0 / mass[k];
+                    self.op.cell.rate[k] =
+                        state.rate[k] + h * SHEAR_WEIGHT[k] * volume * sigma / mass[k];
+                }
+            }
+        }
+    }
+
     /// Stage: one row per interface point, its normal shift (gap closure, LMGC90's IQS) and
     /// the adhesive term of cohesive points.
     fn assemble(&mut self, m: &FractureModel) {
@@ -264,12 +303,15 @@ impl FractureStepper {
             let law = &m.laws[i.law as usize];
             let area = 0.5 * i.length * m.spec.thickness;
             for (k, p) in i.points.iter().enumerate() {
-                let row = self.op.row(i.elements, i.local_nodes[k], i.normal);
+                let row = self
+                    .op
+                    .row(i.elements, i.local_nodes[k], i.normal, i.period);
                 let [a, b] = i.elements.map(|e| e as usize);
                 let u0 = ElementContactOperator::local_velocity_of(
                     &row,
                     &self.v_begin[a],
                     &self.v_begin[b],
+                    &self.cell_begin,
                 );
                 let g_tt = p.jump[0] + h * (1.0 - th) * u0[0];
                 let shift = g_tt.max(0.0) / h;
@@ -321,7 +363,14 @@ impl FractureStepper {
             row,
             &self.op.bodies[a].velocity,
             &self.op.bodies[b].velocity,
+            &self.op.cell.rate,
         )
+    }
+
+    /// The strain rate of a periodic cell at the start and at the end of the solved step
+    /// (1/s).
+    pub(crate) fn cell_rates(&self) -> ([f64; 3], [f64; 3]) {
+        (self.cell_begin, self.op.cell.rate)
     }
 
     /// Stage: velocities and displacements, material update, reactions and work of the loads.

@@ -1,6 +1,7 @@
 //! Stage `interfaces` of a step: new displacement jumps, intensities (once per step, as in
 //! BRIEF.md section 3) and the interface energies.
 
+use crate::cell::{tensor_weights, CellState, MacroDrive, SHEAR_WEIGHT};
 use crate::interface::cohesive;
 use crate::model::{FractureEnergy, FractureModel};
 use crate::operator::ElementContactOperator;
@@ -46,6 +47,73 @@ pub(crate) fn interfaces(stepper: &FractureStepper, m: &mut FractureModel) {
     m.energy.cohesive_stored = stored_energy(m);
 }
 
+/// This model's share of the macroscopic measures of a periodic cell over a step.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct CellSums {
+    /// `sum V_e sigma_e` over the owned elements (N m).
+    volume: [f64; 3],
+    /// `sum tensor_weights(p, T)` over the periodic points (N s m).
+    boundary: [f64; 3],
+    /// Work of the macroscopic loading (J).
+    work: f64,
+    /// `V` (m^3) and `h` (s) of the cell, to turn the sums into stresses.
+    scale: [f64; 2],
+}
+
+/// Stage `cell`: the macroscopic strain at the end of the step, the work of the loading
+/// (added to the external work), and this model's share of the stress measures.
+pub(crate) fn cell(stepper: &FractureStepper, m: &mut FractureModel) -> Option<CellSums> {
+    let p = m.spec.periodic.clone()?;
+    let (h, th) = (m.spec.dt, m.spec.theta);
+    let t_end = m.time + h;
+    let volume = p.cell.area() * m.spec.thickness;
+    let (begin, end) = stepper.cell_rates();
+    let weighted: [f64; 3] = std::array::from_fn(|k| (1.0 - th) * begin[k] + th * end[k]);
+    let mut sums = CellSums {
+        scale: [volume, h],
+        ..Default::default()
+    };
+    for (i, interface) in m.interfaces.iter().enumerate() {
+        if interface.period == [0.0; 2] {
+            continue;
+        }
+        for k in 0..2 {
+            let w = &stepper.points()[2 * i + k];
+            let force = ElementContactOperator::global_impulse(&w.row, w.impulse);
+            let t = tensor_weights(force, interface.period);
+            for c in 0..3 {
+                sums.boundary[c] += t[c];
+                if !p.is_free(c) {
+                    sums.work += t[c] * weighted[c];
+                }
+            }
+        }
+    }
+    for (e, el) in m.elements.iter().enumerate() {
+        if m.is_shadow(e) {
+            continue;
+        }
+        let sigma = el.state.in_plane_stress();
+        for c in 0..3 {
+            sums.volume[c] += el.triangle.volume() * sigma[c];
+        }
+    }
+    let state = m.cell.as_mut()?;
+    for (k, drive) in p.drives.iter().enumerate() {
+        match drive {
+            MacroDrive::Strain(f) => state.strain[k] = f.eval(t_end),
+            MacroDrive::Stress(f) => {
+                let increment = h * weighted[k];
+                sums.work += SHEAR_WEIGHT[k] * volume * f.eval(m.time + th * h) * increment;
+                state.strain[k] += increment;
+            }
+        }
+        state.rate[k] = end[k];
+    }
+    m.energy.external_work += sums.work;
+    Some(sums)
+}
+
 /// What a step reports of the whole model: this model's share summed over the processes
 /// sharing it ([`ContactSolve::sum`], one reduction per step).
 pub(crate) struct StepTotals {
@@ -54,6 +122,7 @@ pub(crate) struct StepTotals {
     pub broken_interfaces: usize,
     pub energy: FractureEnergy,
     pub loads: Vec<LoadReading>,
+    cell: Option<CellSums>,
 }
 
 impl StepTotals {
@@ -64,6 +133,7 @@ impl StepTotals {
         m: &FractureModel,
         contacts: usize,
         load_sums: Vec<[f64; 6]>,
+        mut cell: Option<CellSums>,
         solver: &mut dyn ContactSolve<ElementContactOperator>,
     ) -> Self {
         let e = m.energy;
@@ -80,9 +150,19 @@ impl StepTotals {
             e.external_work,
             e.initial,
         ];
+        if let Some(c) = &cell {
+            values.extend(c.volume.iter().chain(&c.boundary));
+            values.push(c.work);
+        }
         let head = values.len();
         values.extend(load_sums.iter().flatten());
         solver.sum(&mut values);
+        if let Some(c) = &mut cell {
+            let s = &values[head - 7..head];
+            c.volume.copy_from_slice(&s[..3]);
+            c.boundary.copy_from_slice(&s[3..6]);
+            c.work = s[6];
+        }
         let loads = values[head..]
             .chunks_exact(6)
             .map(|s| LoadReading {
@@ -111,6 +191,22 @@ impl StepTotals {
                 initial: values[10],
             },
             loads,
+            cell,
         }
+    }
+
+    /// Writes the whole cell's stresses and the step's work of the loading into `state`.
+    pub fn apply_to(&self, state: &mut CellState) {
+        let Some(c) = &self.cell else {
+            return;
+        };
+        let [volume, h] = c.scale;
+        state.stress_volume = c.volume.map(|v| v / volume);
+        state.stress_boundary = [
+            c.boundary[0] / (volume * h),
+            c.boundary[1] / (volume * h),
+            0.5 * c.boundary[2] / (volume * h),
+        ];
+        state.work += c.work;
     }
 }

@@ -172,6 +172,7 @@ fn estimated_triangles(source: &MeshSource) -> f64 {
         MeshSource::File(_) => return 0.0,
         MeshSource::DoubleEdgeNotched(s) => (s.side * s.side, s.element_size),
         MeshSource::RectangleWithInclusions(s) => (s.width * s.height, s.element_size),
+        MeshSource::PeriodicCell(s) => (s.width * s.height, s.element_size),
     };
     2.0 * area / (0.433 * h * h)
 }

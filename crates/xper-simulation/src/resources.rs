@@ -80,6 +80,9 @@ pub fn estimate(scene: &LoadedScene) -> Needs {
                 MeshSource::RectangleWithInclusions(s) => {
                     xper_mesh::estimated_triangles(s.width * s.height, s.element_size)
                 }
+                MeshSource::PeriodicCell(s) => {
+                    xper_mesh::estimated_triangles(s.width * s.height, s.element_size)
+                }
                 // A mesh file is read whole: its size bounds what it holds. Gmsh 4.1 takes
                 // about 50 bytes per triangle, ASCII or binary (ASCII: a 28-byte element line
                 // and half of a 47-byte node; binary: four 8-byte tags and half of a 32-byte

@@ -133,7 +133,9 @@ impl SplitMasses for xper_fracture::ElementContactOperator {
     }
     fn refresh_block(&mut self, a: usize) {
         let row = self.rows[a];
-        self.rows[a].block = self.row(row.elements, row.nodes, row.normal).block;
+        self.rows[a].block = self
+            .row(row.elements, row.nodes, row.normal, row.period)
+            .block;
     }
 }
 

@@ -13,10 +13,12 @@
 //! mesh, node for node.
 
 mod notched;
+mod periodic;
 mod rectangle;
 pub mod symmetric;
 
 pub use notched::{double_edge_notched, NotchedSpec};
+pub use periodic::{periodic_cell, Circle, PeriodicCellSpec, RandomCircles};
 pub use rectangle::{rectangle_with_inclusions, RectangleSpec};
 
 use std::collections::HashMap;
@@ -159,15 +161,25 @@ pub(crate) struct RawMesh {
     pub triangles: Vec<[u32; 3]>,
 }
 
-/// Triangulates and refines `pslg` for element size `h` (m), keeps the triangles whose
-/// centroid satisfies `inside`, (`exclude_outer`: the refinement skips the faces outside the
-/// closed outline, for a non-convex domain with a single outline), drops unused nodes, and snaps the nodes lying on an
-/// axis-aligned line of `lines` onto it.
+/// How [`triangulate`] refines.
+#[derive(Clone, Copy, Default)]
+pub(crate) struct Refine {
+    /// The refinement skips the faces outside the closed outline (a non-convex domain with a
+    /// single outline).
+    pub exclude_outer: bool,
+    /// The refinement never splits a line of the PSLG (a periodic cell: its opposite sides
+    /// must keep the same nodes).
+    pub keep_lines: bool,
+}
+
+/// Triangulates and refines `pslg` for element size `h` (m) as `refine` says, keeps the
+/// triangles whose centroid satisfies `inside`, drops unused nodes, and snaps the nodes lying
+/// on an axis-aligned line of `lines` onto it.
 pub(crate) fn triangulate(
     origin: &str,
     pslg: Pslg,
     h: f64,
-    exclude_outer: bool,
+    refine: Refine,
     inside: impl Fn([f64; 2]) -> bool,
     lines: &[Line],
 ) -> Result<RawMesh, MeshError> {
@@ -191,11 +203,14 @@ pub(crate) fn triangulate(
     }
     let area: f64 = cdt.inner_faces().map(|f| f.area()).sum();
     let budget = (8.0 * area / (MAX_AREA_FACTOR * h * h)) as usize + 10_000;
-    let parameters = RefinementParameters::<f64>::new()
+    let mut parameters = RefinementParameters::<f64>::new()
         .with_angle_limit(AngleLimit::from_deg(MIN_ANGLE_DEGREES))
         .with_max_allowed_area(MAX_AREA_FACTOR * h * h)
         .with_max_additional_vertices(budget)
-        .exclude_outer_faces(exclude_outer);
+        .exclude_outer_faces(refine.exclude_outer);
+    if refine.keep_lines {
+        parameters = parameters.keep_constraint_edges();
+    }
     // Spade panics when a circumcentre cannot be represented (features far below h in
     // floating point): that is reported as an error, and the triangulation is dropped.
     let refined = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| cdt.refine(parameters)));

@@ -136,7 +136,17 @@ pub fn double_edge_notched(spec: &NotchedSpec) -> Result<Mesh, MeshError> {
         pslg.add_line(line.a, line.b, &[], h);
     }
     let in_notch = |p: [f64; 2]| p[1] > lo && p[1] < hi && (p[0] < xl || p[0] > xr);
-    let mut raw = triangulate(ORIGIN, pslg, h, true, |p| !in_notch(p), &lines)?;
+    let mut raw = triangulate(
+        ORIGIN,
+        pslg,
+        h,
+        super::Refine {
+            exclude_outer: true,
+            keep_lines: false,
+        },
+        |p| !in_notch(p),
+        &lines,
+    )?;
     if spec.point_symmetric {
         let centre = [0.5 * s, 0.5 * s];
         raw = point_symmetric(ORIGIN, &raw, centre, 0.0, h, &lines, |p| !in_notch(p))?;

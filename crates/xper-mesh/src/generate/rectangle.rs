@@ -176,7 +176,7 @@ pub fn rectangle_with_inclusions(spec: &RectangleSpec) -> Result<Mesh, MeshError
     for line in &lines {
         pslg.add_line(line.a, line.b, &breaks, h);
     }
-    let raw = triangulate(ORIGIN, pslg, h, false, |_| true, &lines)?;
+    let raw = triangulate(ORIGIN, pslg, h, Default::default(), |_| true, &lines)?;
     let in_inclusion = |p: [f64; 2]| {
         (spec.inclusions.iter()).any(|r| p[0] > r[0] && p[0] < r[2] && p[1] > r[1] && p[1] < r[3])
     };

@@ -6,10 +6,11 @@
 use std::collections::BTreeMap;
 
 use xper_fem::Material;
-use xper_fracture::{FractureSpec, InterfaceLaw, InterfaceRule, NodeLoad};
+use xper_fracture::{FractureSpec, InterfaceLaw, InterfaceRule, NodeLoad, PeriodicSpec};
 use xper_laws::cohesive::CohesiveZone;
 use xper_mesh::{
-    double_edge_notched, read_msh, rectangle_with_inclusions, Mesh, NodeSelector, Topology,
+    double_edge_notched, periodic_cell, read_msh, rectangle_with_inclusions, Mesh, NodeSelector,
+    PeriodicCell, Topology,
 };
 
 use super::cohesive_zone;
@@ -87,6 +88,7 @@ impl FractureScene {
             }
         }
         let loads = self.loads(&mesh, &mut errors);
+        let periodic = self.periodic(&mesh, &mut errors);
         if !errors.list.is_empty() {
             let mut list = errors.list;
             list.sort_by_key(|e| (e.line, e.column));
@@ -104,6 +106,7 @@ impl FractureScene {
             dt: self.dt,
             theta: self.theta,
             nlgs: self.nlgs,
+            periodic,
         };
         Ok(FractureSetup {
             interfaces: topology.interior.len(),
@@ -120,7 +123,29 @@ impl FractureScene {
             MeshSource::File(_) => mesh.edge_length_stats().mean,
             MeshSource::DoubleEdgeNotched(s) => s.element_size,
             MeshSource::RectangleWithInclusions(s) => s.element_size,
+            MeshSource::PeriodicCell(s) => s.element_size,
         }
+    }
+
+    /// The periodic cell of `[periodic]` (the mesh's bounding box unless given), its sides
+    /// checked to match.
+    fn periodic(&self, mesh: &Mesh, errors: &mut Errors) -> Option<PeriodicSpec> {
+        let p = self.periodic.as_ref()?;
+        let cell = match p.cell {
+            Some([a, b]) => PeriodicCell {
+                lower: a,
+                size: [b[0] - a[0], b[1] - a[1]],
+            },
+            None => PeriodicCell::bounding(mesh),
+        };
+        if let Err(e) = mesh.periodic_edges(&cell) {
+            errors.at(&p.place, format!("the mesh is not a periodic cell: {e}"));
+            return None;
+        }
+        Some(PeriodicSpec {
+            cell,
+            drives: p.drives.clone(),
+        })
     }
 
     fn make_mesh(&self, errors: &mut Errors) -> Option<Mesh> {
@@ -129,6 +154,7 @@ impl FractureScene {
             MeshSource::File(path) => read_msh(path),
             MeshSource::DoubleEdgeNotched(s) => double_edge_notched(s),
             MeshSource::RectangleWithInclusions(s) => rectangle_with_inclusions(s),
+            MeshSource::PeriodicCell(s) => periodic_cell(s),
         };
         match result {
             Ok(mesh) => Some(mesh),

@@ -2,7 +2,7 @@
 
 use std::path::Path;
 
-use xper_mesh::{NotchedSpec, RectangleSpec};
+use xper_mesh::{Circle, NotchedSpec, PeriodicCellSpec, RandomCircles, RectangleSpec};
 
 use super::types::{MeshDesc, MeshSource};
 use super::{number, place, required_table};
@@ -28,8 +28,8 @@ pub(super) fn mesh(ctx: &mut Ctx, root: &Tbl, file: &Path) -> Option<MeshDesc> {
             ctx.err(
                 t.pos,
                 &t.field("generator"),
-                "missing `generator` (double_edge_notched, rectangle_with_inclusions) or \
-                 `file` (a Gmsh MSH 4.1 file)",
+                "missing `generator` (double_edge_notched, rectangle_with_inclusions, \
+                 periodic_cell) or `file` (a Gmsh MSH 4.1 file)",
             );
             None
         }
@@ -45,13 +45,15 @@ pub(super) fn mesh(ctx: &mut Ctx, root: &Tbl, file: &Path) -> Option<MeshDesc> {
         }
         (None, Some(_)) => {
             let kinds = [
-                ("double_edge_notched", true),
-                ("rectangle_with_inclusions", false),
+                ("double_edge_notched", 0),
+                ("rectangle_with_inclusions", 1),
+                ("periodic_cell", 2),
             ];
             let got = t.string(ctx, "generator").ok();
             match choose(ctx, got, &t.field("generator"), "mesh generator", &kinds)? {
-                true => notched(ctx, &t),
-                false => rectangle(ctx, &t),
+                0 => notched(ctx, &t),
+                1 => rectangle(ctx, &t),
+                _ => periodic_cell(ctx, &t),
             }
         }
     }?;
@@ -115,6 +117,73 @@ fn rectangle(ctx: &mut Ctx, t: &Tbl) -> Option<MeshSource> {
         height: height?,
         inclusions: inclusions?,
         precrack: precrack?,
+        element_size: element_size?,
+    }))
+}
+
+fn periodic_cell(ctx: &mut Ctx, t: &Tbl) -> Option<MeshSource> {
+    t.check_keys(
+        ctx,
+        &[
+            "generator",
+            "width",
+            "height",
+            "circles",
+            "rectangles",
+            "random",
+            "element_size",
+        ],
+    );
+    let [width, height, element_size] =
+        ["width", "height", "element_size"].map(|k| length(ctx, t, k));
+    let rectangles = match t.get("rectangles") {
+        None => Some(Vec::new()),
+        Some(n) => inclusions(ctx, n, &t.field("rectangles")),
+    };
+    let mut circles = Some(Vec::new());
+    for (_, c) in t.tables(ctx, "circles") {
+        c.check_keys(ctx, &["center", "radius"]);
+        let center = c.vec2(ctx, "center").req(ctx, &c, "center");
+        let radius = length(ctx, &c, "radius");
+        match (center, radius, circles.as_mut()) {
+            (Some((center, _)), Some(radius), Some(list)) => list.push(Circle { center, radius }),
+            _ => circles = None,
+        }
+    }
+    let random = match t.table(ctx, "random").ok() {
+        None => Some(None),
+        Some((r, _)) => {
+            r.check_keys(ctx, &["fraction", "radius", "min_spacing", "seed"]);
+            let fraction = number(ctx, &r, "fraction", |v| v > 0.0 && v < 0.6, "in (0, 0.6)");
+            let radius = length(ctx, &r, "radius");
+            let spacing = super::number_or(ctx, &r, "min_spacing", 0.0, |v| v >= 0.0, ">= 0 m");
+            let seed = match r.int(ctx, "seed").req(ctx, &r, "seed") {
+                Some((s, _)) if s >= 0 => Some(s as u64),
+                Some((s, pos)) => {
+                    ctx.err(pos, &r.field("seed"), format!("must be >= 0, got {s}"));
+                    None
+                }
+                None => None,
+            };
+            match (fraction, radius, spacing, seed) {
+                (Some(fraction), Some(radius), Some(min_spacing), Some(seed)) => {
+                    Some(Some(RandomCircles {
+                        fraction,
+                        radius,
+                        min_spacing,
+                        seed,
+                    }))
+                }
+                _ => None,
+            }
+        }
+    };
+    Some(MeshSource::PeriodicCell(PeriodicCellSpec {
+        width: width?,
+        height: height?,
+        circles: circles?,
+        rectangles: rectangles?,
+        random: random?,
         element_size: element_size?,
     }))
 }

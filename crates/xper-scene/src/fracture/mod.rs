@@ -6,6 +6,7 @@
 pub(crate) mod build;
 mod loads;
 mod mesh;
+mod periodic;
 pub(crate) mod types;
 
 use std::path::Path;
@@ -33,6 +34,7 @@ pub(crate) const TOP_KEYS: &[&str] = &[
     "regions",
     "interfaces",
     "loads",
+    "periodic",
 ];
 
 const COHESIVE_KEYS: &[&str] = &[
@@ -121,6 +123,7 @@ pub(crate) fn fracture_scene(ctx: &mut Ctx, root: &Tbl, file: &Path) -> Option<F
     let (regions, names) = regions(ctx, root);
     let interfaces = interfaces(ctx, root, &names);
     let loads = loads::loads(ctx, root);
+    let periodic = periodic::periodic(ctx, root);
     let (thickness, hypothesis, mass, broken) = fracture?;
     Some(FractureScene {
         file: file.to_path_buf(),
@@ -139,6 +142,7 @@ pub(crate) fn fracture_scene(ctx: &mut Ctx, root: &Tbl, file: &Path) -> Option<F
         interfaces: interfaces?,
         broken,
         loads: loads?,
+        periodic: periodic?,
     })
 }
 

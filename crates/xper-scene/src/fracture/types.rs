@@ -7,8 +7,8 @@ use std::path::PathBuf;
 use serde::Serialize;
 use xper_bodies::Drive;
 use xper_fem::{Hypothesis, Material};
-use xper_fracture::MassMatrix;
-use xper_mesh::{NodeSelector, NotchedSpec, RectangleSpec};
+use xper_fracture::{MacroDrive, MassMatrix};
+use xper_mesh::{NodeSelector, NotchedSpec, PeriodicCellSpec, RectangleSpec};
 use xper_solver::NlgsParams;
 
 use crate::types::{OutputSettings, Scene};
@@ -70,6 +70,19 @@ pub struct FractureScene {
     pub broken: Vec<EdgeSetRef>,
     /// Loads, in file order.
     pub loads: Vec<LoadDesc>,
+    /// A periodic cell and its macroscopic loading (`[periodic]`).
+    pub periodic: Option<Box<PeriodicDesc>>,
+}
+
+/// The `[periodic]` section.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PeriodicDesc {
+    /// The cell `[[xmin, ymin], [xmax, ymax]]` (m); the mesh's bounding box when absent.
+    pub cell: Option<[[f64; 2]; 2]>,
+    /// Drive of each component `[xx, yy, xy]` of the macroscopic strain.
+    pub drives: [MacroDrive; 3],
+    /// The `[periodic]` table.
+    pub place: Place,
 }
 
 /// The `[mesh]` section.
@@ -92,6 +105,8 @@ pub enum MeshSource {
     DoubleEdgeNotched(NotchedSpec),
     /// `xper_mesh::rectangle_with_inclusions`.
     RectangleWithInclusions(RectangleSpec),
+    /// `xper_mesh::periodic_cell`.
+    PeriodicCell(PeriodicCellSpec),
 }
 
 /// A `[[regions]]` entry: the material of the mesh region of that name.

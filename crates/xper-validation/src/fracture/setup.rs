@@ -145,6 +145,7 @@ pub(super) fn spec(
             norm: ConvergenceNorm::Quad,
             ..Default::default()
         },
+        periodic: None,
     }
 }
 
@@ -355,6 +356,7 @@ pub(super) fn one_triangle(
         dt,
         theta: 1.0,
         nlgs: NlgsParams::default(),
+        periodic: None,
     };
     Ok((mesh, spec))
 }
