@@ -64,6 +64,16 @@ enum Command {
         #[arg(long, value_parser = positive_gb, allow_negative_numbers = true)]
         max_memory: Option<f64>,
     },
+    /// Compute the effective elastic tensor of a fracture scene's periodic cell (three static
+    /// solves) and print it with its symmetry and positive-definiteness checks.
+    Homogenize {
+        /// Scene file (TOML) with a [periodic] section, or a directory holding scene.toml.
+        #[arg(value_parser = xper_bench::scene_path_parser())]
+        scene: PathBuf,
+        /// Also write the tensor and its checks to this JSON file.
+        #[arg(long)]
+        json: Option<PathBuf>,
+    },
     /// Run benchmark scenes without outputs; print figures, save JSON and regenerate BENCHMARKS.md.
     Bench(bench::BenchArgs),
     /// Solve a frictional contact problem file (Siconos .dat, FCLib .hdf5) and print JSON.
@@ -136,6 +146,9 @@ fn main() -> ExitCode {
                 max_memory: max_memory.map(|gb| gb * 1e9),
             };
             run_maybe_distributed(&opts, quiet)
+        }
+        Command::Homogenize { scene, json } => {
+            xper_simulation::homogenize::homogenize(&scene, json.as_deref())
         }
         Command::Bench(args) => bench::bench(&args),
         Command::Solve(args) => solve::run_solve(&args),

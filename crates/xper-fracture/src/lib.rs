@@ -29,7 +29,7 @@ pub use dense::{masked_spd_inverse, Mat6};
 pub use homogenize::{effective_tensor, HomogenizeError, Homogenized};
 pub use model::{
     BuildError, ElementBody, FractureEnergy, FractureModel, FractureSpec, Interface, InterfaceLaw,
-    InterfaceRule, MassMatrix, NodeLoad, PointState,
+    InterfaceRule, MassMatrix, NodeLoad, PlasticStiffness, PointState,
 };
 pub use operator::{CellWork, ElementContactOperator, ElementWork, InterfaceRow};
 

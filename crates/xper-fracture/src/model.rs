@@ -67,6 +67,20 @@ pub enum MassMatrix {
     Lumped,
 }
 
+/// The stiffness `K` of an elastoplastic element in its effective mass `M + h^2 theta^2 K`
+/// and in the implicit part `h^2 theta K v` of a step.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum PlasticStiffness {
+    /// The tangent of the last radial return (softer while the element yields).
+    #[default]
+    Tangent,
+    /// The elastic stiffness throughout. An element that unloads elastically after yielding
+    /// is then integrated implicitly at its true stiffness: with the tangent, an element held
+    /// by few interfaces (a fragment after a crack) can oscillate with a growing amplitude
+    /// when `h` exceeds its own period (measured in `scenes/periodic_bimaterial_small`).
+    Elastic,
+}
+
 /// Everything needed to build a [`FractureModel`] from a mesh.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct FractureSpec {
@@ -95,6 +109,9 @@ pub struct FractureSpec {
     /// A periodic cell and its macroscopic loading ([`crate::cell`]); `None` for a specimen.
     #[serde(default)]
     pub periodic: Option<PeriodicSpec>,
+    /// The stiffness of elastoplastic elements in the step's implicit part.
+    #[serde(default)]
+    pub plastic_stiffness: PlasticStiffness,
 }
 
 /// Why a model cannot be built.
@@ -373,7 +390,7 @@ impl FractureModel {
         load_shares(&mesh, &topology, &spec, &node_load, &mut elements);
         let (interfaces, laws) = crate::interface::build_interfaces(&mesh, &topology, &spec)?;
         let cell = match &spec.periodic {
-            Some(p) => Some(initial_cell(p)?),
+            Some(p) => Some(initial_cell(p, spec.dt, &mut elements)?),
             None => None,
         };
         Ok(FractureModel {
@@ -478,6 +495,27 @@ impl FractureModel {
             .fold(0.0, f64::max)
     }
 
+    /// Number of points of cohesive interfaces.
+    pub fn cohesive_points(&self) -> usize {
+        (self.interfaces.iter())
+            .filter(|i| matches!(self.laws[i.law as usize], InterfaceLaw::Cohesive(_)))
+            .count()
+            * 2
+    }
+
+    /// Number of points of cohesive interfaces that have lost adhesion (intensity below the
+    /// law's initial one; broken points included).
+    pub fn damaged_points(&self) -> usize {
+        self.interfaces
+            .iter()
+            .filter_map(|i| match self.laws[i.law as usize] {
+                InterfaceLaw::Cohesive(z) => Some((i, z.initial_damage)),
+                InterfaceLaw::Contact { .. } => None,
+            })
+            .map(|(i, beta0)| i.points.iter().filter(|p| p.intensity < beta0).count())
+            .sum()
+    }
+
     /// Number of fully broken interfaces ([`FractureModel::is_broken`]).
     pub fn broken_interfaces(&self) -> usize {
         self.interfaces.iter().filter(|i| self.is_broken(i)).count()
@@ -485,8 +523,33 @@ impl FractureModel {
 }
 
 /// The state of a periodic cell at time 0; an imposed strain must start from zero (the
-/// elements start undeformed).
-fn initial_cell(p: &PeriodicSpec) -> Result<CellState, BuildError> {
+/// elements start undeformed). The elements start in the affine motion `v = E'(0) (X - X_c)`
+/// of the imposed components' first rate (`X_c` the cell's centre), so that a homogeneous
+/// cell loaded at a constant rate launches no wave (the free components start at rest).
+fn initial_cell(
+    p: &PeriodicSpec,
+    dt: f64,
+    elements: &mut [ElementBody],
+) -> Result<CellState, BuildError> {
+    let mut rate = [0.0; 3];
+    for (k, d) in p.drives.iter().enumerate() {
+        if let MacroDrive::Strain(f) = d {
+            rate[k] = (f.eval(dt) - f.eval(0.0)) / dt;
+        }
+    }
+    let center = [
+        p.cell.lower[0] + 0.5 * p.cell.size[0],
+        p.cell.lower[1] + 0.5 * p.cell.size[1],
+    ];
+    if rate != [0.0; 3] {
+        for el in elements.iter_mut() {
+            for (j, x) in el.triangle.nodes().iter().enumerate() {
+                let v = crate::cell::strain_times(&rate, [x[0] - center[0], x[1] - center[1]]);
+                el.velocity[2 * j] = v[0];
+                el.velocity[2 * j + 1] = v[1];
+            }
+        }
+    }
     for (k, d) in p.drives.iter().enumerate() {
         if let MacroDrive::Strain(f) = d {
             let e0 = f.eval(0.0);
@@ -499,7 +562,10 @@ fn initial_cell(p: &PeriodicSpec) -> Result<CellState, BuildError> {
             }
         }
     }
-    Ok(CellState::default())
+    Ok(CellState {
+        rate,
+        ..Default::default()
+    })
 }
 
 /// `a, b, c` list of the region names, for messages.

@@ -21,10 +21,10 @@ use std::time::Instant;
 use xper_bodies::Drive;
 use xper_solver::{CohesiveTerm, SolveError};
 
-use crate::cell::{MacroDrive, SHEAR_WEIGHT};
+use crate::cell::{CellState, MacroDrive, SHEAR_WEIGHT};
 use crate::dense::{masked_spd_inverse, mul_vec, Mat6};
 use crate::interface::cohesive;
-use crate::model::{FractureEnergy, FractureModel};
+use crate::model::{FractureEnergy, FractureModel, PlasticStiffness};
 use crate::operator::{CellWork, ElementContactOperator, ElementWork, InterfaceRow};
 use xper_solver::ContactSolve;
 use xper_solver::OneProcessSolve;
@@ -66,6 +66,11 @@ pub struct FractureStepReport {
     pub wall_time: f64,
     /// Wall time of the solve (s).
     pub solve_time: f64,
+    /// The macroscopic state of a periodic cell at the end of the step (`None` otherwise).
+    pub cell: Option<CellState>,
+    /// Points of cohesive interfaces that have lost adhesion (counted for periodic cells
+    /// only, 0 otherwise), and all points of cohesive interfaces.
+    pub damaged_points: [usize; 2],
 }
 
 /// Why a step failed.
@@ -188,6 +193,8 @@ impl FractureStepper {
             loads: totals.loads,
             wall_time: start.elapsed().as_secs_f64(),
             solve_time,
+            cell: m.cell,
+            damaged_points: [totals.damaged_points, totals.cohesive_points],
         })
     }
 
@@ -444,7 +451,8 @@ impl FractureStepper {
             el.state = up.state;
             el.internal_force = el.triangle.internal_force(&up.state.in_plane_stress());
             plastic += owned * up.plastic_work * el.triangle.volume();
-            if matches!(material, xper_fem::Material::J2Plastic { .. }) {
+            let tangent = m.spec.plastic_stiffness == PlasticStiffness::Tangent;
+            if tangent && matches!(material, xper_fem::Material::J2Plastic { .. }) {
                 el.stiffness = el.triangle.stiffness(&up.tangent);
                 self.inv_mass_valid[e] = false;
             }

@@ -119,6 +119,8 @@ pub(crate) fn cell(stepper: &FractureStepper, m: &mut FractureModel) -> Option<C
 pub(crate) struct StepTotals {
     pub contacts: usize,
     pub broken_points: usize,
+    pub damaged_points: usize,
+    pub cohesive_points: usize,
     pub broken_interfaces: usize,
     pub energy: FractureEnergy,
     pub loads: Vec<LoadReading>,
@@ -154,11 +156,17 @@ impl StepTotals {
             values.extend(c.volume.iter().chain(&c.boundary));
             values.push(c.work);
         }
+        if cell.is_some() {
+            values.extend([m.damaged_points() as f64, m.cohesive_points() as f64]);
+        }
         let head = values.len();
         values.extend(load_sums.iter().flatten());
         solver.sum(&mut values);
+        let (mut damaged_points, mut cohesive_points) = (0, 0);
         if let Some(c) = &mut cell {
-            let s = &values[head - 7..head];
+            damaged_points = values[head - 2] as usize;
+            cohesive_points = values[head - 1] as usize;
+            let s = &values[head - 9..head - 2];
             c.volume.copy_from_slice(&s[..3]);
             c.boundary.copy_from_slice(&s[3..6]);
             c.work = s[6];
@@ -179,6 +187,8 @@ impl StepTotals {
         StepTotals {
             contacts: values[0] as usize,
             broken_points: values[1] as usize,
+            damaged_points,
+            cohesive_points,
             broken_interfaces: values[2] as usize,
             energy: FractureEnergy {
                 kinetic: values[3],

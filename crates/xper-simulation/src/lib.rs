@@ -15,6 +15,7 @@ pub mod comparison;
 pub mod driver;
 pub mod fluid;
 pub mod fracture;
+pub mod homogenize;
 pub mod lock;
 pub mod outputs;
 pub mod ranks;

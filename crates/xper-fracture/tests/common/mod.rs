@@ -104,11 +104,13 @@ pub fn cell_model(
         dt,
         theta: 0.5,
         nlgs: NlgsParams {
-            tolerance: 1e-10,
+            tolerance: 1e-8,
             max_iterations: 100_000,
+            acceleration: xper_solver::Acceleration::ANDERSON,
             ..Default::default()
         },
         periodic: Some(PeriodicSpec { cell, drives }),
+        plastic_stiffness: Default::default(),
     };
     FractureModel::new(mesh, spec).unwrap()
 }

@@ -107,6 +107,7 @@ impl FractureScene {
             theta: self.theta,
             nlgs: self.nlgs,
             periodic,
+            plastic_stiffness: self.plastic_stiffness,
         };
         Ok(FractureSetup {
             interfaces: topology.interior.len(),

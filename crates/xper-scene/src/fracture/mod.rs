@@ -12,7 +12,7 @@ pub(crate) mod types;
 use std::path::Path;
 
 use xper_fem::{Hypothesis, Material};
-use xper_fracture::MassMatrix;
+use xper_fracture::{MassMatrix, PlasticStiffness};
 use xper_laws::cohesive::{CohesiveError, CohesiveZone};
 use xper_solver::NlgsParams;
 
@@ -124,7 +124,7 @@ pub(crate) fn fracture_scene(ctx: &mut Ctx, root: &Tbl, file: &Path) -> Option<F
     let interfaces = interfaces(ctx, root, &names);
     let loads = loads::loads(ctx, root);
     let periodic = periodic::periodic(ctx, root);
-    let (thickness, hypothesis, mass, broken) = fracture?;
+    let (thickness, hypothesis, mass, plastic_stiffness, broken) = fracture?;
     Some(FractureScene {
         file: file.to_path_buf(),
         name: header.name?,
@@ -137,6 +137,7 @@ pub(crate) fn fracture_scene(ctx: &mut Ctx, root: &Tbl, file: &Path) -> Option<F
         thickness,
         hypothesis,
         mass,
+        plastic_stiffness,
         mesh: mesh?,
         regions: regions?,
         interfaces: interfaces?,
@@ -199,12 +200,27 @@ fn output(ctx: &mut Ctx, root: &Tbl, steps: Option<u64>) -> Option<OutputSetting
     })
 }
 
-type FractureSection = (f64, Hypothesis, MassMatrix, Vec<EdgeSetRef>);
+type FractureSection = (
+    f64,
+    Hypothesis,
+    MassMatrix,
+    PlasticStiffness,
+    Vec<EdgeSetRef>,
+);
 
 /// `[fracture]`: thickness, hypothesis, mass matrix, pre-broken edge sets.
 fn fracture_section(ctx: &mut Ctx, root: &Tbl) -> Option<FractureSection> {
     let t = required_table(ctx, root, "fracture")?;
-    t.check_keys(ctx, &["thickness", "hypothesis", "mass", "broken"]);
+    t.check_keys(
+        ctx,
+        &[
+            "thickness",
+            "hypothesis",
+            "mass",
+            "plastic_stiffness",
+            "broken",
+        ],
+    );
     let thickness = number(ctx, &t, "thickness", |v| v > 0.0, "> 0 m");
     let hypotheses = [
         ("plane_strain", Hypothesis::PlaneStrain),
@@ -228,8 +244,22 @@ fn fracture_section(ctx: &mut Ctx, root: &Tbl) -> Option<FractureSection> {
         Got::Absent => Some(MassMatrix::Consistent),
         g => choose(ctx, g.ok(), &t.field("mass"), "mass matrix", &masses),
     };
+    let stiffnesses = [
+        ("tangent", PlasticStiffness::Tangent),
+        ("elastic", PlasticStiffness::Elastic),
+    ];
+    let plastic_stiffness = match t.string(ctx, "plastic_stiffness") {
+        Got::Absent => Some(PlasticStiffness::Tangent),
+        g => choose(
+            ctx,
+            g.ok(),
+            &t.field("plastic_stiffness"),
+            "plastic stiffness",
+            &stiffnesses,
+        ),
+    };
     let broken = names_list(ctx, &t, "broken");
-    Some((thickness?, hypothesis?, mass?, broken?))
+    Some((thickness?, hypothesis?, mass?, plastic_stiffness?, broken?))
 }
 
 /// An optional array of names (empty when absent).

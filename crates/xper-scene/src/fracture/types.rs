@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use serde::Serialize;
 use xper_bodies::Drive;
 use xper_fem::{Hypothesis, Material};
-use xper_fracture::{MacroDrive, MassMatrix};
+use xper_fracture::{MacroDrive, MassMatrix, PlasticStiffness};
 use xper_mesh::{NodeSelector, NotchedSpec, PeriodicCellSpec, RectangleSpec};
 use xper_solver::NlgsParams;
 
@@ -60,6 +60,8 @@ pub struct FractureScene {
     pub hypothesis: Hypothesis,
     /// Element mass matrix.
     pub mass: MassMatrix,
+    /// Stiffness of elastoplastic elements in the implicit part of a step.
+    pub plastic_stiffness: PlasticStiffness,
     /// Where the mesh comes from.
     pub mesh: MeshDesc,
     /// Material of each region, in file order.

@@ -5,7 +5,7 @@ use crate::RunError;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use xper_fem::MaterialState;
-use xper_fracture::{FractureEnergy, FractureModel, PointState};
+use xper_fracture::{CellState, FractureEnergy, FractureModel, PointState};
 
 /// The evolving state of one element, as checkpointed.
 #[derive(Serialize, Deserialize)]
@@ -26,6 +26,7 @@ pub struct Checkpoint {
     pub energy: FractureEnergy,
     pub elements: Vec<ElementState>,
     pub points: Vec<[PointState; 2]>,
+    pub cell: Option<CellState>,
 }
 
 impl Checkpoint {
@@ -45,6 +46,7 @@ impl Checkpoint {
                 })
                 .collect(),
             points: m.interfaces.iter().map(|i| i.points).collect(),
+            cell: m.cell,
         }
     }
 
@@ -73,6 +75,7 @@ impl Checkpoint {
         m.step = self.step;
         m.time = self.time;
         m.energy = self.energy;
+        m.cell = self.cell;
         Ok(())
     }
 }

@@ -80,12 +80,25 @@ pub fn elements_grid(m: &FractureModel) -> UnstructuredGrid {
     g
 }
 
-/// Position (m) of point `k` of an interface: the mean of its two copies.
+/// Position (m) of point `k` of an interface: the mean of its two copies. The copy in `b` of
+/// an interface across the sides of a periodic cell is brought back by the deformed period
+/// `(I + E) T`, so that the point sits on the lower side (`x = x0` or `y = y0`).
 pub fn point_position(m: &FractureModel, i: &Interface, k: usize) -> [f64; 2] {
     let [a, b] = i.elements.map(|e| e as usize);
     let [la, lb] = i.local_nodes[k].map(usize::from);
     let (pa, pb) = (node_position(m, a, la), node_position(m, b, lb));
-    [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])]
+    let shift = deformed_period(m, i);
+    [
+        0.5 * (pa[0] + (pb[0] - shift[0])),
+        0.5 * (pa[1] + (pb[1] - shift[1])),
+    ]
+}
+
+/// `(I + E) T` (m) of an interface across the sides of a periodic cell, zero otherwise.
+pub fn deformed_period(m: &FractureModel, i: &Interface) -> [f64; 2] {
+    let strain = m.cell.map_or([0.0; 3], |c| c.strain);
+    let et = xper_fracture::strain_times(&strain, i.period);
+    [i.period[0] + et[0], i.period[1] + et[1]]
 }
 
 /// Whether a cohesive interface has lost some adhesion without being fully broken.
@@ -99,7 +112,7 @@ pub fn is_damaged(m: &FractureModel, i: &Interface) -> bool {
 }
 
 /// The interfaces: one VTK line per interface, from point 0 to point 1 (each at the mean of
-/// its two copies). Cell data: `beta` (mean intensity of the two points) and `beta_min`,
+/// its two copies; an interface across the sides of a periodic cell on the lower side). Cell data: `beta` (mean intensity of the two points) and `beta_min`,
 /// `opening` and `sliding` (mean normal and tangential jumps, m), `normal_traction` and
 /// `tangential_traction` (mean of impulse / (dt length/2 thickness), Pa; the normal one is
 /// positive when it pushes the sides apart, negative when cohesion holds them together),

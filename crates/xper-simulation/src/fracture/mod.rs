@@ -20,7 +20,7 @@ use checkpoint::Checkpoint;
 use frames::{elements_grid, interfaces_grid};
 use outputs::{
     series_columns, series_row, summary, write_crack_pattern, write_force_displacement,
-    write_series_plot,
+    write_series_plot, write_stress_strain,
 };
 use std::path::Path;
 use stepping::{DistributedFractureRun, FractureRun, SerialFracture};
@@ -57,7 +57,7 @@ impl<'c> FractureSimulation<'c> {
             Checkpoint::read(&opts.out)?.restore(&mut model, &opts.out.join("checkpoint.bin"))?;
         }
         let names: Vec<String> = model.spec.loads.iter().map(|l| l.name.clone()).collect();
-        let columns = series_columns(&names);
+        let columns = series_columns(&names, model.spec.periodic.is_some());
         let columns: Vec<&str> = columns.iter().map(String::as_str).collect();
         let runner: Box<dyn FractureRun + 'c> = match comm {
             Some(comm) => Box::new(DistributedFractureRun::new(comm, &model)),
@@ -182,8 +182,14 @@ impl Simulation for FractureSimulation<'_> {
         let (m, name) = (&self.model, &self.scene.name);
         write_json_atomic(&dir.join("summary.json"), &s).map_err(io_err)?;
         write_series_plot(&self.series, &dir.join("series.png"), name).map_err(io_err)?;
-        let fd = dir.join("force_displacement.png");
-        write_force_displacement(m, &self.series, &fd, name).map_err(io_err)?;
+        if !m.spec.loads.is_empty() {
+            let fd = dir.join("force_displacement.png");
+            write_force_displacement(m, &self.series, &fd, name).map_err(io_err)?;
+        }
+        if m.spec.periodic.is_some() {
+            let ss = dir.join("stress_strain.png");
+            write_stress_strain(&self.series, &ss, name).map_err(io_err)?;
+        }
         write_crack_pattern(m, &dir.join("crack_pattern.png"), name).map_err(io_err)?;
         serde_json::to_value(&s).map_err(|e| RunError::Runtime(e.to_string()))
     }

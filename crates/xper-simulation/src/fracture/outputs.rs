@@ -1,5 +1,6 @@
 //! Outputs of a fracture run besides the frames: `series.csv` columns and rows,
-//! `summary.json`, and the PNGs `series.png`, `force_displacement.png`, `crack_pattern.png`.
+//! `summary.json`, and the PNGs `series.png`, `force_displacement.png`, `crack_pattern.png`
+//! and, for a periodic cell, `stress_strain.png`.
 
 use std::path::Path;
 
@@ -36,13 +37,38 @@ pub const FRACTURE_COLUMNS: [&str; 17] = [
     "broken_interfaces",
 ];
 
-/// The columns of `series.csv` for a model with these load names.
-pub fn series_columns(loads: &[String]) -> Vec<String> {
+/// Columns of `series.csv` of a periodic cell, after [`FRACTURE_COLUMNS`]: the macroscopic
+/// strain (dimensionless, tensor shear), the stress as the volume average of the element
+/// stresses and from the forces across the periodic sides (Pa), the largest difference of
+/// the two (Pa), the work of the macroscopic loading (J), and the fractions of cohesive
+/// interface points damaged (broken included) and broken.
+pub const PERIODIC_COLUMNS: [&str; 13] = [
+    "strain_xx",
+    "strain_yy",
+    "strain_xy",
+    "stress_xx",
+    "stress_yy",
+    "stress_xy",
+    "boundary_stress_xx",
+    "boundary_stress_yy",
+    "boundary_stress_xy",
+    "stress_difference",
+    "macro_work",
+    "damaged_fraction",
+    "broken_fraction",
+];
+
+/// The columns of `series.csv` for a model with these load names, with the
+/// [`PERIODIC_COLUMNS`] for a periodic cell.
+pub fn series_columns(loads: &[String], periodic: bool) -> Vec<String> {
     let mut c = vec!["step".to_string(), "time".to_string()];
     for name in loads {
         c.extend(LOAD_SUFFIXES.iter().map(|s| format!("{name}_{s}")));
     }
     c.extend(FRACTURE_COLUMNS.iter().map(|s| s.to_string()));
+    if periodic {
+        c.extend(PERIODIC_COLUMNS.iter().map(|s| s.to_string()));
+    }
     c
 }
 
@@ -72,7 +98,54 @@ pub fn series_row(r: &FractureStepReport) -> Vec<f64> {
         r.solve_time,
         r.broken_interfaces as f64,
     ]);
+    if let Some(c) = &r.cell {
+        let difference = (0..3)
+            .map(|k| (c.stress_volume[k] - c.stress_boundary[k]).abs())
+            .fold(0.0, f64::max);
+        let [damaged, all] = r.damaged_points.map(|n| n as f64);
+        let fraction = |n: f64| if all > 0.0 { n / all } else { 0.0 };
+        row.extend(c.strain);
+        row.extend(c.stress_volume);
+        row.extend(c.stress_boundary);
+        row.extend([
+            difference,
+            c.work,
+            fraction(damaged),
+            fraction(r.broken_points as f64),
+        ]);
+    }
     row
+}
+
+/// `stress_strain.png` of a periodic cell: for each component of the macroscopic strain that
+/// moves, the stress (volume average and boundary forces) against the strain.
+pub fn write_stress_strain(series: &SeriesTable, path: &Path, title: &str) -> std::io::Result<()> {
+    let mut panels = Vec::new();
+    for c in ["xx", "yy", "xy"] {
+        let strain = format!("strain_{c}");
+        let moves = series
+            .column(&strain)
+            .is_some_and(|v| v.iter().any(|&x| x != 0.0));
+        if !moves {
+            continue;
+        }
+        panels.push(panel(
+            &format!("{c} component"),
+            &format!("macroscopic strain E_{c}"),
+            &format!("macroscopic stress S_{c} (Pa)"),
+            vec![
+                series_curve(series, &strain, &format!("stress_{c}"), "volume average"),
+                series_curve(
+                    series,
+                    &strain,
+                    &format!("boundary_stress_{c}"),
+                    "forces across the sides",
+                ),
+            ],
+            false,
+        ));
+    }
+    plot_panels(path, title, &panels, 900, 320)
 }
 
 /// `summary.json` of a fracture run.
@@ -130,6 +203,9 @@ pub struct FractureSummary {
     pub ranks: Vec<crate::ranks::RankSummary>,
     /// The same steps on one process (`--compare-serial` under mpirun).
     pub serial_comparison: Option<crate::comparison::SerialComparison>,
+    /// The macroscopic state of a periodic cell at the end (absent for a specimen).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cell: Option<xper_fracture::CellState>,
 }
 
 /// The summary of a run from its series and final model.
@@ -177,6 +253,7 @@ pub fn summary(
         processes: 1,
         ranks: Vec::new(),
         serial_comparison: None,
+        cell: m.cell,
     }
 }
 
@@ -275,7 +352,9 @@ pub const STRONG_DAMAGE: f64 = 0.5;
 
 /// `crack_pattern.png`: the mesh outline and region boundaries at the current state;
 /// damaged cohesive interfaces (smallest point intensity below beta0) in light orange,
-/// strongly damaged ones (below [`STRONG_DAMAGE`]) in orange, broken ones in thick black.
+/// strongly damaged ones (below [`STRONG_DAMAGE`]) in orange, broken ones in thick black. An
+/// interface across the sides of a periodic cell is drawn on both sides, so that a crack
+/// leaving the cell is seen re-entering on the opposite side.
 pub fn write_crack_pattern(m: &FractureModel, path: &Path, title: &str) -> std::io::Result<()> {
     let mut layers: [Vec<[[f64; 2]; 2]>; 5] = Default::default();
     if let Ok(topology) = m.mesh.neighbours() {
@@ -289,6 +368,12 @@ pub fn write_crack_pattern(m: &FractureModel, path: &Path, title: &str) -> std::
     }
     for i in &m.interfaces {
         let seg = [point_position(m, i, 0), point_position(m, i, 1)];
+        let image = if i.period == [0.0; 2] {
+            None
+        } else {
+            let t = super::frames::deformed_period(m, i);
+            Some(seg.map(|p| [p[0] + t[0], p[1] + t[1]]))
+        };
         let [a, b] = i.elements.map(|e| m.elements[e as usize].region);
         let beta = i.points[0].intensity.min(i.points[1].intensity);
         let k = if m.is_broken(i) {
@@ -303,6 +388,7 @@ pub fn write_crack_pattern(m: &FractureModel, path: &Path, title: &str) -> std::
             continue;
         };
         layers[k].push(seg);
+        layers[k].extend(image);
     }
     let [outline, regions, light, strong, broken] = layers;
     let (n_light, n_strong, n_broken) = (light.len(), strong.len(), broken.len());

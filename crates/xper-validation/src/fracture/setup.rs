@@ -146,6 +146,7 @@ pub(super) fn spec(
             ..Default::default()
         },
         periodic: None,
+        plastic_stiffness: Default::default(),
     }
 }
 
@@ -357,6 +358,7 @@ pub(super) fn one_triangle(
         theta: 1.0,
         nlgs: NlgsParams::default(),
         periodic: None,
+        plastic_stiffness: Default::default(),
     };
     Ok((mesh, spec))
 }
