@@ -87,16 +87,28 @@ pub fn cell_model(
     drives: [MacroDrive; 3],
     dt: f64,
 ) -> FractureModel {
-    let cell = PeriodicCell::bounding(&mesh);
     let rules = [[0, 0], [0, 1], [1, 1]].map(|regions| InterfaceRule {
         regions,
         law: InterfaceLaw::Cohesive(zone),
     });
+    cell_model_with(mesh, materials.to_vec(), rules.to_vec(), drives, dt)
+}
+
+/// The model of `mesh` as a periodic cell (its bounding box) with a material per region and
+/// these interface rules.
+pub fn cell_model_with(
+    mesh: Mesh,
+    materials: Vec<Material>,
+    rules: Vec<InterfaceRule>,
+    drives: [MacroDrive; 3],
+    dt: f64,
+) -> FractureModel {
+    let cell = PeriodicCell::bounding(&mesh);
     let spec = FractureSpec {
         thickness: 1.0,
         hypothesis: Hypothesis::PlaneStrain,
-        materials: materials.to_vec(),
-        interface_laws: rules.to_vec(),
+        materials,
+        interface_laws: rules,
         broken_edge_sets: Vec::new(),
         loads: Vec::new(),
         gravity: [0.0, 0.0],
