@@ -406,7 +406,7 @@ fn a_crack_leaving_a_side_reenters_on_the_opposite_side() {
     let mut stepper = FractureStepper::new();
     let (mut peak, mut tail) = (0.0f64, Vec::new());
     let normal_stress = |s: [f64; 3]| 0.5 * (s[0] + s[1]) - s[2];
-    for step in 0..steps {
+    for _ in 0..steps {
         assert!(stepper.step(&mut m).unwrap().converged);
         let s = normal_stress(m.cell.unwrap().stress_boundary);
         peak = peak.max(s);
