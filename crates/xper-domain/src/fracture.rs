@@ -141,6 +141,7 @@ impl<'c, C: Communicator + ?Sized> DistributedFracture<'c, C> {
         whole.step = self.part.step;
         whole.time = self.part.time;
         whole.energy = self.energy;
+        whole.cell = self.part.cell;
     }
 
     /// This process's share: owned elements, shadows, interface points owned (two per

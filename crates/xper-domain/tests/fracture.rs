@@ -156,3 +156,56 @@ fn a_run_resumed_on_another_process_count_continues_the_uninterrupted_run() {
         "resume on the same count"
     );
 }
+
+/// The periodic bimaterial cell (`scenes/periodic_bimaterial_small`, J2 matrix, random
+/// inclusions crossing the sides) under an imposed strain E_xx (E_yy = E_xy = 0): on 2 and 3
+/// processes, whose parts are joined by the interfaces across the cell's sides as well as by
+/// the inner ones, the run agrees with the serial one within 10 times the serial run's own
+/// error, and so do the macroscopic stresses (within 10 times their own serial error).
+#[test]
+fn a_periodic_cell_on_several_processes_agrees_with_the_serial_run() {
+    use xper_bodies::TimeFunction;
+    use xper_fracture::MacroDrive;
+    let model = |tolerance: f64| {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../scenes/periodic_bimaterial_small/scene.toml");
+        let scene = match xper_scene::load_any_scene(&path).unwrap() {
+            xper_scene::AnyScene::Fracture(s) => s,
+            xper_scene::AnyScene::Rigid(_) => panic!("not a fracture scene"),
+        };
+        let mut setup = scene.build().unwrap();
+        let periodic = setup.spec.periodic.as_mut().unwrap();
+        periodic.drives = [
+            MacroDrive::Strain(TimeFunction::Table(vec![(0.0, 0.0), (1e-7, 3e-3)])),
+            MacroDrive::Strain(TimeFunction::Constant(0.0)),
+            MacroDrive::Strain(TimeFunction::Constant(0.0)),
+        ];
+        let mut m = FractureModel::new(setup.mesh, setup.spec).unwrap();
+        m.spec.nlgs.tolerance = tolerance;
+        m
+    };
+    let steps = 250;
+    let (reference, _) = serial(model(1.666e-4), steps);
+    let (tight, _) = serial(model(1.666e-6), steps);
+    let serial_error = reference.largest_displacement_difference(&tight);
+    let stress = |m: &FractureModel| m.cell.unwrap().stress_volume;
+    let stress_error = (0..3)
+        .map(|k| (stress(&reference)[k] - stress(&tight)[k]).abs())
+        .fold(0.0, f64::max);
+    assert!(reference.broken_points() > 0, "the run must break interfaces");
+    for ranks in [2, 3] {
+        let (whole, _, loads) = distributed(&model(1.666e-4), ranks, steps as u64);
+        assert!(loads.iter().map(|l| l.interface_bodies).sum::<usize>() > 0);
+        let difference = reference.largest_displacement_difference(&whole);
+        let stress_difference = (0..3)
+            .map(|k| (stress(&reference)[k] - stress(&whole)[k]).abs())
+            .fold(0.0, f64::max);
+        println!(
+            "{ranks} processes: {difference:.3e} m (serial error {serial_error:.3e} m), stress \
+             {stress_difference:.3e} Pa (serial error {stress_error:.3e} Pa)"
+        );
+        assert!(difference <= 10.0 * serial_error);
+        assert!(stress_difference <= 10.0 * stress_error.max(1e-9 * stress(&reference)[0].abs()));
+        assert_eq!(whole.cell.unwrap().strain, reference.cell.unwrap().strain);
+    }
+}
