@@ -6,6 +6,7 @@
 pub mod fluid;
 pub mod fracture;
 pub mod headline;
+pub mod periodic;
 pub mod poisson;
 pub mod reading;
 pub mod solvers;
@@ -47,6 +48,10 @@ pub struct BenchArgs {
     /// only these run.
     #[arg(long)]
     fluid: bool,
+    /// Compare the periodic bimaterial cell with a plain specimen of the same mesh (the cost
+    /// of the periodic coupling); without `--scene`, only this runs.
+    #[arg(long)]
+    periodic: bool,
     /// Time `xper check` on generated scenes of 0.5 to 50 MB (reading in linear time and
     /// memory); without `--scene`, only these run.
     #[arg(long)]
@@ -224,6 +229,14 @@ pub fn bench(args: &BenchArgs) -> Result<(), RunError> {
             return write_report(&args.out, &args.report);
         }
     }
+    if args.periodic {
+        std::fs::create_dir_all(&args.out)
+            .map_err(|e| RunError::BadInput(format!("{}: {e}", args.out.display())))?;
+        crate::periodic::bench_periodic(&args.out, machine())?;
+        if args.scenes.is_empty() && !args.fluid {
+            return write_report(&args.out, &args.report);
+        }
+    }
     if args.fluid {
         std::fs::create_dir_all(&args.out)
             .map_err(|e| RunError::BadInput(format!("{}: {e}", args.out.display())))?;
@@ -321,6 +334,7 @@ fn read_results<T: serde::de::DeserializeOwned>(
                         !fracture
                             && name != crate::solvers::RESULTS_FILE
                             && name != crate::fluid::RESULTS_FILE
+                            && name != crate::periodic::RESULTS_FILE
                             && name != crate::reading::RESULTS_FILE
                     }
                 }
@@ -440,6 +454,13 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), RunError> {
     if let Some(fluid) = optional_result(dir, crate::fluid::RESULTS_FILE, "fluid")? {
         headlines.extend(headline::fluid(&fluid));
         md.push_str(&crate::fluid::markdown(&fluid));
+    }
+    if let Some(periodic) = optional_result::<crate::periodic::PeriodicBench>(
+        dir,
+        crate::periodic::RESULTS_FILE,
+        "periodic",
+    )? {
+        md.push_str(&crate::periodic::markdown(&periodic));
     }
     if let Some(reading) = optional_result(dir, crate::reading::RESULTS_FILE, "reading")? {
         headlines.extend(headline::reading(&reading));

@@ -25,10 +25,8 @@ fn the_cell_tensor_is_printed_and_written() {
     assert!(text.contains("positive definite: yes"), "{text}");
     let written: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
-    let (_, model) = xper_simulation::fracture::build::load_model(
-        &Path::new(&path).join("scene.toml"),
-    )
-    .unwrap();
+    let (_, model) =
+        xper_simulation::fracture::build::load_model(&Path::new(&path).join("scene.toml")).unwrap();
     let direct = xper_fracture::effective_tensor(&model).unwrap();
     for r in 0..3 {
         for c in 0..3 {
@@ -40,7 +38,10 @@ fn the_cell_tensor_is_printed_and_written() {
     assert_eq!(written["positive_definite"], true);
     assert!(written["asymmetry"].as_f64().unwrap() < 1e-12);
     assert!(written["stress_difference"].as_f64().unwrap() < 1e-9);
-    assert_eq!(written["elements"].as_u64().unwrap() as usize, model.elements.len());
+    assert_eq!(
+        written["elements"].as_u64().unwrap() as usize,
+        model.elements.len()
+    );
 }
 
 #[test]

@@ -192,7 +192,10 @@ fn a_periodic_cell_on_several_processes_agrees_with_the_serial_run() {
     let stress_error = (0..3)
         .map(|k| (stress(&reference)[k] - stress(&tight)[k]).abs())
         .fold(0.0, f64::max);
-    assert!(reference.broken_points() > 0, "the run must break interfaces");
+    assert!(
+        reference.broken_points() > 0,
+        "the run must break interfaces"
+    );
     for ranks in [2, 3] {
         let (whole, _, loads) = distributed(&model(1.666e-4), ranks, steps as u64);
         assert!(loads.iter().map(|l| l.interface_bodies).sum::<usize>() > 0);

@@ -204,3 +204,37 @@ fn unmatched_nodes_are_named() {
     let e = mesh.periodic_edges(&wrong).unwrap_err();
     assert!(e.to_string().contains("spans"), "{e}");
 }
+
+fn data(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(name)
+}
+
+/// Gmsh files: a grid whose sides match is a periodic cell (2 + 2 edge pairs), and so is the
+/// unit square with an inclusion (its sides are cut alike); moving one node of its right side
+/// by 1e-3 breaks the match, and the error names that node.
+#[test]
+fn gmsh_meshes_are_checked() {
+    let grid = xper_mesh::read_msh(&data("periodic_grid.msh")).unwrap();
+    let pairs = grid.periodic_edges(&PeriodicCell::bounding(&grid)).unwrap();
+    assert_eq!(pairs.len(), 4);
+    assert_eq!(pairs.iter().filter(|p| p.period == [1.0, 0.0]).count(), 2);
+    let mut square = xper_mesh::read_msh(&data("square_inclusion_ascii.msh")).unwrap();
+    let cell = PeriodicCell::bounding(&square);
+    let pairs = square.periodic_edges(&cell).unwrap();
+    let sides = ["left", "bottom"].map(|s| square.edge_set(s).unwrap().len());
+    assert_eq!(pairs.len(), sides[0] + sides[1]);
+    let moved = (0..square.nodes.len())
+        .find(|&n| {
+            square.nodes[n][0] == 1.0 && square.nodes[n][1] > 0.2 && square.nodes[n][1] < 0.8
+        })
+        .unwrap();
+    square.nodes[moved][1] += 1e-3;
+    let e = square.periodic_edges(&cell).unwrap_err();
+    assert_eq!(e.kind, MeshErrorKind::Invalid);
+    assert!(
+        e.to_string().contains(&format!("node {moved} at (1, ")),
+        "{e}"
+    );
+}

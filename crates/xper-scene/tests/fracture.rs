@@ -602,7 +602,11 @@ fn periodic_cell_scene_builds_its_cell_and_drives() {
     let pairs = setup.mesh.periodic_edges(&p.cell).unwrap();
     assert!(!pairs.is_empty());
     let model = xper_fracture::FractureModel::new(setup.mesh, setup.spec).unwrap();
-    let across = model.interfaces.iter().filter(|i| i.period != [0.0; 2]).count();
+    let across = model
+        .interfaces
+        .iter()
+        .filter(|i| i.period != [0.0; 2])
+        .count();
     assert_eq!(across, pairs.len());
     assert_eq!(2 * model.interfaces.len(), 3 * model.elements.len());
 }
@@ -612,7 +616,12 @@ fn periodic_errors_name_the_key() {
     let t = PERIODIC.replace("stress_yy = 0.0", "stress_yy = 0.0\nstrain_yy = 0.0");
     expect_error(&t, "periodic.stress_yy", "stress_yy", "not both");
     let t = PERIODIC.replace("strain_xy = 0.0\n", "");
-    expect_error(&t, "periodic.strain_xy", "[periodic]", "give strain_xy or stress_xy");
+    expect_error(
+        &t,
+        "periodic.strain_xy",
+        "[periodic]",
+        "give strain_xy or stress_xy",
+    );
     let t = PERIODIC.replace("strain_xy = 0.0", "strain_xy = 0.0\nstrain_zz = 0.0");
     expect_error(&t, "periodic.strain_zz", "strain_zz", "unknown key");
     let t = PERIODIC.replace("stress_yy = 0.0", "stress_yy = \"free\"");
@@ -621,7 +630,12 @@ fn periodic_errors_name_the_key() {
         "strain_xy = 0.0",
         "strain_xy = 0.0\ncell = [[0.0, 0.0], [6e-5, 4e-5]]",
     );
-    expect_error(&t, "periodic", "[periodic]", "the mesh is not a periodic cell");
+    expect_error(
+        &t,
+        "periodic",
+        "[periodic]",
+        "the mesh is not a periodic cell",
+    );
     let t = PERIODIC.replace("radius = 1e-5 }", "radius = 3e-5 }");
     expect_error(&t, "mesh.circles", "circles", "radius in (0");
     let t = PERIODIC.replace("fraction = 0.1", "fraction = 0.7");

@@ -59,8 +59,8 @@ impl<'c> FractureSimulation<'c> {
         let names: Vec<String> = model.spec.loads.iter().map(|l| l.name.clone()).collect();
         let columns = series_columns(&names, model.spec.periodic.is_some());
         let columns: Vec<&str> = columns.iter().map(String::as_str).collect();
-        let free_cell = (model.spec.periodic.as_ref())
-            .is_some_and(|p| (0..3).any(|k| p.is_free(k)));
+        let free_cell =
+            (model.spec.periodic.as_ref()).is_some_and(|p| (0..3).any(|k| p.is_free(k)));
         if free_cell && comm.is_some_and(|c| c.size() > 1) {
             return Err(RunError::BadInput(format!(
                 "{}: [periodic]: an imposed stress (stress_xx, stress_yy or stress_xy) is not \
