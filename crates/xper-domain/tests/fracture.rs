@@ -197,7 +197,7 @@ fn a_periodic_cell_on_several_processes_agrees_with_the_serial_run() {
         "the run must break interfaces"
     );
     for ranks in [2, 3] {
-        let (whole, _, loads) = distributed(&model(1.666e-4), ranks, steps as u64);
+        let (whole, _, loads) = distributed(&model(1.666e-4), ranks, steps);
         assert!(loads.iter().map(|l| l.interface_bodies).sum::<usize>() > 0);
         let difference = reference.largest_displacement_difference(&whole);
         let stress_difference = (0..3)
