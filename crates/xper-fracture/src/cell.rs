@@ -26,6 +26,8 @@ use serde::{Deserialize, Serialize};
 use xper_bodies::TimeFunction;
 use xper_mesh::PeriodicCell;
 
+use crate::model::{BuildError, ElementBody};
+
 /// What drives one component of the macroscopic strain.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub enum MacroDrive {
@@ -105,4 +107,50 @@ impl PeriodicSpec {
             mass * (w * w + h * h) / 12.0,
         ]
     }
+}
+
+/// The state of a periodic cell at time 0; an imposed strain must start from zero (the
+/// elements start undeformed). The elements start in the affine motion `v = E'(0) (X - X_c)`
+/// of the imposed components' first rate (`X_c` the cell's centre), so that a homogeneous
+/// cell loaded at a constant rate launches no wave (the free components start at rest).
+pub(crate) fn initial_cell(
+    p: &PeriodicSpec,
+    dt: f64,
+    elements: &mut [ElementBody],
+) -> Result<CellState, BuildError> {
+    let mut rate = [0.0; 3];
+    for (k, d) in p.drives.iter().enumerate() {
+        if let MacroDrive::Strain(f) = d {
+            rate[k] = (f.eval(dt) - f.eval(0.0)) / dt;
+        }
+    }
+    let center = [
+        p.cell.lower[0] + 0.5 * p.cell.size[0],
+        p.cell.lower[1] + 0.5 * p.cell.size[1],
+    ];
+    if rate != [0.0; 3] {
+        for el in elements.iter_mut() {
+            for (j, x) in el.triangle.nodes().iter().enumerate() {
+                let v = crate::cell::strain_times(&rate, [x[0] - center[0], x[1] - center[1]]);
+                el.velocity[2 * j] = v[0];
+                el.velocity[2 * j + 1] = v[1];
+            }
+        }
+    }
+    for (k, d) in p.drives.iter().enumerate() {
+        if let MacroDrive::Strain(f) = d {
+            let e0 = f.eval(0.0);
+            if e0 != 0.0 {
+                return Err(BuildError(format!(
+                    "periodic cell: the imposed strain {} starts at {e0}, not 0 (the cell \
+                     starts undeformed)",
+                    ["xx", "yy", "xy"][k]
+                )));
+            }
+        }
+    }
+    Ok(CellState {
+        rate,
+        ..Default::default()
+    })
 }

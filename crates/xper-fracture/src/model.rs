@@ -8,7 +8,7 @@ use xper_laws::cohesive::CohesiveZone;
 use xper_mesh::{Mesh, Topology};
 use xper_solver::NlgsParams;
 
-use crate::cell::{CellState, MacroDrive, PeriodicSpec};
+use crate::cell::{CellState, PeriodicSpec};
 use crate::dense::{add_scaled, Mat6};
 
 /// The law of an interface between two elements.
@@ -390,7 +390,7 @@ impl FractureModel {
         load_shares(&mesh, &topology, &spec, &node_load, &mut elements);
         let (interfaces, laws) = crate::interface::build_interfaces(&mesh, &topology, &spec)?;
         let cell = match &spec.periodic {
-            Some(p) => Some(initial_cell(p, spec.dt, &mut elements)?),
+            Some(p) => Some(crate::cell::initial_cell(p, spec.dt, &mut elements)?),
             None => None,
         };
         Ok(FractureModel {
@@ -520,52 +520,6 @@ impl FractureModel {
     pub fn broken_interfaces(&self) -> usize {
         self.interfaces.iter().filter(|i| self.is_broken(i)).count()
     }
-}
-
-/// The state of a periodic cell at time 0; an imposed strain must start from zero (the
-/// elements start undeformed). The elements start in the affine motion `v = E'(0) (X - X_c)`
-/// of the imposed components' first rate (`X_c` the cell's centre), so that a homogeneous
-/// cell loaded at a constant rate launches no wave (the free components start at rest).
-fn initial_cell(
-    p: &PeriodicSpec,
-    dt: f64,
-    elements: &mut [ElementBody],
-) -> Result<CellState, BuildError> {
-    let mut rate = [0.0; 3];
-    for (k, d) in p.drives.iter().enumerate() {
-        if let MacroDrive::Strain(f) = d {
-            rate[k] = (f.eval(dt) - f.eval(0.0)) / dt;
-        }
-    }
-    let center = [
-        p.cell.lower[0] + 0.5 * p.cell.size[0],
-        p.cell.lower[1] + 0.5 * p.cell.size[1],
-    ];
-    if rate != [0.0; 3] {
-        for el in elements.iter_mut() {
-            for (j, x) in el.triangle.nodes().iter().enumerate() {
-                let v = crate::cell::strain_times(&rate, [x[0] - center[0], x[1] - center[1]]);
-                el.velocity[2 * j] = v[0];
-                el.velocity[2 * j + 1] = v[1];
-            }
-        }
-    }
-    for (k, d) in p.drives.iter().enumerate() {
-        if let MacroDrive::Strain(f) = d {
-            let e0 = f.eval(0.0);
-            if e0 != 0.0 {
-                return Err(BuildError(format!(
-                    "periodic cell: the imposed strain {} starts at {e0}, not 0 (the cell \
-                     starts undeformed)",
-                    ["xx", "yy", "xy"][k]
-                )));
-            }
-        }
-    }
-    Ok(CellState {
-        rate,
-        ..Default::default()
-    })
 }
 
 /// `a, b, c` list of the region names, for messages.

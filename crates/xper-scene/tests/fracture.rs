@@ -1,15 +1,15 @@
 //! Fracture scenes: a valid scene parses and builds to the expected specification; each
 //! kind of error names the field, the line of the offending value and the reason.
 
+mod fracture_common;
+
+use fracture_common::*;
 use std::path::{Path, PathBuf};
 
 use xper_bodies::{Drive, TimeFunction};
 use xper_fem::{Hypothesis, Material};
 use xper_fracture::{InterfaceLaw, MassMatrix};
-use xper_scene::{
-    load_any_scene, parse_any_scene, parse_scene, AnyScene, FractureScene, MeshSource, SceneError,
-    SceneErrors, Stiffness,
-};
+use xper_scene::{load_any_scene, parse_any_scene, parse_scene, AnyScene, MeshSource, Stiffness};
 
 const NOTCHED: &str = r#"[scene]
 name = "notched"
@@ -91,48 +91,6 @@ name = "left"
 nodes = { segment = [[0.0, 0.0], [0.0, 5e-5]] }
 velocity = [2.0, "free"]
 "#;
-
-fn file() -> &'static Path {
-    Path::new("test.toml")
-}
-
-fn parse(text: &str) -> Result<FractureScene, SceneErrors> {
-    match parse_any_scene(text, file())? {
-        AnyScene::Fracture(s) => Ok(s),
-        AnyScene::Rigid(_) => panic!("parsed as a rigid scene"),
-    }
-}
-
-fn line_of(text: &str, marker: &str) -> usize {
-    text.lines()
-        .position(|l| l.contains(marker))
-        .unwrap_or_else(|| panic!("marker {marker:?} not in text"))
-        + 1
-}
-
-/// The error on exactly `field`, at the line holding `marker`, whose message contains
-/// `needle`; from parsing or, when parsing succeeds, from building.
-fn expect_error(text: &str, field: &str, marker: &str, needle: &str) -> SceneError {
-    let e = match parse(text) {
-        Err(e) => e,
-        Ok(s) => match s.build() {
-            Err(e) => e,
-            Ok(_) => panic!("expected an error on `{field}`, the scene builds:\n{text}"),
-        },
-    };
-    let line = line_of(text, marker);
-    let found =
-        e.0.iter()
-            .find(|x| x.field == field && x.line == line && x.message.contains(needle));
-    match found {
-        Some(x) => {
-            assert_eq!(x.file, file());
-            assert!(x.column >= 1);
-            x.clone()
-        }
-        None => panic!("no error on `{field}` at line {line} containing {needle:?}; got:\n{e}"),
-    }
-}
 
 #[test]
 fn notched_scene_parses_and_builds() {
@@ -545,99 +503,4 @@ fn format_doc_fracture_example_parses_and_builds() {
         .build()
         .unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(setup.spec.loads[1].nodes, setup.mesh.node_sets["bottom"]);
-}
-
-const PERIODIC: &str = r#"[scene]
-name = "cell"
-dt = 1e-10
-steps = 10
-gravity = [0.0, 0.0]
-
-[fracture]
-thickness = 1.0
-
-[mesh]
-generator = "periodic_cell"
-width = 5e-5
-height = 4e-5
-element_size = 5e-6
-circles = [{ center = [0.0, 2e-5], radius = 1e-5 }]
-random = { fraction = 0.1, radius = 5e-6, min_spacing = 2e-6, seed = 4 }
-
-[periodic]
-strain_xx = [[0.0, 0.0], [1e-6, 0.01]]
-stress_yy = 0.0
-strain_xy = 0.0
-
-[[regions]]
-name = "matrix"
-material = { kind = "elastic", young = 99e9, poisson = 0.325, density = 7850.0 }
-
-[[regions]]
-name = "inclusion"
-material = { kind = "elastic", young = 135e9, poisson = 0.32, density = 7850.0 }
-
-[[interfaces]]
-between = ["matrix", "matrix"]
-law = { kind = "cohesive", normal_stiffness = 2e19, tangential_stiffness = 2e19, fracture_energy = 0.5, strength = 3e8 }
-
-[[interfaces]]
-between = ["matrix", "inclusion"]
-law = { kind = "cohesive", normal_stiffness = 4e19, tangential_stiffness = 4e19, fracture_energy = 5.0, strength = 3e8 }
-
-[[interfaces]]
-between = ["inclusion", "inclusion"]
-law = { kind = "cohesive", normal_stiffness = 4e19, tangential_stiffness = 4e19, fracture_energy = 0.4, strength = 3e8 }
-"#;
-
-#[test]
-fn periodic_cell_scene_builds_its_cell_and_drives() {
-    use xper_fracture::MacroDrive;
-    let s = parse(PERIODIC).unwrap_or_else(|e| panic!("{e}"));
-    let setup = s.build().unwrap_or_else(|e| panic!("{e}"));
-    let p = setup.spec.periodic.as_ref().unwrap();
-    assert_eq!(p.cell.size, [5e-5, 4e-5]);
-    assert!(matches!(p.drives[0], MacroDrive::Strain(_)));
-    assert!(matches!(p.drives[1], MacroDrive::Stress(_)));
-    let pairs = setup.mesh.periodic_edges(&p.cell).unwrap();
-    assert!(!pairs.is_empty());
-    let model = xper_fracture::FractureModel::new(setup.mesh, setup.spec).unwrap();
-    let across = model
-        .interfaces
-        .iter()
-        .filter(|i| i.period != [0.0; 2])
-        .count();
-    assert_eq!(across, pairs.len());
-    assert_eq!(2 * model.interfaces.len(), 3 * model.elements.len());
-}
-
-#[test]
-fn periodic_errors_name_the_key() {
-    let t = PERIODIC.replace("stress_yy = 0.0", "stress_yy = 0.0\nstrain_yy = 0.0");
-    expect_error(&t, "periodic.stress_yy", "stress_yy", "not both");
-    let t = PERIODIC.replace("strain_xy = 0.0\n", "");
-    expect_error(
-        &t,
-        "periodic.strain_xy",
-        "[periodic]",
-        "give strain_xy or stress_xy",
-    );
-    let t = PERIODIC.replace("strain_xy = 0.0", "strain_xy = 0.0\nstrain_zz = 0.0");
-    expect_error(&t, "periodic.strain_zz", "strain_zz", "unknown key");
-    let t = PERIODIC.replace("stress_yy = 0.0", "stress_yy = \"free\"");
-    expect_error(&t, "periodic.stress_yy", "stress_yy", "a number, an array");
-    let t = PERIODIC.replace(
-        "strain_xy = 0.0",
-        "strain_xy = 0.0\ncell = [[0.0, 0.0], [6e-5, 4e-5]]",
-    );
-    expect_error(
-        &t,
-        "periodic",
-        "[periodic]",
-        "the mesh is not a periodic cell",
-    );
-    let t = PERIODIC.replace("radius = 1e-5 }", "radius = 3e-5 }");
-    expect_error(&t, "mesh.circles", "circles", "radius in (0");
-    let t = PERIODIC.replace("fraction = 0.1", "fraction = 0.7");
-    expect_error(&t, "mesh.random.fraction", "random", "in (0, 0.6)");
 }
