@@ -320,3 +320,59 @@ pub(crate) fn edges_on(raw: &RawMesh, line: &Line, h: f64) -> Vec<[u32; 2]> {
     edges.dedup();
     edges
 }
+
+/// The four sides of `[0, w] x [0, h]` (m), lines of the edge sets `bottom`, `right`, `top`
+/// and `left`, in that order.
+pub(crate) fn rectangle_sides(w: f64, h: f64) -> Vec<Line> {
+    vec![
+        Line {
+            a: [0.0, 0.0],
+            b: [w, 0.0],
+            set: "bottom",
+        },
+        Line {
+            a: [w, 0.0],
+            b: [w, h],
+            set: "right",
+        },
+        Line {
+            a: [0.0, h],
+            b: [w, h],
+            set: "top",
+        },
+        Line {
+            a: [0.0, 0.0],
+            b: [0.0, h],
+            set: "left",
+        },
+    ]
+}
+
+/// The region of each triangle of `raw`: 1 (`inclusion`) where `inclusion(centroid)`, else 0
+/// (`matrix`); and the two regions (tags 1 and 2).
+pub(crate) fn matrix_and_inclusions(
+    raw: &RawMesh,
+    inclusion: impl Fn([f64; 2]) -> bool,
+) -> (Vec<u32>, Vec<crate::mesh::Region>) {
+    let triangle_region = (raw.triangles.iter())
+        .map(|t| {
+            let p = t.map(|n| raw.nodes[n as usize]);
+            let c = [
+                (p[0][0] + p[1][0] + p[2][0]) / 3.0,
+                (p[0][1] + p[1][1] + p[2][1]) / 3.0,
+            ];
+            u32::from(inclusion(c))
+        })
+        .collect();
+    let regions = vec![
+        crate::mesh::Region {
+            name: "matrix".into(),
+            tag: 1,
+        },
+        crate::mesh::Region {
+            name: "inclusion".into(),
+            tag: 2,
+        },
+    ];
+    (triangle_region, regions)
+}

@@ -11,9 +11,12 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{check_count, finish_mesh, positive, triangulate, Line, Pslg, Refine};
+use super::{
+    check_count, finish_mesh, matrix_and_inclusions, positive, rectangle_sides, triangulate, Line,
+    Pslg, Refine,
+};
 use crate::error::{MeshError, MeshErrorKind};
-use crate::mesh::{Mesh, Region};
+use crate::mesh::Mesh;
 use crate::periodic::PeriodicCell;
 
 const ORIGIN: &str = "periodic_cell";
@@ -395,28 +398,7 @@ pub fn periodic_cell(spec: &PeriodicCellSpec) -> Result<Mesh, MeshError> {
     }
     breaks.sort_by(|a: &[f64; 2], b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
     breaks.dedup();
-    let mut lines = vec![
-        Line {
-            a: [0.0, 0.0],
-            b: [w, 0.0],
-            set: "bottom",
-        },
-        Line {
-            a: [w, 0.0],
-            b: [w, ht],
-            set: "right",
-        },
-        Line {
-            a: [0.0, ht],
-            b: [w, ht],
-            set: "top",
-        },
-        Line {
-            a: [0.0, 0.0],
-            b: [0.0, ht],
-            set: "left",
-        },
-    ];
+    let mut lines = rectangle_sides(w, ht);
     let mut pslg = Pslg::default();
     for line in &lines {
         pslg.add_line(line.a, line.b, &breaks, h);
@@ -462,26 +444,7 @@ pub fn periodic_cell(spec: &PeriodicCellSpec) -> Result<Mesh, MeshError> {
         (spec.rectangles.iter()).any(|r| p[0] > r[0] && p[0] < r[2] && p[1] > r[1] && p[1] < r[3])
             || (circles.iter().zip(&polygons)).any(|(c, v)| inside_polygon(p, c, v))
     };
-    let triangle_region = (raw.triangles.iter())
-        .map(|t| {
-            let p = t.map(|n| raw.nodes[n as usize]);
-            let c = [
-                (p[0][0] + p[1][0] + p[2][0]) / 3.0,
-                (p[0][1] + p[1][1] + p[2][1]) / 3.0,
-            ];
-            u32::from(in_inclusion(c))
-        })
-        .collect();
-    let regions = vec![
-        Region {
-            name: "matrix".into(),
-            tag: 1,
-        },
-        Region {
-            name: "inclusion".into(),
-            tag: 2,
-        },
-    ];
+    let (triangle_region, regions) = matrix_and_inclusions(&raw, in_inclusion);
     let sets = ["left", "right", "bottom", "top", "inclusion_boundary"];
     let mesh = finish_mesh(ORIGIN, raw, triangle_region, regions, &lines, h, &sets)?;
     let cell = PeriodicCell {

@@ -4,9 +4,12 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::{check_count, finish_mesh, positive, triangulate, Line, Pslg};
+use super::{
+    check_count, finish_mesh, matrix_and_inclusions, positive, rectangle_sides, triangulate, Line,
+    Pslg,
+};
 use crate::error::{MeshError, MeshErrorKind};
-use crate::mesh::{Mesh, Region};
+use crate::mesh::Mesh;
 
 const ORIGIN: &str = "rectangle_with_inclusions";
 
@@ -131,28 +134,7 @@ fn check(spec: &RectangleSpec) -> Result<(), MeshError> {
 pub fn rectangle_with_inclusions(spec: &RectangleSpec) -> Result<Mesh, MeshError> {
     check(spec)?;
     let (w, ht, h) = (spec.width, spec.height, spec.element_size);
-    let mut lines = vec![
-        Line {
-            a: [0.0, 0.0],
-            b: [w, 0.0],
-            set: "bottom",
-        },
-        Line {
-            a: [w, 0.0],
-            b: [w, ht],
-            set: "right",
-        },
-        Line {
-            a: [0.0, ht],
-            b: [w, ht],
-            set: "top",
-        },
-        Line {
-            a: [0.0, 0.0],
-            b: [0.0, ht],
-            set: "left",
-        },
-    ];
+    let mut lines = rectangle_sides(w, ht);
     for r in &spec.inclusions {
         let c = [[r[0], r[1]], [r[2], r[1]], [r[2], r[3]], [r[0], r[3]]];
         for k in 0..4 {
@@ -180,26 +162,7 @@ pub fn rectangle_with_inclusions(spec: &RectangleSpec) -> Result<Mesh, MeshError
     let in_inclusion = |p: [f64; 2]| {
         (spec.inclusions.iter()).any(|r| p[0] > r[0] && p[0] < r[2] && p[1] > r[1] && p[1] < r[3])
     };
-    let triangle_region = (raw.triangles.iter())
-        .map(|t| {
-            let p = t.map(|n| raw.nodes[n as usize]);
-            let c = [
-                (p[0][0] + p[1][0] + p[2][0]) / 3.0,
-                (p[0][1] + p[1][1] + p[2][1]) / 3.0,
-            ];
-            u32::from(in_inclusion(c))
-        })
-        .collect();
-    let regions = vec![
-        Region {
-            name: "matrix".into(),
-            tag: 1,
-        },
-        Region {
-            name: "inclusion".into(),
-            tag: 2,
-        },
-    ];
+    let (triangle_region, regions) = matrix_and_inclusions(&raw, in_inclusion);
     let sets = [
         "left",
         "right",
