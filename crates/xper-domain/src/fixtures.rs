@@ -9,17 +9,12 @@ use xper_nscd::{MoreauJean, RigidContactOperator, RigidProblem, StepParams, Worl
 use xper_solver::{nlgs, ConvergenceNorm, NlgsParams};
 
 /// SplitMix64 uniform numbers in [-1, 1).
-struct Rng(u64);
+struct Rng(xper_math::SplitMix64);
 
 impl Rng {
     /// The next number.
     fn next(&mut self) -> Real {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        2.0 * ((z >> 11) as Real * (1.0 / (1u64 << 53) as Real)) - 1.0
+        2.0 * self.0.next_f64() - 1.0
     }
 }
 
@@ -43,7 +38,7 @@ pub fn deposit_world() -> World {
     set.insert(Body::wall(Vector::new(0.0, 0.0), Vector::new(width, 0.0)));
     set.insert(Body::wall(Vector::new(0.0, 1.0), Vector::new(0.0, 0.0)));
     set.insert(Body::wall(Vector::new(width, 0.0), Vector::new(width, 1.0)));
-    let mut rng = Rng(7);
+    let mut rng = Rng(xper_math::SplitMix64::new(7));
     for k in 0..240 {
         let (i, j) = (k % 16, k / 16);
         let centre = Vector::new(0.0125 + 0.025 * i as Real, 0.0125 + 0.026 * j as Real);
@@ -134,7 +129,7 @@ pub fn serial_spread(problem: &RigidProblem, tolerance: Real, serial: &[[Real; 3
     let n = problem.rows.len();
     let shuffled = |seed: u64| {
         let mut order: Vec<usize> = (0..n).collect();
-        let mut rng = Rng(seed);
+        let mut rng = Rng(xper_math::SplitMix64::new(seed));
         for k in (1..n).rev() {
             let j = ((rng.next() + 1.0) / 2.0 * (k + 1) as Real) as usize;
             order.swap(k, j.min(k));

@@ -418,18 +418,14 @@ mod tests {
     use super::*;
 
     /// Uniform numbers in [0, 1) (SplitMix64).
-    fn uniform(state: &mut u64) -> Real {
-        *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = *state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as Real * (1.0 / (1u64 << 53) as Real)
+    fn uniform(state: &mut xper_math::SplitMix64) -> Real {
+        state.next_f64()
     }
 
     /// Twelve disks of 2 to 5 cells' radius over a 40 x 30 grid, overlapping one another and
     /// the sides, and a copy of the first (every face of both a tie).
     fn disks(grid: &MacGrid, seed: u64) -> Vec<ImmersedDisk> {
-        let mut state = seed;
+        let mut state = xper_math::SplitMix64::new(seed);
         let extent = grid.extent();
         let mut disks: Vec<ImmersedDisk> = (0..12)
             .map(|_| ImmersedDisk {
@@ -502,7 +498,7 @@ mod tests {
             origin: Vector::new(0.3, -0.2),
         };
         let mut forcing = ImmersedForcing::default();
-        let mut state = 99;
+        let mut state = xper_math::SplitMix64::new(99);
         for (seed, boundary) in [
             (1, FluidBoundary::closed_box()),
             (2, FluidBoundary::periodic()),

@@ -15,6 +15,9 @@
 use serde::{Deserialize, Serialize};
 
 pub mod buffer;
+pub mod rng;
+
+pub use rng::SplitMix64;
 
 /// Floating-point type of every physical quantity.
 pub type Real = f64;

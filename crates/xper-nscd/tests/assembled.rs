@@ -13,16 +13,11 @@ use xper_solver::{
 };
 
 /// SplitMix64 uniform numbers in [-1, 1).
-struct Rng(u64);
+struct Rng(xper_math::SplitMix64);
 
 impl Rng {
     fn next(&mut self) -> Real {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^= z >> 31;
-        2.0 * ((z >> 11) as Real * (1.0 / (1u64 << 53) as Real)) - 1.0
+        2.0 * self.0.next_f64() - 1.0
     }
 }
 
@@ -68,7 +63,7 @@ fn mixed_world() -> World {
         Body::wall(Vector::new(-0.1, 0.0), Vector::new(0.2, 0.0)),
         Body::wall(Vector::new(0.0, 0.2), Vector::new(0.0, 0.0)),
     ];
-    let mut rng = Rng(3);
+    let mut rng = Rng(xper_math::SplitMix64::new(3));
     for k in 0..12 {
         let (i, j) = (k % 4, k / 4);
         let x = 0.0105 + 2.05 * r * i as Real + 0.3 * r * (j % 2) as Real;
@@ -122,7 +117,7 @@ fn assembled_w_applies_impulses_like_the_operator() {
     op.load_bodies(&world.bodies, |_| [0.0; 3]);
     op.rows = contacts.rows.clone();
     op.refresh_blocks();
-    let mut rng = Rng(11);
+    let mut rng = Rng(xper_math::SplitMix64::new(11));
     let mu: Vec<Real> = (0..n).map(|_| 0.5 + 0.5 * rng.next()).collect();
     let shift: Vec<Real> = (0..n).map(|_| rng.next()).collect();
     let p = assemble_problem(&op, &mu, &shift).unwrap();

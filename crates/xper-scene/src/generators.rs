@@ -5,10 +5,10 @@ use std::f64::consts::PI;
 
 use crate::bodies::wall_body;
 use crate::read::{choose, ensure, int_in, Ctx, Got, Tbl};
-use crate::rng::SplitMix64;
 use crate::shared::{Built, Groups, Materials, Origin, Part};
 use crate::tree::{Kind, Pos};
 use crate::types::{BodyDesc, Drive, ShapeDesc};
+use xper_math::SplitMix64;
 
 /// Largest number of disks one generator may produce.
 pub const MAX_GENERATED: i64 = 10_000_000;

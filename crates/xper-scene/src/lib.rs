@@ -15,7 +15,6 @@
 #![warn(missing_docs)]
 
 pub mod error;
-pub mod rng;
 pub mod types;
 
 mod bodies;
@@ -40,11 +39,11 @@ pub use fracture::types::{
 };
 pub use generators::MAX_GENERATED;
 pub use overlap::MAX_OVERLAP_REPORTS;
-pub use rng::SplitMix64;
 pub use types::{
     Acceleration, BodyDesc, CheckPass, ConvergenceNorm, Detection, Drive, FluidDesc, FluidSideDesc,
     LawDesc, OutputSettings, Scene, ShapeDesc, SolverSettings, TimeFunction, VelocitySolverKind,
 };
+pub use xper_math::SplitMix64;
 
 use read::{Ctx, Tbl};
 use shared::{Built, Groups};

@@ -20,6 +20,7 @@ use crate::local::solve_one_contact;
 use crate::nlgs::SolveError;
 use crate::problem::{project_on_cone_nd, FrictionProblem};
 use crate::solve::{prepare, scaled_error, SolveReport, SolverKind, SolverParams};
+use xper_math::SplitMix64;
 
 /// NSGS tuning (the tolerance, iteration limit and scaling are in [`SolverParams`]).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -46,29 +47,6 @@ impl Default for NsgsParams {
     }
 }
 
-/// splitmix64 (Steele, Lea, Flood, OOPSLA 2014): a tiny deterministic generator.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct SplitMix64(pub u64);
-
-impl SplitMix64 {
-    /// The next 64 random bits.
-    pub(crate) fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Fisher-Yates shuffle.
-    pub(crate) fn shuffle(&mut self, v: &mut [usize]) {
-        for i in (1..v.len()).rev() {
-            let j = (self.next_u64() % (i as u64 + 1)) as usize;
-            v.swap(i, j);
-        }
-    }
-}
-
 /// Solves `problem` by NSGS from `warm_start` (zero when `None`).
 pub fn nsgs(
     problem: &FrictionProblem,
@@ -86,7 +64,7 @@ pub fn nsgs(
     let (d, n) = (problem.dim, problem.mu.len());
     let mut u = vec![0.0; r.len()];
     let mut order: Vec<usize> = (0..n).collect();
-    let mut rng = sp.shuffle_seed.map(SplitMix64);
+    let mut rng = sp.shuffle_seed.map(SplitMix64::new);
     let mut fallbacks = 0u64;
     let mut iterations = 0;
     for sweep in 1..=params.max_iterations {
@@ -178,8 +156,8 @@ mod tests {
     fn shuffle_is_a_deterministic_permutation() {
         let mut a: Vec<usize> = (0..20).collect();
         let mut b = a.clone();
-        SplitMix64(42).shuffle(&mut a);
-        SplitMix64(42).shuffle(&mut b);
+        SplitMix64::new(42).shuffle(&mut a);
+        SplitMix64::new(42).shuffle(&mut b);
         assert_eq!(a, b);
         assert_ne!(a, (0..20).collect::<Vec<_>>());
         b.sort_unstable();

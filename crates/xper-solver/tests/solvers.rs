@@ -8,15 +8,11 @@ use xper_solver::{
 };
 
 /// A tiny deterministic generator (splitmix64) for the random problems.
-struct Rng(u64);
+struct Rng(xper_math::SplitMix64);
 
 impl Rng {
     fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+        self.0.next_f64()
     }
     fn range(&mut self, lo: f64, hi: f64) -> f64 {
         lo + (hi - lo) * self.next()
@@ -122,7 +118,7 @@ fn agree(a: &[f64], b: &[f64], tol: f64) -> bool {
 
 #[test]
 fn small_2d_problems_nsgs_newton_lemke_agree() {
-    let mut rng = Rng(11);
+    let mut rng = Rng(xper_math::SplitMix64::new(11));
     let mut checked = 0;
     for case in 0..40 {
         let n = 1 + case % 5;
@@ -174,7 +170,7 @@ fn small_2d_problems_nsgs_newton_lemke_agree() {
 
 #[test]
 fn random_3d_problems_nsgs_and_newton_agree() {
-    let mut rng = Rng(5);
+    let mut rng = Rng(xper_math::SplitMix64::new(5));
     for case in 0..30 {
         let n = 1 + case % 6;
         let full_rank = case % 3 != 0;
@@ -204,7 +200,7 @@ fn random_3d_problems_nsgs_and_newton_agree() {
 
 #[test]
 fn nlgs_on_dense_problem_agrees_with_nsgs() {
-    let mut rng = Rng(3);
+    let mut rng = Rng(xper_math::SplitMix64::new(3));
     for case in 0..10 {
         let n = 2 + case % 4;
         let p = random_problem(&mut rng, 2, n, 2 * n + 1, 0.5);
@@ -337,7 +333,7 @@ fn empty_problem_is_solved() {
 
 #[test]
 fn warm_start_at_the_solution_stops_at_once() {
-    let mut rng = Rng(21);
+    let mut rng = Rng(xper_math::SplitMix64::new(21));
     let p = random_problem(&mut rng, 3, 4, 15, 0.5);
     let first = run(&p, SolverKind::Newton, 1e-12);
     for kind in [
@@ -356,7 +352,7 @@ fn warm_start_at_the_solution_stops_at_once() {
 
 #[test]
 fn shuffled_nsgs_is_deterministic_and_converges() {
-    let mut rng = Rng(8);
+    let mut rng = Rng(xper_math::SplitMix64::new(8));
     let p = random_problem(&mut rng, 3, 6, 12, 0.7);
     let mut prm = params(SolverKind::Nlgs, 1e-10);
     prm.nsgs.shuffle_seed = Some(99);
@@ -381,7 +377,7 @@ proptest! {
         positive_diagonal in prop::bool::weighted(0.9),
         scale in prop_oneof![Just(1e-300), Just(1e-12), Just(1.0), Just(1e8), Just(1e300)],
     ) {
-        let mut rng = Rng(seed);
+        let mut rng = Rng(xper_math::SplitMix64::new(seed));
         let m = dim * n;
         let mut w: Vec<f64> = (0..m * m).map(|_| scale * rng.range(-2.0, 2.0)).collect();
         if positive_diagonal {
@@ -415,7 +411,7 @@ fn a_sweep_in_two_parts_is_the_whole_sweep() {
 
 fn sweep_in_two_parts_with(relaxation: f64) {
     use xper_solver::{NlgsSweeper, NormAccumulator};
-    let mut rng = Rng(17);
+    let mut rng = Rng(xper_math::SplitMix64::new(17));
     let n = 6;
     let p = random_problem(&mut rng, 2, n, 2 * n + 1, 0.5);
     let m = 2 * n;

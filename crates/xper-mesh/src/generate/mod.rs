@@ -348,6 +348,17 @@ pub(crate) fn rectangle_sides(w: f64, h: f64) -> Vec<Line> {
     ]
 }
 
+/// The four sides of the box `[xmin, ymin, xmax, ymax]` (m), counter-clockwise from its lower
+/// left corner, as lines of the edge set `inclusion_boundary`.
+pub(crate) fn inclusion_outline(r: [f64; 4]) -> [Line; 4] {
+    let c = [[r[0], r[1]], [r[2], r[1]], [r[2], r[3]], [r[0], r[3]]];
+    std::array::from_fn(|k| Line {
+        a: c[k],
+        b: c[(k + 1) % 4],
+        set: "inclusion_boundary",
+    })
+}
+
 /// The region of each triangle of `raw`: 1 (`inclusion`) where `inclusion(centroid)`, else 0
 /// (`matrix`); and the two regions (tags 1 and 2).
 pub(crate) fn matrix_and_inclusions(

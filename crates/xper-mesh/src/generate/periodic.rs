@@ -12,8 +12,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::{
-    check_count, finish_mesh, matrix_and_inclusions, positive, rectangle_sides, triangulate, Line,
-    Pslg, Refine,
+    check_count, finish_mesh, inclusion_outline, matrix_and_inclusions, positive, rectangle_sides,
+    triangulate, Line, Pslg, Refine,
 };
 use crate::error::{MeshError, MeshErrorKind};
 use crate::mesh::Mesh;
@@ -41,7 +41,8 @@ pub struct RandomCircles {
     pub radius: f64,
     /// Smallest gap (m) between two circles, and between a circle and a rectangle.
     pub min_spacing: f64,
-    /// Seed of the SplitMix64 generator (the same seed gives the same cell).
+    /// Seed of the SplitMix64 generator ([`xper_math::SplitMix64`]; the same seed gives the
+    /// same cell).
     pub seed: u64,
 }
 
@@ -228,14 +229,8 @@ fn all_circles(spec: &PeriodicCellSpec) -> Result<Vec<Circle>, MeshError> {
     let wanted = (r.fraction * area / (std::f64::consts::PI * r.radius * r.radius)).round();
     let wanted = wanted.max(1.0) as usize;
     let budget = 2000 * wanted;
-    let mut state = r.seed;
-    let mut uniform = move || {
-        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    };
+    let mut rng = xper_math::SplitMix64::new(r.seed);
+    let mut uniform = move || rng.next_f64();
     let (mut placed, mut attempts) = (0, 0);
     while placed < wanted {
         if attempts == budget {
@@ -404,14 +399,9 @@ pub fn periodic_cell(spec: &PeriodicCellSpec) -> Result<Mesh, MeshError> {
         pslg.add_line(line.a, line.b, &breaks, h);
     }
     for r in &spec.rectangles {
-        let c = [[r[0], r[1]], [r[2], r[1]], [r[2], r[3]], [r[0], r[3]]];
-        for k in 0..4 {
-            lines.push(Line {
-                a: c[k],
-                b: c[(k + 1) % 4],
-                set: "inclusion_boundary",
-            });
-            pslg.add_line(c[k], c[(k + 1) % 4], &[], h);
+        for line in inclusion_outline(*r) {
+            pslg.add_line(line.a, line.b, &[], h);
+            lines.push(line);
         }
     }
     for &(a, b) in &segments {

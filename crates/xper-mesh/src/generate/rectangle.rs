@@ -5,8 +5,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::{
-    check_count, finish_mesh, matrix_and_inclusions, positive, rectangle_sides, triangulate, Line,
-    Pslg,
+    check_count, finish_mesh, inclusion_outline, matrix_and_inclusions, positive, rectangle_sides,
+    triangulate, Line, Pslg,
 };
 use crate::error::{MeshError, MeshErrorKind};
 use crate::mesh::Mesh;
@@ -136,14 +136,7 @@ pub fn rectangle_with_inclusions(spec: &RectangleSpec) -> Result<Mesh, MeshError
     let (w, ht, h) = (spec.width, spec.height, spec.element_size);
     let mut lines = rectangle_sides(w, ht);
     for r in &spec.inclusions {
-        let c = [[r[0], r[1]], [r[2], r[1]], [r[2], r[3]], [r[0], r[3]]];
-        for k in 0..4 {
-            lines.push(Line {
-                a: c[k],
-                b: c[(k + 1) % 4],
-                set: "inclusion_boundary",
-            });
-        }
+        lines.extend(inclusion_outline(*r));
     }
     let mut breaks = Vec::new();
     if let Some((a, b)) = spec.precrack {

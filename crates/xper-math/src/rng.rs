@@ -1,4 +1,6 @@
-//! The SplitMix64 pseudo-random generator used by the scene generators.
+//! The SplitMix64 pseudo-random generator (G. L. Steele, D. Lea, C. H. Flood, "Fast
+//! splittable pseudorandom number generators", OOPSLA 2014), the one every crate uses: scene
+//! and mesh generators, the shuffled sweeps of NSGS, test fixtures.
 //!
 //! It is specified exactly (benchmarks compare codes on the generated radii):
 //! one step is `s += 0x9E3779B97F4A7C15; z = s; z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9;
@@ -32,5 +34,13 @@ impl SplitMix64 {
     /// The next uniform float in [0, 1): `(next_u64() >> 11) as f64 * 2^-53`.
     pub fn next_f64(&mut self) -> f64 {
         (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+
+    /// Fisher-Yates shuffle of `v`.
+    pub fn shuffle(&mut self, v: &mut [usize]) {
+        for i in (1..v.len()).rev() {
+            let j = (self.next_u64() % (i as u64 + 1)) as usize;
+            v.swap(i, j);
+        }
     }
 }
