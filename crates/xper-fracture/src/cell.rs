@@ -26,7 +26,7 @@ use serde::{Deserialize, Serialize};
 use xper_bodies::TimeFunction;
 use xper_mesh::PeriodicCell;
 
-use crate::model::{BuildError, ElementBody};
+use crate::model::{BuildError, ElementBody, FractureModel};
 
 /// What drives one component of the macroscopic strain.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -109,6 +109,45 @@ impl PeriodicSpec {
     }
 }
 
+impl FractureModel {
+    /// Mass of the whole mesh (kg).
+    pub fn total_mass(&self) -> f64 {
+        (0..self.mesh.triangles.len())
+            .map(|t| {
+                let region = self.mesh.triangle_region[t] as usize;
+                self.spec.materials[region].density()
+                    * self.mesh.triangle_area(t)
+                    * self.spec.thickness
+            })
+            .sum()
+    }
+
+    /// Mass of each component of the macroscopic strain of a periodic cell (kg m^2), see
+    /// [`crate::cell`]; zeros without one.
+    pub fn cell_mass(&self) -> [f64; 3] {
+        match &self.spec.periodic {
+            Some(p) => p.component_mass(self.total_mass()),
+            None => [0.0; 3],
+        }
+    }
+
+    /// Kinetic energy of the free components of a periodic cell's strain, `M_k E'_k^2 / 2`
+    /// (J); zero without one.
+    pub(crate) fn cell_kinetic_energy(&self) -> f64 {
+        let (Some(p), Some(c)) = (&self.spec.periodic, &self.cell) else {
+            return 0.0;
+        };
+        if !(0..3).any(|k| p.is_free(k)) {
+            return 0.0;
+        }
+        let mass = self.cell_mass();
+        (0..3)
+            .filter(|&k| p.is_free(k))
+            .map(|k| 0.5 * mass[k] * c.rate[k] * c.rate[k])
+            .sum()
+    }
+}
+
 /// The state of a periodic cell at time 0; an imposed strain must start from zero (the
 /// elements start undeformed). The elements start in the affine motion `v = E'(0) (X - X_c)`
 /// of the imposed components' first rate (`X_c` the cell's centre), so that a homogeneous
@@ -120,9 +159,18 @@ pub(crate) fn initial_cell(
 ) -> Result<CellState, BuildError> {
     let mut rate = [0.0; 3];
     for (k, d) in p.drives.iter().enumerate() {
-        if let MacroDrive::Strain(f) = d {
-            rate[k] = (f.eval(dt) - f.eval(0.0)) / dt;
+        let MacroDrive::Strain(f) = d else {
+            continue;
+        };
+        let e0 = f.eval(0.0);
+        if e0 != 0.0 {
+            return Err(BuildError(format!(
+                "periodic cell: the imposed strain {} starts at {e0}, not 0 (the cell starts \
+                 undeformed)",
+                ["xx", "yy", "xy"][k]
+            )));
         }
+        rate[k] = (f.eval(dt) - e0) / dt;
     }
     let center = [
         p.cell.lower[0] + 0.5 * p.cell.size[0],
@@ -131,21 +179,9 @@ pub(crate) fn initial_cell(
     if rate != [0.0; 3] {
         for el in elements.iter_mut() {
             for (j, x) in el.triangle.nodes().iter().enumerate() {
-                let v = crate::cell::strain_times(&rate, [x[0] - center[0], x[1] - center[1]]);
+                let v = strain_times(&rate, [x[0] - center[0], x[1] - center[1]]);
                 el.velocity[2 * j] = v[0];
                 el.velocity[2 * j + 1] = v[1];
-            }
-        }
-    }
-    for (k, d) in p.drives.iter().enumerate() {
-        if let MacroDrive::Strain(f) = d {
-            let e0 = f.eval(0.0);
-            if e0 != 0.0 {
-                return Err(BuildError(format!(
-                    "periodic cell: the imposed strain {} starts at {e0}, not 0 (the cell \
-                     starts undeformed)",
-                    ["xx", "yy", "xy"][k]
-                )));
             }
         }
     }

@@ -72,7 +72,6 @@ pub(crate) fn build_interfaces(
         let (dx, dy) = (xq[0] - xp[0], xq[1] - xp[1]);
         let length = (dx * dx + dy * dy).sqrt();
         let normal = [dy / length, -dx / length];
-        let local = |tri: [u32; 3], n: u32| tri.iter().position(|&m| m == n).unwrap_or(0) as u8;
         let point = initial_point(&laws[law as usize], broken[i]);
         interfaces.push(Interface {
             elements: edge.triangles,
@@ -105,7 +104,6 @@ pub(crate) fn build_interfaces(
             let [[p, _], [q, _]] = pair.nodes;
             let broken = broken_keys.contains(&[p.min(q), p.max(q)]);
             let point = initial_point(&laws[law as usize], broken);
-            let local = |tri: [u32; 3], n: u32| tri.iter().position(|&m| m == n).unwrap_or(0) as u8;
             interfaces.push(Interface {
                 elements: pair.triangles,
                 local_nodes: pair.nodes.map(|[a, b]| [local(ta, a), local(tb, b)]),
@@ -118,6 +116,11 @@ pub(crate) fn build_interfaces(
         }
     }
     Ok((interfaces, laws))
+}
+
+/// The local index (0, 1, 2) of mesh node `n` in triangle `tri`.
+fn local(tri: [u32; 3], n: u32) -> u8 {
+    tri.iter().position(|&m| m == n).unwrap_or(0) as u8
 }
 
 /// The state of a point of a new interface of law `law`, broken (a pre-crack) or not.

@@ -418,50 +418,20 @@ impl FractureModel {
         l != NO_LOAD && self.spec.loads[l as usize].drives[d % 2].is_imposed_velocity()
     }
 
-    /// Mass of the whole mesh (kg).
-    pub fn total_mass(&self) -> f64 {
-        (0..self.mesh.triangles.len())
-            .map(|t| {
-                let region = self.mesh.triangle_region[t] as usize;
-                self.spec.materials[region].density()
-                    * self.mesh.triangle_area(t)
-                    * self.spec.thickness
-            })
-            .sum()
-    }
-
-    /// Mass of each component of the macroscopic strain of a periodic cell (kg m^2), see
-    /// [`crate::cell`]; zeros without one.
-    pub fn cell_mass(&self) -> [f64; 3] {
-        match &self.spec.periodic {
-            Some(p) => p.component_mass(self.total_mass()),
-            None => [0.0; 3],
-        }
-    }
-
     /// Kinetic energy `v^T M v / 2` summed over the elements, shadows excepted, plus that of
     /// the free components of a periodic cell's strain, `M_k E'_k^2 / 2` (J).
     pub fn kinetic_energy(&self) -> f64 {
-        let cell: f64 = match (&self.spec.periodic, &self.cell) {
-            (Some(p), Some(c)) => {
-                let mass = self.cell_mass();
-                (0..3)
-                    .filter(|&k| p.is_free(k))
-                    .map(|k| 0.5 * mass[k] * c.rate[k] * c.rate[k])
-                    .sum()
-            }
-            _ => 0.0,
-        };
-        cell + self
-            .elements
-            .iter()
-            .enumerate()
-            .filter(|(k, _)| !self.is_shadow(*k))
-            .map(|(_, e)| {
-                let mv = crate::dense::mul_vec(&e.mass, &e.velocity);
-                0.5 * mv.iter().zip(&e.velocity).map(|(a, b)| a * b).sum::<f64>()
-            })
-            .sum::<f64>()
+        self.cell_kinetic_energy()
+            + self
+                .elements
+                .iter()
+                .enumerate()
+                .filter(|(k, _)| !self.is_shadow(*k))
+                .map(|(_, e)| {
+                    let mv = crate::dense::mul_vec(&e.mass, &e.velocity);
+                    0.5 * mv.iter().zip(&e.velocity).map(|(a, b)| a * b).sum::<f64>()
+                })
+                .sum::<f64>()
     }
 
     /// Effective mass `M + h^2 theta^2 K` of an element.

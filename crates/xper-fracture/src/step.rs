@@ -122,6 +122,8 @@ pub struct FractureStepper {
     /// The strain rate at the start of the step (the step's increment over h for an
     /// imposed component).
     cell_begin: [f64; 3],
+    /// The masses of the cell's strain components (computed once: they do not change).
+    cell_mass: Option<[f64; 3]>,
     started: bool,
 }
 
@@ -275,7 +277,7 @@ impl FractureStepper {
         };
         let (h, th) = (m.spec.dt, m.spec.theta);
         let volume = p.cell.area() * m.spec.thickness;
-        let mass = m.cell_mass();
+        let mass = *self.cell_mass.get_or_insert_with(|| m.cell_mass());
         for (k, drive) in p.drives.iter().enumerate() {
             match drive {
                 MacroDrive::Strain(f) => {

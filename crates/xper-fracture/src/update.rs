@@ -63,7 +63,7 @@ pub(crate) struct CellSums {
 /// Stage `cell`: the macroscopic strain at the end of the step, the work of the loading
 /// (added to the external work), and this model's share of the stress measures.
 pub(crate) fn cell(stepper: &FractureStepper, m: &mut FractureModel) -> Option<CellSums> {
-    let p = m.spec.periodic.clone()?;
+    let p = m.spec.periodic.as_ref()?;
     let (h, th) = (m.spec.dt, m.spec.theta);
     let t_end = m.time + h;
     let volume = p.cell.area() * m.spec.thickness;
@@ -154,10 +154,11 @@ impl StepTotals {
         ];
         if let Some(c) = &cell {
             values.extend(c.volume.iter().chain(&c.boundary));
-            values.push(c.work);
-        }
-        if cell.is_some() {
-            values.extend([m.damaged_points() as f64, m.cohesive_points() as f64]);
+            values.extend([
+                c.work,
+                m.damaged_points() as f64,
+                m.cohesive_points() as f64,
+            ]);
         }
         let head = values.len();
         values.extend(load_sums.iter().flatten());

@@ -6,7 +6,7 @@ use xper_mesh::{Circle, NotchedSpec, PeriodicCellSpec, RandomCircles, RectangleS
 
 use super::types::{MeshDesc, MeshSource};
 use super::{number, place, required_table};
-use crate::read::{as_num, as_vec2, choose, Ctx, Tbl};
+use crate::read::{as_num, as_vec2, choose, int_in, Ctx, Tbl};
 use crate::tree::{Kind, Node};
 
 /// `[mesh]`: a file, or a generator with its parameters.
@@ -157,14 +157,8 @@ fn periodic_cell(ctx: &mut Ctx, t: &Tbl) -> Option<MeshSource> {
             let fraction = number(ctx, &r, "fraction", |v| v > 0.0 && v < 0.6, "in (0, 0.6)");
             let radius = length(ctx, &r, "radius");
             let spacing = super::number_or(ctx, &r, "min_spacing", 0.0, |v| v >= 0.0, ">= 0 m");
-            let seed = match r.int(ctx, "seed").req(ctx, &r, "seed") {
-                Some((s, _)) if s >= 0 => Some(s as u64),
-                Some((s, pos)) => {
-                    ctx.err(pos, &r.field("seed"), format!("must be >= 0, got {s}"));
-                    None
-                }
-                None => None,
-            };
+            let got = r.int(ctx, "seed").req(ctx, &r, "seed");
+            let seed = int_in(ctx, got, &r.field("seed"), 0, i64::MAX).map(|s| s as u64);
             match (fraction, radius, spacing, seed) {
                 (Some(fraction), Some(radius), Some(min_spacing), Some(seed)) => {
                     Some(Some(RandomCircles {
