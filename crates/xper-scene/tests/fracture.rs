@@ -1,9 +1,9 @@
 //! Fracture scenes: a valid scene parses and builds to the expected specification; each
 //! kind of error names the field, the line of the offending value and the reason.
 
-mod fracture_common;
+mod common;
 
-use fracture_common::*;
+use common::fracture::*;
 use std::path::{Path, PathBuf};
 
 use xper_bodies::{Drive, TimeFunction};

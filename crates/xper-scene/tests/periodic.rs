@@ -1,9 +1,9 @@
 //! `[periodic]` and the `periodic_cell` generator in a fracture scene: a valid cell builds its
 //! interfaces across the sides and its drives; each error names its key.
 
-mod fracture_common;
+mod common;
 
-use fracture_common::*;
+use common::fracture::*;
 
 const PERIODIC: &str = r#"[scene]
 name = "cell"

@@ -1,6 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod fracture;
+
 use std::path::Path;
 
 use xper_scene::{parse_scene, Scene, SceneError, SceneErrors};
@@ -47,7 +49,18 @@ pub fn line_of(text: &str, marker: &str) -> usize {
 /// Asserts that the scene fails with an error on exactly `field`, at the line holding
 /// `marker`, whose message contains `needle`; returns that error.
 pub fn expect_error(text: &str, field: &str, marker: &str, needle: &str) -> SceneError {
-    let e = errs(text);
+    find_error(&errs(text), text, field, marker, needle)
+}
+
+/// The error of `e` on exactly `field`, at the line of `text` holding `marker`, whose message
+/// contains `needle` (in `test.toml`, with a column); panics listing `e` if there is none.
+pub fn find_error(
+    e: &SceneErrors,
+    text: &str,
+    field: &str,
+    marker: &str,
+    needle: &str,
+) -> SceneError {
     let line = line_of(text, marker);
     let found =
         e.0.iter()

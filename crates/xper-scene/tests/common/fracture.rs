@@ -1,27 +1,21 @@
-//! Helpers of the fracture scene tests: parsing a scene text and finding an error by field,
-//! line and message.
-#![allow(dead_code)]
+//! Helpers of the fracture scene tests: parsing a scene text and finding an error from
+//! parsing or building it.
 
 use std::path::Path;
 
 use xper_scene::{parse_any_scene, AnyScene, FractureScene, SceneError, SceneErrors};
 
+/// The file name the tests' scenes are parsed as.
 pub fn file() -> &'static Path {
     Path::new("test.toml")
 }
 
+/// `text` parsed as a fracture scene (panics if it is a rigid one).
 pub fn parse(text: &str) -> Result<FractureScene, SceneErrors> {
     match parse_any_scene(text, file())? {
         AnyScene::Fracture(s) => Ok(s),
         AnyScene::Rigid(_) => panic!("parsed as a rigid scene"),
     }
-}
-
-pub fn line_of(text: &str, marker: &str) -> usize {
-    text.lines()
-        .position(|l| l.contains(marker))
-        .unwrap_or_else(|| panic!("marker {marker:?} not in text"))
-        + 1
 }
 
 /// The error on exactly `field`, at the line holding `marker`, whose message contains
@@ -34,16 +28,5 @@ pub fn expect_error(text: &str, field: &str, marker: &str, needle: &str) -> Scen
             Ok(_) => panic!("expected an error on `{field}`, the scene builds:\n{text}"),
         },
     };
-    let line = line_of(text, marker);
-    let found =
-        e.0.iter()
-            .find(|x| x.field == field && x.line == line && x.message.contains(needle));
-    match found {
-        Some(x) => {
-            assert_eq!(x.file, file());
-            assert!(x.column >= 1);
-            x.clone()
-        }
-        None => panic!("no error on `{field}` at line {line} containing {needle:?}; got:\n{e}"),
-    }
+    super::find_error(&e, text, field, marker, needle)
 }
