@@ -288,6 +288,68 @@ fn mpirun_fracture_run_agrees_with_the_serial_run_and_resumes_on_another_count()
     );
 }
 
+/// The periodic bimaterial cell (`scenes/periodic_bimaterial_small`: E_xx imposed,
+/// Sigma_yy = Sigma_xy = 0, so E_yy and E_xy are free) cut to 600 steps (E_xx = 1.2e-3, the
+/// matrix not yet yielding), with the tolerance `tolerance`.
+fn periodic_scene(dir: &Path, name: &str, tolerance: &str) -> std::path::PathBuf {
+    let source = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes/periodic_bimaterial_small/scene.toml");
+    let text = std::fs::read_to_string(source)
+        .unwrap()
+        .replace("steps = 5000", "steps = 600")
+        .replace("frame_every = 250", "frame_every = 300")
+        .replace("checkpoint_every = 1000", "checkpoint_every = 300")
+        .replace("tolerance = 1.666e-4", &format!("tolerance = {tolerance}"));
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// The macroscopic strain a periodic run in `out` ended with.
+fn cell_strain(out: &Path) -> Vec<f64> {
+    (summary(out)["cell"]["strain"].as_array().unwrap().iter())
+        .map(|v| v.as_f64().unwrap())
+        .collect()
+}
+
+/// A periodic cell under a macroscopic stress on 2 processes: the free strain components are
+/// shared by both processes' solvers; displacements and the free strains agree with the
+/// serial run within 10 times the serial run's own error (its difference with a run at a
+/// hundredth of the tolerance).
+#[test]
+fn mpirun_periodic_cell_under_a_macroscopic_stress_agrees_with_the_serial_run() {
+    let dir = temp_dir("mpi_periodic");
+    let scene = periodic_scene(&dir, "cell.toml", "1.666e-4");
+    let finer = periodic_scene(&dir, "cell_finer.toml", "1.666e-6");
+    let serial = fracture_run(0, &scene, &dir.join("serial"), &[]);
+    let spread =
+        displacement_difference(&serial, &fracture_run(0, &finer, &dir.join("finer"), &[]));
+    let strain_spread = (cell_strain(&dir.join("serial")).iter())
+        .zip(cell_strain(&dir.join("finer")))
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    let out = dir.join("np2");
+    let two = fracture_run(2, &scene, &out, &["--compare-serial"]);
+    let d = displacement_difference(&two, &serial);
+    let strain = (cell_strain(&out).iter())
+        .zip(cell_strain(&dir.join("serial")))
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    eprintln!(
+        "periodic cell on 2 processes: {d:.3e} m from serial (serial error {spread:.3e} m), \
+         strain {strain:.3e} (serial error {strain_spread:.3e})"
+    );
+    assert!(d <= 10.0 * spread, "{d:.3e} m vs {spread:.3e} m");
+    let e_xx = cell_strain(&out)[0];
+    assert!(strain <= 10.0 * strain_spread.max(1e-9 * e_xx));
+    assert!(
+        cell_strain(&out)[1] < -0.1 * e_xx,
+        "E_yy follows Sigma_yy = 0"
+    );
+    let elements = summary(&out)["elements"].as_u64().unwrap();
+    assert_distributed_summary(&out, 2, d, elements);
+}
+
 /// The two-grain sedimentation scene at 8 cells per diameter (32 x 320 cells) cut to 300
 /// steps, with the pressure tolerance `tolerance` (the grains fall about 0.2 mm).
 fn two_grains_scene(dir: &Path, name: &str, tolerance: &str) -> std::path::PathBuf {

@@ -69,7 +69,7 @@ impl<'c, C: Communicator + ?Sized> DistributedFracture<'c, C> {
         } else {
             FractureEnergy::default()
         };
-        let part = whole.part(&elements, &shadow, &interfaces, energy);
+        let part = whole.part(&elements, &shadow, &interfaces, energy, me != 0);
         let ids: Vec<u64> = elements.iter().map(|&e| u64::from(e)).collect();
         let interface = InterfaceMap::build(comm, &ids, &part_owners, &vec![true; ids.len()], None);
         DistributedFracture {

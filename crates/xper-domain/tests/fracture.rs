@@ -158,57 +158,118 @@ fn a_run_resumed_on_another_process_count_continues_the_uninterrupted_run() {
 }
 
 /// The periodic bimaterial cell (`scenes/periodic_bimaterial_small`, J2 matrix, random
-/// inclusions crossing the sides) under an imposed strain E_xx (E_yy = E_xy = 0): on 2 and 3
-/// processes, whose parts are joined by the interfaces across the cell's sides as well as by
-/// the inner ones, the run agrees with the serial one within 10 times the serial run's own
-/// error, and so do the macroscopic stresses (within 10 times their own serial error).
-#[test]
-fn a_periodic_cell_on_several_processes_agrees_with_the_serial_run() {
+/// inclusions crossing the sides), E_xx ramped to 3e-3 in 1e-7 s, with `drives` for E_yy and
+/// E_xy, and NLGS's tolerance.
+fn periodic_model(drives: [xper_fracture::MacroDrive; 2], tolerance: f64) -> FractureModel {
     use xper_bodies::TimeFunction;
     use xper_fracture::MacroDrive;
-    let model = |tolerance: f64| {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../../scenes/periodic_bimaterial_small/scene.toml");
-        let scene = match xper_scene::load_any_scene(&path).unwrap() {
-            xper_scene::AnyScene::Fracture(s) => s,
-            xper_scene::AnyScene::Rigid(_) => panic!("not a fracture scene"),
-        };
-        let mut setup = scene.build().unwrap();
-        let periodic = setup.spec.periodic.as_mut().unwrap();
-        periodic.drives = [
-            MacroDrive::Strain(TimeFunction::Table(vec![(0.0, 0.0), (1e-7, 3e-3)])),
-            MacroDrive::Strain(TimeFunction::Constant(0.0)),
-            MacroDrive::Strain(TimeFunction::Constant(0.0)),
-        ];
-        let mut m = FractureModel::new(setup.mesh, setup.spec).unwrap();
-        m.spec.nlgs.tolerance = tolerance;
-        m
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../scenes/periodic_bimaterial_small/scene.toml");
+    let scene = match xper_scene::load_any_scene(&path).unwrap() {
+        xper_scene::AnyScene::Fracture(s) => s,
+        xper_scene::AnyScene::Rigid(_) => panic!("not a fracture scene"),
     };
+    let mut setup = scene.build().unwrap();
+    let [yy, xy] = drives;
+    setup.spec.periodic.as_mut().unwrap().drives = [
+        MacroDrive::Strain(TimeFunction::Table(vec![(0.0, 0.0), (1e-7, 3e-3)])),
+        yy,
+        xy,
+    ];
+    let mut m = FractureModel::new(setup.mesh, setup.spec).unwrap();
+    m.spec.nlgs.tolerance = tolerance;
+    m
+}
+
+/// The periodic cell of [`periodic_model`] on 2 and 3 processes, whose parts are joined by
+/// the interfaces across the cell's sides as well as by the inner ones: the run agrees with
+/// the serial one within 10 times the serial run's own error, and so do the macroscopic
+/// stresses and strains (within 10 times their own serial error), at the end (after the
+/// cell broke) and at step 100 (before any interface broke, when the runs are smooth and
+/// their errors small). Returns the serial run.
+fn periodic_cell_agrees(drives: impl Fn() -> [xper_fracture::MacroDrive; 2]) -> FractureModel {
     let steps = 250;
-    let (reference, _) = serial(model(1.666e-4), steps);
-    let (tight, _) = serial(model(1.666e-6), steps);
+    let (reference, before) = serial(periodic_model(drives(), 1.666e-4), steps);
+    let (tight, tight_before) = serial(periodic_model(drives(), 1.666e-6), steps);
+    let early = |reports: &[FractureStepReport]| {
+        let r = &reports[99];
+        assert_eq!(r.broken_points, 0, "step 100 must come before any break");
+        r.cell.unwrap().strain
+    };
+    let early_difference =
+        |a: [f64; 3], b: [f64; 3]| (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max);
+    let early_error = early_difference(early(&before), early(&tight_before));
     let serial_error = reference.largest_displacement_difference(&tight);
-    let stress = |m: &FractureModel| m.cell.unwrap().stress_volume;
-    let stress_error = (0..3)
-        .map(|k| (stress(&reference)[k] - stress(&tight)[k]).abs())
-        .fold(0.0, f64::max);
+    let cell = |m: &FractureModel| {
+        let c = m.cell.unwrap();
+        [c.stress_volume, c.strain]
+    };
+    let difference = |a: &FractureModel, b: &FractureModel, what: usize| {
+        (0..3)
+            .map(|k| (cell(a)[what][k] - cell(b)[what][k]).abs())
+            .fold(0.0, f64::max)
+    };
+    let stress_error = difference(&reference, &tight, 0);
+    let strain_error = difference(&reference, &tight, 1);
+    let work_error = (reference.energy.external_work - tight.energy.external_work).abs();
     assert!(
         reference.broken_points() > 0,
         "the run must break interfaces"
     );
     for ranks in [2, 3] {
-        let (whole, _, loads) = distributed(&model(1.666e-4), ranks, steps);
+        let (whole, reports, loads) =
+            distributed(&periodic_model(drives(), 1.666e-4), ranks, steps);
+        let early_strain = early_difference(early(&reports), early(&before));
         assert!(loads.iter().map(|l| l.interface_bodies).sum::<usize>() > 0);
-        let difference = reference.largest_displacement_difference(&whole);
-        let stress_difference = (0..3)
-            .map(|k| (stress(&reference)[k] - stress(&whole)[k]).abs())
-            .fold(0.0, f64::max);
-        println!(
-            "{ranks} processes: {difference:.3e} m (serial error {serial_error:.3e} m), stress \
-             {stress_difference:.3e} Pa (serial error {stress_error:.3e} Pa)"
+        let displacement = reference.largest_displacement_difference(&whole);
+        let (stress, strain) = (
+            difference(&reference, &whole, 0),
+            difference(&reference, &whole, 1),
         );
-        assert!(difference <= 10.0 * serial_error);
-        assert!(stress_difference <= 10.0 * stress_error.max(1e-9 * stress(&reference)[0].abs()));
-        assert_eq!(whole.cell.unwrap().strain, reference.cell.unwrap().strain);
+        let work = (whole.energy.external_work - reference.energy.external_work).abs();
+        println!(
+            "{ranks} processes: {displacement:.3e} m (serial error {serial_error:.3e} m), stress \
+             {stress:.3e} Pa (serial error {stress_error:.3e} Pa), strain {strain:.3e} (serial \
+             error {strain_error:.3e}), work {work:.3e} J (serial error {work_error:.3e} J); \
+             at step 100: strain {early_strain:.3e} (serial error {early_error:.3e})"
+        );
+        let e_xx = early(&before)[0];
+        assert!(early_strain <= 10.0 * early_error.max(1e-9 * e_xx));
+        assert!(displacement <= 10.0 * serial_error);
+        assert!(stress <= 10.0 * stress_error.max(1e-9 * cell(&reference)[0][0].abs()));
+        assert!(strain <= 10.0 * strain_error.max(1e-12 * cell(&reference)[1][0].abs()));
+        assert!(work <= 10.0 * work_error.max(1e-9 * reference.energy.external_work.abs()));
     }
+    reference
+}
+
+/// Imposed strain E_xx, E_yy = E_xy = 0: every strain component imposed.
+#[test]
+fn a_periodic_cell_on_several_processes_agrees_with_the_serial_run() {
+    use xper_bodies::TimeFunction::Constant;
+    use xper_fracture::MacroDrive::Strain;
+    let reference = periodic_cell_agrees(|| [Strain(Constant(0.0)), Strain(Constant(0.0))]);
+    assert_eq!(reference.cell.unwrap().strain[1], 0.0);
+}
+
+/// Uniaxial macroscopic stress: E_xx imposed, Sigma_yy = Sigma_xy = 0, so E_yy and E_xy are
+/// free, shared by every process's solver (their masses split among the processes, their
+/// rates averaged after every sweep). The serial run contracts (E_yy < 0); on one process the
+/// distributed run is the serial one bit for bit.
+#[test]
+fn a_periodic_cell_under_a_macroscopic_stress_on_several_processes_agrees_with_the_serial_run() {
+    use xper_bodies::TimeFunction::Constant;
+    use xper_fracture::MacroDrive::Stress;
+    let drives = || [Stress(Constant(0.0)), Stress(Constant(0.0))];
+    let reference = periodic_cell_agrees(drives);
+    let strain = reference.cell.unwrap().strain;
+    assert!(
+        strain[1] < -0.1 * strain[0],
+        "E_yy {:e} for E_xx {:e}",
+        strain[1],
+        strain[0]
+    );
+    let (one, _, _) = distributed(&periodic_model(drives(), 1.666e-4), 1, 250);
+    assert_eq!(one.cell.unwrap().strain, strain);
+    assert_eq!(one.largest_displacement_difference(&reference), 0.0);
 }

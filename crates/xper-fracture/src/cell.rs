@@ -137,7 +137,7 @@ impl FractureModel {
         let (Some(p), Some(c)) = (&self.spec.periodic, &self.cell) else {
             return 0.0;
         };
-        if !(0..3).any(|k| p.is_free(k)) {
+        if self.cell_copy || !(0..3).any(|k| p.is_free(k)) {
             return 0.0;
         }
         let mass = self.cell_mass();

@@ -282,6 +282,10 @@ pub struct FractureModel {
     pub shadow: Vec<bool>,
     /// The macroscopic state of a periodic cell (`None` without `spec.periodic`).
     pub cell: Option<CellState>,
+    /// The cell's free strain components are a copy of another process's (a part of a
+    /// distributed run): their kinetic energy and the work of the imposed stresses are
+    /// counted by that process. False for a whole model.
+    pub cell_copy: bool,
 }
 
 const NO_LOAD: u16 = u16::MAX;
@@ -404,6 +408,7 @@ impl FractureModel {
             energy: FractureEnergy::default(),
             shadow: Vec::new(),
             cell,
+            cell_copy: false,
         })
     }
 

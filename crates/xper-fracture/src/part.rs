@@ -11,7 +11,8 @@ impl FractureModel {
     /// flagged in `shadow` are copies, and of `interfaces` (indices into `self.interfaces`,
     /// increasing), whose two elements must be among `elements`. The part starts with the
     /// energy accumulators `energy` (the whole budget on one process, zero on the others, so
-    /// that the parts' sums are the whole model's).
+    /// that the parts' sums are the whole model's); `cell_copy` as
+    /// [`FractureModel::cell_copy`] (true on every process but one).
     ///
     /// # Panics
     /// If an interface joins an element not in `elements` (a caller's bug).
@@ -21,6 +22,7 @@ impl FractureModel {
         shadow: &[bool],
         interfaces: &[u32],
         energy: FractureEnergy,
+        cell_copy: bool,
     ) -> FractureModel {
         let local = |global: u32| -> u32 {
             elements
@@ -47,6 +49,7 @@ impl FractureModel {
             energy,
             shadow: shadow.to_vec(),
             cell: self.cell,
+            cell_copy,
         }
     }
 }

@@ -104,7 +104,9 @@ pub(crate) fn cell(stepper: &FractureStepper, m: &mut FractureModel) -> Option<C
             MacroDrive::Strain(f) => state.strain[k] = f.eval(t_end),
             MacroDrive::Stress(f) => {
                 let increment = h * weighted[k];
-                sums.work += SHEAR_WEIGHT[k] * volume * f.eval(m.time + th * h) * increment;
+                if !m.cell_copy {
+                    sums.work += SHEAR_WEIGHT[k] * volume * f.eval(m.time + th * h) * increment;
+                }
                 state.strain[k] += increment;
             }
         }

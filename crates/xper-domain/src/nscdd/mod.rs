@@ -8,7 +8,9 @@
 //! 1. a Gauss-Seidel sweep over the local contacts (xper_solver::NlgsSweeper), updating the
 //!    local copies of the bodies;
 //! 2. for every shared body, v <- (1/m) sum over its m copies of v_copy (an exchange with the
-//!    neighbour processes only);
+//!    neighbour processes only); global components every process holds (the free strain
+//!    rates of a periodic cell, their mass split among all P processes) likewise take the
+//!    average of their P copies (an all-gather).
 //! ```
 //!
 //! The sweep visits the contacts touching a shared body first and sweeps the others while
@@ -54,6 +56,14 @@ pub trait BodyVelocities: ContactOperator {
     fn row_bodies(&self, a: usize) -> [u32; 2];
     /// Reorders the rows: row `k` becomes the former row `order[k]` (a permutation).
     fn permute_rows(&mut self, order: &[u32]);
+    /// The velocity components every process holds a copy of, whatever rows it owns (the
+    /// free strain rates of a periodic cell, moved by the rows across the cell's sides): glued
+    /// by averaging over all processes. None by default.
+    fn global_velocity(&self) -> Vec<f64> {
+        Vec::new()
+    }
+    /// Overwrites the components of [`BodyVelocities::global_velocity`].
+    fn set_global_velocity(&mut self, _velocity: &[f64]) {}
 }
 
 /// An operator whose bodies can carry a share of their mass, for the interface bodies of
@@ -72,6 +82,17 @@ pub trait SplitMasses: BodyVelocities {
     fn set_block(&mut self, a: usize, block: Block2);
     /// Recomputes the Delassus block of row `a` from the current inverse masses.
     fn refresh_block(&mut self, a: usize);
+    /// The inverse masses of the components of [`BodyVelocities::global_velocity`]
+    /// (zeros, none by default).
+    fn global_inverse_mass(&self) -> Vec<f64> {
+        Vec::new()
+    }
+    /// Sets the inverse masses of [`SplitMasses::global_inverse_mass`].
+    fn set_global_inverse_mass(&mut self, _inverse_mass: &[f64]) {}
+    /// Whether row `a` moves the global components.
+    fn touches_global(&self, _a: usize) -> bool {
+        false
+    }
 }
 
 impl BodyVelocities for RigidContactOperator {
@@ -137,6 +158,15 @@ impl SplitMasses for xper_fracture::ElementContactOperator {
             .row(row.elements, row.nodes, row.normal, row.period)
             .block;
     }
+    fn global_inverse_mass(&self) -> Vec<f64> {
+        self.cell.inv_mass.to_vec()
+    }
+    fn set_global_inverse_mass(&mut self, inverse_mass: &[f64]) {
+        self.cell.inv_mass.copy_from_slice(inverse_mass);
+    }
+    fn touches_global(&self, a: usize) -> bool {
+        self.rows[a].period != [0.0; 2]
+    }
 }
 
 impl BodyVelocities for xper_fracture::ElementContactOperator {
@@ -155,6 +185,23 @@ impl BodyVelocities for xper_fracture::ElementContactOperator {
     }
     fn permute_rows(&mut self, order: &[u32]) {
         self.rows = permuted(&self.rows, order);
+    }
+    /// The rates of the cell's free strain components (those with a mass).
+    fn global_velocity(&self) -> Vec<f64> {
+        let cell = &self.cell;
+        (0..3)
+            .filter(|&k| cell.inv_mass[k] != 0.0)
+            .map(|k| cell.rate[k])
+            .collect()
+    }
+    fn set_global_velocity(&mut self, velocity: &[f64]) {
+        let cell = &mut self.cell;
+        let free = (0..3)
+            .filter(|&k| cell.inv_mass[k] != 0.0)
+            .collect::<Vec<_>>();
+        for (k, &v) in free.into_iter().zip(velocity) {
+            cell.rate[k] = v;
+        }
     }
 }
 
@@ -367,13 +414,19 @@ pub fn solve_with_split_masses<C: Communicator + ?Sized, O: SplitMasses>(
     let bodies: Vec<usize> = (0..op.body_count())
         .filter(|&b| interface.is_shared(b as u32))
         .collect();
+    let global = op.global_inverse_mass();
+    let split_global = comm.size() > 1 && global.iter().any(|&w| w != 0.0);
     let rows: Vec<usize> = (0..op.contact_count())
-        .filter(|&a| touches_shared(op, interface, a))
+        .filter(|&a| touches_shared(op, interface, a) || (split_global && op.touches_global(a)))
         .collect();
     let masses: Vec<_> = bodies.iter().map(|&b| op.inverse_mass(b)).collect();
     let blocks: Vec<_> = rows.iter().map(|&a| op.diagonal_block(a)).collect();
     for &b in &bodies {
         op.scale_inverse_mass(b, f64::from(multiplicity[b]));
+    }
+    if split_global {
+        let processes = comm.size() as f64;
+        op.set_global_inverse_mass(&global.iter().map(|w| w * processes).collect::<Vec<_>>());
     }
     for &a in &rows {
         op.refresh_block(a);
@@ -391,6 +444,7 @@ pub fn solve_with_split_masses<C: Communicator + ?Sized, O: SplitMasses>(
     for (&b, m) in bodies.iter().zip(masses) {
         op.set_inverse_mass(b, m);
     }
+    op.set_global_inverse_mass(&global);
     for (&a, block) in rows.iter().zip(blocks) {
         op.set_block(a, block);
     }
@@ -477,8 +531,20 @@ impl Glue {
     ) {
         if self.shared.is_empty() {
             work(op);
-            return;
+        } else {
+            self.average_shared(comm, op, interface, work);
         }
+        average_global(comm, op);
+    }
+
+    /// The copies of the shared bodies averaged, `work` done while the messages travel.
+    fn average_shared<C: Communicator + ?Sized, O: BodyVelocities>(
+        &mut self,
+        comm: &C,
+        op: &mut O,
+        interface: &InterfaceMap,
+        work: &mut dyn FnMut(&mut O),
+    ) {
         let dofs = O::DOFS;
         let sends: Vec<(usize, Vec<f64>)> = interface
             .neighbours
@@ -521,6 +587,22 @@ impl Glue {
             }
         }
     }
+}
+
+/// The components every process holds ([`BodyVelocities::global_velocity`], with masses
+/// split among all processes) take their average over all processes, summed in rank order.
+/// Nothing on one process or without such components.
+fn average_global<C: Communicator + ?Sized, O: BodyVelocities>(comm: &C, op: &mut O) {
+    let mine = op.global_velocity();
+    if comm.size() == 1 || mine.is_empty() {
+        return;
+    }
+    let all = comm.all_gather(&mine);
+    let processes = comm.size() as f64;
+    let average: Vec<f64> = (0..mine.len())
+        .map(|k| all.iter().map(|v| v[k]).sum::<f64>() / processes)
+        .collect();
+    op.set_global_velocity(&average);
 }
 
 /// Adds this process's copy of each shared body to its sum.

@@ -59,16 +59,6 @@ impl<'c> FractureSimulation<'c> {
         let names: Vec<String> = model.spec.loads.iter().map(|l| l.name.clone()).collect();
         let columns = series_columns(&names, model.spec.periodic.is_some());
         let columns: Vec<&str> = columns.iter().map(String::as_str).collect();
-        let free_cell =
-            (model.spec.periodic.as_ref()).is_some_and(|p| (0..3).any(|k| p.is_free(k)));
-        if free_cell && comm.is_some_and(|c| c.size() > 1) {
-            return Err(RunError::BadInput(format!(
-                "{}: [periodic]: an imposed stress (stress_xx, stress_yy or stress_xy) is not \
-                 supported on several processes yet (the strain it leaves free would have to \
-                 be shared by every process's solver); impose strains or run on one process",
-                opts.scene.display()
-            )));
-        }
         let runner: Box<dyn FractureRun + 'c> = match comm {
             Some(comm) => Box::new(DistributedFractureRun::new(comm, &model)),
             None => Box::<SerialFracture>::default(),
