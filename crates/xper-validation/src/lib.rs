@@ -6,6 +6,8 @@
 //! * [`rigid`]: rigid bodies (incline, drop, Newton's cradle, column, deposits);
 //! * [`fracture`]: deformable elements and cohesive zones (patch test, cohesive laws, bar,
 //!   wave speed, plasticity);
+//! * [`periodic`]: periodic homogenization (effective tensors, cells under macroscopic strain
+//!   or stress, cracks across the sides);
 //! * [`fluid`]: the MAC fluid and immersed grains (Taylor-Green, Ghia's cavity, projection,
 //!   Schaefer-Turek, a resting and a settling grain);
 //! * [`paper`]: the paper's fracture applications at its resolution (`--full`);
@@ -16,6 +18,7 @@ pub mod fluid;
 mod fluid_report;
 pub mod fracture;
 pub mod paper;
+pub mod periodic;
 pub mod report;
 pub mod rigid;
 pub mod robustness;

@@ -33,8 +33,9 @@ pub fn write_report(path: &std::path::Path, full: bool) -> Result<(), RunError> 
          broad phase finds exactly the pairs of a brute-force search (`crates/xper-geometry/tests/`); the\n\
          exact 2D local solve satisfies Signorini-Coulomb on 10,000 random blocks (`xper-solver`).\n",
     );
-    let fracture_failures =
-        fracture_section(&mut md)? + crate::fluid_report::fluid_section(&mut md, full)?;
+    let fracture_failures = fracture_section(&mut md)?
+        + periodic_section(&mut md)?
+        + crate::fluid_report::fluid_section(&mut md, full)?;
     let paper_failures = crate::paper::paper_section(&mut md, full)? + fracture_failures;
     let suite_failures = suite_section(&mut md)? + paper_failures;
     // The kill rounds run this very binary (`xper validate` is `xper`).
@@ -214,6 +215,22 @@ fn fracture_section(md: &mut String) -> Result<usize, RunError> {
          Exploded meshes (one body per triangle, a frictional cohesive zone on every interior \
          edge, BRIEF.md section 3), theta-method, NLGS; the same cases are asserted by \
          `cargo test -p xper-validation` (`crates/xper-validation/src/fracture/`).\n\n\
+         | case | reference | measured | error | tolerance | result |\n|---|---|---|---|---|---|\n",
+    );
+    Ok(push_cases(md, &cases))
+}
+
+/// The periodic homogenization cases ([`crate::periodic`], which the crate's tests assert
+/// too): appends their table to `md`, returns the number that failed.
+fn periodic_section(md: &mut String) -> Result<usize, RunError> {
+    let cases = crate::periodic::all_cases().map_err(RunError::Runtime)?;
+    md.push_str(
+        "\n## Periodic homogenization: effective tensors and cells under macroscopic loading\n\n\
+         Periodic cells (displacement `E x` plus a periodic fluctuation, cohesive zones across \
+         the sides too), plane strain: the undamaged cell's tensor by three static solves \
+         (`xper homogenize`), and cells stepped in time under macroscopic strain or stress \
+         histories; the same cases are asserted by `cargo test -p xper-validation` \
+         (`crates/xper-validation/src/periodic/`).\n\n\
          | case | reference | measured | error | tolerance | result |\n|---|---|---|---|---|---|\n",
     );
     Ok(push_cases(md, &cases))

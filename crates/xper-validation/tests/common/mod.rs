@@ -1,6 +1,6 @@
 //! The assertion of validation cases shared by the engine tests.
 
-use xper_validation::fracture::Case;
+use xper_validation::Case;
 
 /// Prints every case of a scenario (shown with `--nocapture`), then asserts each one passed;
 /// an engine failure (build or step error) fails with its message.
