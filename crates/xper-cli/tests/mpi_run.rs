@@ -298,8 +298,14 @@ fn periodic_scene(dir: &Path, name: &str, tolerance: &str) -> std::path::PathBuf
         .unwrap()
         .replace("steps = 5000", "steps = 600")
         .replace("frame_every = 250", "frame_every = 300")
-        .replace("checkpoint_every = 1000", "checkpoint_every = 300")
-        .replace("tolerance = 1.666e-4", &format!("tolerance = {tolerance}"));
+        .replace("checkpoint_every = 1000", "checkpoint_every = 300");
+    let text: String = (text.lines())
+        .map(|line| match line.starts_with("tolerance =") {
+            true => format!("tolerance = {tolerance}\n"),
+            false => format!("{line}\n"),
+        })
+        .collect();
+    assert!(text.contains(&format!("tolerance = {tolerance}\n")));
     let path = dir.join(name);
     std::fs::write(&path, text).unwrap();
     path
