@@ -23,6 +23,32 @@ impl Case {
     }
 }
 
+/// A case (shorthand for the struct literal).
+pub(crate) fn case(
+    name: String,
+    reference: String,
+    measured: String,
+    error: f64,
+    tolerance: f64,
+) -> Case {
+    Case {
+        name,
+        reference,
+        measured,
+        error,
+        tolerance,
+    }
+}
+
+/// 0 when `ok`, else 1: the error of a check without a natural number.
+pub(crate) fn indicator(ok: bool) -> f64 {
+    if ok {
+        0.0
+    } else {
+        1.0
+    }
+}
+
 /// Appends the rows of `cases` to a validation table; returns how many failed.
 pub(crate) fn push_cases(md: &mut String, cases: &[Case]) -> usize {
     for c in cases {

@@ -2,6 +2,7 @@
 //! s, Pa, Pa/m for interface stiffnesses, J, N).
 
 use super::Case;
+pub(super) use crate::case::{case, indicator};
 use xper_bodies::{Drive, TimeFunction};
 use xper_fem::{Hypothesis, Material};
 use xper_fracture::{
@@ -361,32 +362,6 @@ pub(super) fn one_triangle(
         plastic_stiffness: Default::default(),
     };
     Ok((mesh, spec))
-}
-
-/// A case (shorthand for the struct literal).
-pub(super) fn case(
-    name: String,
-    reference: String,
-    measured: String,
-    error: f64,
-    tolerance: f64,
-) -> Case {
-    Case {
-        name,
-        reference,
-        measured,
-        error,
-        tolerance,
-    }
-}
-
-/// 0 when `ok`, else 1: the error of a check without a natural number.
-pub(super) fn indicator(ok: bool) -> f64 {
-    if ok {
-        0.0
-    } else {
-        1.0
-    }
 }
 
 /// The case "NLGS converged at every step" of a run: error = the steps that did not converge.

@@ -19,6 +19,7 @@ mod breaking;
 mod runs;
 mod setup;
 
+use crate::case::{case, indicator};
 pub use crate::Case;
 pub use breaking::{reentering_crack, single_line};
 pub use runs::{mixed_loading, slow_strain};
@@ -39,26 +40,6 @@ pub fn all_cases() -> Result<Vec<Case>, String> {
         reentering_crack()?,
     ]
     .concat())
-}
-
-/// A case (shorthand for the struct literal).
-fn case(name: String, reference: String, measured: String, error: f64, tolerance: f64) -> Case {
-    Case {
-        name,
-        reference,
-        measured,
-        error,
-        tolerance,
-    }
-}
-
-/// 0 when `ok`, else 1: the error of a check without a natural number.
-fn indicator(ok: bool) -> f64 {
-    if ok {
-        0.0
-    } else {
-        1.0
-    }
 }
 
 /// The effective tensor of `m`, an error naming the scenario if the solve fails.
