@@ -30,11 +30,11 @@
 //! Math. 168 (2004) 375.
 
 pub mod interface;
+mod operators;
 pub mod split;
 
 use crate::comm::Communicator;
 use crate::nscdd::interface::InterfaceMap;
-use xper_nscd::RigidContactOperator;
 use xper_solver::{
     natural_map_error, sweep_until_converged, Block2, CohesiveTerm, ContactOperator, NlgsParams,
     NlgsSweeper, NormAccumulator, SolveError, SolveInfo, SweepExchange,
@@ -92,116 +92,6 @@ pub trait SplitMasses: BodyVelocities {
     /// Whether row `a` moves the global components.
     fn touches_global(&self, _a: usize) -> bool {
         false
-    }
-}
-
-impl BodyVelocities for RigidContactOperator {
-    const DOFS: usize = 3;
-    fn body_count(&self) -> usize {
-        self.bodies.len()
-    }
-    fn body_velocity(&self, b: usize) -> &[f64] {
-        &self.bodies[b].velocity
-    }
-    fn body_velocity_mut(&mut self, b: usize) -> &mut [f64] {
-        &mut self.bodies[b].velocity
-    }
-    fn row_bodies(&self, a: usize) -> [u32; 2] {
-        self.rows[a].bodies
-    }
-    fn permute_rows(&mut self, order: &[u32]) {
-        self.rows = permuted(&self.rows, order);
-    }
-}
-
-impl SplitMasses for RigidContactOperator {
-    type InverseMass = [f64; 3];
-    fn inverse_mass(&self, b: usize) -> [f64; 3] {
-        self.bodies[b].inv_mass
-    }
-    fn set_inverse_mass(&mut self, b: usize, inverse_mass: [f64; 3]) {
-        self.bodies[b].inv_mass = inverse_mass;
-    }
-    fn scale_inverse_mass(&mut self, b: usize, factor: f64) {
-        for w in &mut self.bodies[b].inv_mass {
-            *w *= factor;
-        }
-    }
-    fn set_block(&mut self, a: usize, block: Block2) {
-        self.rows[a].set_full_block(block);
-    }
-    fn refresh_block(&mut self, a: usize) {
-        let bodies = &self.bodies;
-        self.rows[a].refresh_block(|b| bodies[b].inv_mass);
-    }
-}
-
-impl SplitMasses for xper_fracture::ElementContactOperator {
-    type InverseMass = xper_fracture::Mat6;
-    fn inverse_mass(&self, b: usize) -> xper_fracture::Mat6 {
-        self.bodies[b].inv_mass
-    }
-    fn set_inverse_mass(&mut self, b: usize, inverse_mass: xper_fracture::Mat6) {
-        self.bodies[b].inv_mass = inverse_mass;
-    }
-    fn scale_inverse_mass(&mut self, b: usize, factor: f64) {
-        for x in self.bodies[b].inv_mass.iter_mut().flatten() {
-            *x *= factor;
-        }
-    }
-    fn set_block(&mut self, a: usize, block: Block2) {
-        self.rows[a].block = block;
-    }
-    fn refresh_block(&mut self, a: usize) {
-        let row = self.rows[a];
-        self.rows[a].block = self
-            .row(row.elements, row.nodes, row.normal, row.period)
-            .block;
-    }
-    fn global_inverse_mass(&self) -> Vec<f64> {
-        self.cell.inv_mass.to_vec()
-    }
-    fn set_global_inverse_mass(&mut self, inverse_mass: &[f64]) {
-        self.cell.inv_mass.copy_from_slice(inverse_mass);
-    }
-    fn touches_global(&self, a: usize) -> bool {
-        self.rows[a].period != [0.0; 2]
-    }
-}
-
-impl BodyVelocities for xper_fracture::ElementContactOperator {
-    const DOFS: usize = 6;
-    fn body_count(&self) -> usize {
-        self.bodies.len()
-    }
-    fn body_velocity(&self, b: usize) -> &[f64] {
-        &self.bodies[b].velocity
-    }
-    fn body_velocity_mut(&mut self, b: usize) -> &mut [f64] {
-        &mut self.bodies[b].velocity
-    }
-    fn row_bodies(&self, a: usize) -> [u32; 2] {
-        self.rows[a].elements
-    }
-    fn permute_rows(&mut self, order: &[u32]) {
-        self.rows = permuted(&self.rows, order);
-    }
-    /// The rates of the cell's free strain components (those with a mass).
-    fn global_velocity(&self) -> Vec<f64> {
-        let cell = &self.cell;
-        (0..3)
-            .filter(|&k| cell.inv_mass[k] != 0.0)
-            .map(|k| cell.rate[k])
-            .collect()
-    }
-    fn set_global_velocity(&mut self, velocity: &[f64]) {
-        let cell = &mut self.cell;
-        let free = (0..3)
-            .filter(|&k| cell.inv_mass[k] != 0.0)
-            .collect::<Vec<_>>();
-        for (k, &v) in free.into_iter().zip(velocity) {
-            cell.rate[k] = v;
-        }
     }
 }
 
@@ -295,7 +185,7 @@ fn touches_shared<O: BodyVelocities>(op: &O, interface: &InterfaceMap, a: usize)
 }
 
 /// `values` in the order `order` (entry `k` is `values[order[k]]`).
-fn permuted<T: Copy>(values: &[T], order: &[u32]) -> Vec<T> {
+pub(crate) fn permuted<T: Copy>(values: &[T], order: &[u32]) -> Vec<T> {
     order.iter().map(|&a| values[a as usize]).collect()
 }
 

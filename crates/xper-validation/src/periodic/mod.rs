@@ -24,8 +24,9 @@ pub use crate::Case;
 pub use breaking::{reentering_crack, single_line};
 pub use runs::{mixed_loading, slow_strain};
 use setup::*;
+use xper_fem::Material;
 use xper_fracture::{effective_tensor, FractureModel, Homogenized};
-use xper_mesh::{periodic_cell, Circle, PeriodicCellSpec, RandomCircles};
+use xper_mesh::{periodic_cell, Circle, Mesh, PeriodicCellSpec, RandomCircles};
 
 /// Every case of this module, in order.
 pub fn all_cases() -> Result<Vec<Case>, String> {
@@ -40,6 +41,12 @@ pub fn all_cases() -> Result<Vec<Case>, String> {
         reentering_crack()?,
     ]
     .concat())
+}
+
+/// The undamaged cell of `mesh` with `materials` (`[matrix, inclusion]`) and cohesive zones of
+/// stiffness `c` (Pa/m) everywhere, at zero strain: the model `effective_tensor` reads.
+fn static_cell(mesh: Mesh, materials: [Material; 2], c: f64) -> Result<FractureModel, String> {
+    cell_model(mesh, materials, stiff_zone(c), fixed(), 1e-6)
 }
 
 /// The effective tensor of `m`, an error naming the scenario if the solve fails.
@@ -101,13 +108,7 @@ pub fn one_material() -> Result<Vec<Case>, String> {
     let mut cases = Vec::new();
     for (name, mesh) in meshes {
         let scenario = format!("periodic cell of one material, {name}");
-        let m = cell_model(
-            mesh,
-            [elastic(e, nu); 2],
-            stiff_zone(1e8 * e / h),
-            fixed(),
-            1e-6,
-        )?;
+        let m = static_cell(mesh, [elastic(e, nu); 2], 1e8 * e / h)?;
         let c = tensor(&scenario, &m)?;
         cases.push(sound(&scenario, &c));
         let err = relative_difference(&c.tensor, &tangent(e, nu));
@@ -136,13 +137,7 @@ pub fn laminate() -> Result<Vec<Case>, String> {
     let fraction = x1 - x0;
     let mesh = grid(20, 4, 1.0, 0.5, |p| p[0] > x0 && p[0] < x1)?;
     let materials = [elastic(MATRIX.0, MATRIX.1), elastic(STIFF.0, STIFF.1)];
-    let m = cell_model(
-        mesh,
-        materials,
-        stiff_zone(1e8 * STIFF.0 / h),
-        fixed(),
-        1e-6,
-    )?;
+    let m = static_cell(mesh, materials, 1e8 * STIFF.0 / h)?;
     let c = tensor(S, &m)?;
     let p = |(e, nu): (f64, f64)| {
         let (l, mu) = lame(e, nu);
@@ -211,13 +206,7 @@ pub fn hashin_shtrikman() -> Result<Vec<Case>, String> {
             elastic(INCLUSION.0, INCLUSION.1),
         ];
         let mesh = periodic_cell(&spec).map_err(|e| e.to_string())?;
-        let m = cell_model(
-            mesh,
-            materials,
-            stiff_zone(1e8 * INCLUSION.0 / h),
-            fixed(),
-            1e-6,
-        )?;
+        let m = static_cell(mesh, materials, 1e8 * INCLUSION.0 / h)?;
         let scenario = format!("{S}, h = {h} m");
         let c = tensor(&scenario, &m)?;
         cases.push(sound(&scenario, &c));
@@ -269,13 +258,7 @@ pub fn interface_compliance() -> Result<Vec<Case>, String> {
     let mut cases = Vec::new();
     for ratio in [1.0, 10.0, 100.0, 1e3, 1e4, 1e5] {
         let mesh = periodic_cell(&circle_cell(h)).map_err(|e| e.to_string())?;
-        let m = cell_model(
-            mesh,
-            [elastic(e, nu); 2],
-            stiff_zone(ratio * e / h),
-            fixed(),
-            1e-6,
-        )?;
+        let m = static_cell(mesh, [elastic(e, nu); 2], ratio * e / h)?;
         let c = tensor(S, &m)?;
         if ratio == 1.0 {
             cases.push(sound(&format!("{S}, C_N h / E = 1"), &c));
