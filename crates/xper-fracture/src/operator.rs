@@ -10,7 +10,7 @@
 //! strain rate `E'` ([`crate::cell`]): `U = (v_b - v_a - E' T) . (n, t)`; an impulse on it
 //! moves the free components of `E'` as it moves the two elements.
 
-use xper_solver::{Block2, ContactOperator};
+use xper_solver::{Block2, ContactOperator, Frame2};
 
 use crate::cell::{drift_response, strain_times, tensor_weights};
 use crate::dense::Mat6;
@@ -123,6 +123,7 @@ impl ElementContactOperator {
 }
 
 impl ContactOperator for ElementContactOperator {
+    type Frame = Frame2;
     #[inline(always)]
     fn contact_count(&self) -> usize {
         self.rows.len()

@@ -9,7 +9,7 @@ use xper_bodies::BodySet;
 pub use xper_geometry::ContactRow;
 use xper_math::buffer::refill;
 use xper_math::{tangent, Real, Vector, DOFS};
-use xper_solver::{Block2, ContactOperator};
+use xper_solver::{Block2, ContactOperator, Frame2};
 
 /// Working state of one body: generalised velocity and inverse masses per degree of freedom.
 #[derive(Clone, Copy, Debug, Default)]
@@ -92,6 +92,7 @@ impl RigidContactOperator {
 }
 
 impl ContactOperator for RigidContactOperator {
+    type Frame = Frame2;
     #[inline(always)]
     fn contact_count(&self) -> usize {
         self.rows.len()

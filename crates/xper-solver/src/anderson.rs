@@ -19,6 +19,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::frame::{ContactFrame, Frame2};
+
 /// The largest history depth `m`.
 pub const MAX_ANDERSON_DEPTH: u32 = 8;
 
@@ -59,36 +61,25 @@ impl Acceleration {
 
 const MAX_DEPTH: usize = MAX_ANDERSON_DEPTH as usize;
 
-/// A difference as stored: rounded to single precision.
-#[inline(always)]
-fn to_stored(d: [f64; 2]) -> [f32; 2] {
-    [d[0] as f32, d[1] as f32]
-}
-
-/// A stored difference back in double precision (exact).
-#[inline(always)]
-fn from_stored(d: [f32; 2]) -> [f64; 2] {
-    [d[0] as f64, d[1] as f64]
-}
-
 /// The history of one solve: impulses after the last mixing, the last residual and image, and
 /// the ring of the last `depth` differences with their Gram matrix. In a distributed solve each
 /// process mixes its own contacts with coefficients found from sums over all processes
 /// ([`AndersonMixer::mix_reduced`]), so every process keeps the same history of the Gram matrix.
-pub struct AndersonMixer {
+/// Impulses are local vectors of the contact frame `F`.
+pub struct AndersonMixer<F: ContactFrame = Frame2> {
     depth: usize,
     /// Sweeps between two mixings.
     period: u32,
     /// Impulses right after the last mixing (or the start): `R_k`.
-    x: Vec<[f64; 2]>,
+    x: Vec<F::Vector>,
     /// Residual and image of the last mixing.
-    f_prev: Vec<[f64; 2]>,
-    g_prev: Vec<[f64; 2]>,
+    f_prev: Vec<F::Vector>,
+    g_prev: Vec<F::Vector>,
     /// `depth` slots of `n` differences each, rounded to single precision: they only steer
     /// the mixing (the next sweep and the convergence test work in double precision), and
-    /// halving them saves 16 bytes per contact and slot.
-    df: Vec<[f32; 2]>,
-    dg: Vec<[f32; 2]>,
+    /// halving them saves 8 bytes per component, contact and slot.
+    df: Vec<F::Stored>,
+    dg: Vec<F::Stored>,
     /// `dF^T dF`, by slot.
     gram: [[f64; MAX_DEPTH]; MAX_DEPTH],
     /// Slots filled, next slot to write, whether `f_prev`/`g_prev` hold a previous mixing.
@@ -101,18 +92,18 @@ pub struct AndersonMixer {
     mixings: u32,
 }
 
-impl AndersonMixer {
+impl<F: ContactFrame> AndersonMixer<F> {
     /// A mixer of depth `depth`, mixing every `period` sweeps, starting from `impulses`.
-    pub fn new(depth: u32, period: u32, impulses: &[[f64; 2]]) -> Self {
+    pub fn new(depth: u32, period: u32, impulses: &[F::Vector]) -> Self {
         let (depth, n) = (depth.clamp(1, MAX_ANDERSON_DEPTH) as usize, impulses.len());
         AndersonMixer {
             depth,
             period: period.max(1),
             x: impulses.to_vec(),
-            f_prev: vec![[0.0; 2]; n],
-            g_prev: vec![[0.0; 2]; n],
-            df: vec![[0.0; 2]; depth * n],
-            dg: vec![[0.0; 2]; depth * n],
+            f_prev: vec![F::Vector::default(); n],
+            g_prev: vec![F::Vector::default(); n],
+            df: vec![F::Stored::default(); depth * n],
+            dg: vec![F::Stored::default(); depth * n],
             gram: [[0.0; MAX_DEPTH]; MAX_DEPTH],
             len: 0,
             head: 0,
@@ -123,7 +114,7 @@ impl AndersonMixer {
     }
 
     /// The mixer of a solve with `params` starting from `impulses`; `None` for plain sweeps.
-    pub fn for_params(params: &crate::NlgsParams, impulses: &[[f64; 2]]) -> Option<Self> {
+    pub fn for_params(params: &crate::NlgsParams, impulses: &[F::Vector]) -> Option<Self> {
         match params.acceleration {
             Acceleration::None => None,
             Acceleration::Anderson { depth, period } => {
@@ -150,8 +141,8 @@ impl AndersonMixer {
     /// restarts from here) or when the least-squares problem is degenerate.
     pub fn mix(
         &mut self,
-        impulses: &mut [[f64; 2]],
-        constrain_apply: impl FnMut(usize, [f64; 2], [f64; 2]) -> [f64; 2],
+        impulses: &mut [F::Vector],
+        constrain_apply: impl FnMut(usize, F::Vector, F::Vector) -> F::Vector,
     ) {
         self.mix_reduced(impulses, |_| {}, constrain_apply);
     }
@@ -162,9 +153,9 @@ impl AndersonMixer {
     /// processes, in the same order everywhere.
     pub fn mix_reduced(
         &mut self,
-        impulses: &mut [[f64; 2]],
+        impulses: &mut [F::Vector],
         reduce: impl FnOnce(&mut [f64]),
-        mut constrain_apply: impl FnMut(usize, [f64; 2], [f64; 2]) -> [f64; 2],
+        mut constrain_apply: impl FnMut(usize, F::Vector, F::Vector) -> F::Vector,
     ) {
         let n = impulses.len();
         let (depth, s) = (self.depth, self.head);
@@ -175,20 +166,18 @@ impl AndersonMixer {
         let mut rhs = [0.0; MAX_DEPTH];
         let mut residual = 0.0;
         for (a, &g) in impulses.iter().enumerate() {
-            let f = [g[0] - self.x[a][0], g[1] - self.x[a][1]];
-            residual += f[0] * f[0] + f[1] * f[1];
+            let f = F::sub(g, self.x[a]);
+            residual += F::dot(&f, &f);
             if record {
-                let fp = self.f_prev[a];
-                let gp = self.g_prev[a];
                 // The Gram matrix is that of the stored (rounded) differences.
-                let stored = to_stored([f[0] - fp[0], f[1] - fp[1]]);
+                let stored = F::to_stored(F::sub(f, self.f_prev[a]));
                 self.df[s * n + a] = stored;
-                self.dg[s * n + a] = to_stored([g[0] - gp[0], g[1] - gp[1]]);
-                let d = from_stored(stored);
+                self.dg[s * n + a] = F::to_stored(F::sub(g, self.g_prev[a]));
+                let d = F::from_stored(stored);
                 for j in 0..filled {
-                    let dj = from_stored(self.df[j * n + a]);
-                    row[j] += d[0] * dj[0] + d[1] * dj[1];
-                    rhs[j] += dj[0] * f[0] + dj[1] * f[1];
+                    let dj = F::from_stored(self.df[j * n + a]);
+                    row[j] += F::dot(&d, &dj);
+                    rhs[j] += F::dot(&dj, &f);
                 }
             }
             self.f_prev[a] = f;
@@ -235,9 +224,10 @@ impl AndersonMixer {
             let g = *impulse;
             let mut m = g;
             for (j, &c) in gamma.iter().enumerate().take(k) {
-                let d = from_stored(self.dg[j * n + a]);
-                m[0] -= c * d[0];
-                m[1] -= c * d[1];
+                let d = F::from_stored(self.dg[j * n + a]);
+                for (m, &d) in m.as_mut().iter_mut().zip(d.as_ref()) {
+                    *m -= c * d;
+                }
             }
             let r = constrain_apply(a, g, m);
             *impulse = r;
@@ -321,7 +311,7 @@ mod tests {
             exact = map(&exact);
         }
         let mut x = vec![[0.0; 2]; 2];
-        let mut mixer = AndersonMixer::new(4, 1, &x);
+        let mut mixer = AndersonMixer::<Frame2>::new(4, 1, &x);
         for _ in 0..6 {
             x = map(&x);
             mixer.mix(&mut x, |_, _, m| m);

@@ -6,7 +6,7 @@
 
 use crate::cohesive::CohesiveTerm;
 use crate::nlgs::{NlgsParams, SolveError, SolveInfo};
-use crate::operator::ContactOperator;
+use crate::operator::{ContactOperator, VectorOf};
 use crate::sweeps::nlgs_with_cohesion;
 
 /// The contact solve of a step and the reductions over the processes sharing it.
@@ -21,7 +21,7 @@ pub trait ContactSolve<O: ContactOperator> {
         mu: &[f64],
         shift: &[f64],
         cohesion: &[CohesiveTerm],
-        impulses: &mut [[f64; 2]],
+        impulses: &mut [VectorOf<O>],
         params: &NlgsParams,
     ) -> Result<SolveInfo, SolveError>;
     /// Replaces each value by its sum over the processes (identity on one).
@@ -41,7 +41,7 @@ impl<O: ContactOperator> ContactSolve<O> for OneProcessSolve {
         mu: &[f64],
         shift: &[f64],
         cohesion: &[CohesiveTerm],
-        impulses: &mut [[f64; 2]],
+        impulses: &mut [VectorOf<O>],
         params: &NlgsParams,
     ) -> Result<SolveInfo, SolveError> {
         nlgs_with_cohesion(op, mu, shift, cohesion, impulses, params)

@@ -9,7 +9,8 @@
 //!   contacts with a non-zero mean reaction `rm` (as LMGC90's `nlgs` counts them: a contact
 //!   whose reaction drops to zero in the check sweep still counts).
 
-use crate::operator::{block_mul, Block2};
+use crate::frame::{is_zero, ContactFrame, Frame2};
+use crate::operator::Block2;
 
 /// Projection of `(n, t)` on the Coulomb cone `|t| <= mu n`.
 #[inline]
@@ -25,15 +26,18 @@ pub fn project_on_cone(x: [f64; 2], mu: f64) -> [f64; 2] {
     }
 }
 
-/// Natural-map error `sqrt(sum_a |e_a|^2)` (unscaled) for local velocities `u` and impulses `r`.
+/// Natural-map error `sqrt(sum_a |e_a|^2)` (unscaled) for 2D local velocities `u` and
+/// impulses `r`.
 pub fn natural_map_error(u: &[[f64; 2]], r: &[[f64; 2]], mu: &[f64]) -> f64 {
+    natural_map_error_of::<Frame2>(u, r, mu)
+}
+
+/// [`natural_map_error`] in frame `F`.
+pub fn natural_map_error_of<F: ContactFrame>(u: &[F::Vector], r: &[F::Vector], mu: &[f64]) -> f64 {
     u.iter()
         .zip(r)
         .zip(mu)
-        .map(|((u, r), &mu)| {
-            let p = project_on_cone([r[0] - u[0] - mu * u[1].abs(), r[1] - u[1]], mu);
-            (r[0] - p[0]).powi(2) + (r[1] - p[1]).powi(2)
-        })
+        .map(|((u, r), &mu)| F::natural_map_error2(*u, *r, mu))
         .sum::<f64>()
         .sqrt()
 }
@@ -85,23 +89,48 @@ pub struct NormAccumulator {
 }
 
 impl NormAccumulator {
-    /// Adds one contact's local update.
+    /// Adds one contact's local update (2D).
     #[inline(always)]
     pub fn add(&mut self, w: &Block2, r: [f64; 2], r_new: [f64; 2], du: [f64; 2]) {
-        let rm = [(r[0] + r_new[0]) / 2.0, (r[1] + r_new[1]) / 2.0];
-        if rm[0] == 0.0 && rm[1] == 0.0 {
+        self.add_in::<Frame2>(w, r, r_new, du);
+    }
+
+    /// Adds one contact's local update in frame `F`: block `w`, impulses `r` before and
+    /// `r_new` after, velocity change `du`.
+    #[inline(always)]
+    pub fn add_in<F: ContactFrame>(
+        &mut self,
+        w: &F::Block,
+        r: F::Vector,
+        r_new: F::Vector,
+        du: F::Vector,
+    ) {
+        let mut rm = r;
+        for (m, &n) in rm.as_mut().iter_mut().zip(r_new.as_ref()) {
+            *m = (*m + n) / 2.0;
+        }
+        if is_zero(&rm) {
             return;
         }
-        let (wr, wr2) = (block_mul(w, r), block_mul(w, r_new));
-        let du2 = du[0] * du[0] + du[1] * du[1];
-        let rm2 = rm[0] * rm[0] + rm[1] * rm[1];
+        let (wr, wr2) = (F::block_mul(w, r), F::block_mul(w, r_new));
+        let du2 = F::dot(&du, &du);
+        let rm2 = F::dot(&rm, &rm);
         self.sum_du2 += du2;
         self.max_du2 = self.max_du2.max(du2);
         self.sum_du2_rm2 += du2 * rm2;
         self.max_du2_rm2 = self.max_du2_rm2.max(du2 * rm2);
-        self.sum_wrr += (r[0] * wr[0] + r[1] * wr[1] + r_new[0] * wr2[0] + r_new[1] * wr2[1]) / 2.0;
-        self.sum_wrwr += (wr[0] * wr[0] + wr[1] * wr[1] + wr2[0] * wr2[0] + wr2[1] * wr2[1]) / 2.0;
-        self.sum_rm_du += rm[0] * du[0] + rm[1] * du[1];
+        // Summed term by term from the first (the order of the 2D code's expressions).
+        let mut wrr = F::dot(&r, &wr);
+        let mut wrwr = F::dot(&wr, &wr);
+        for (a, b) in r_new.as_ref().iter().zip(wr2.as_ref()) {
+            wrr += a * b;
+        }
+        for a in wr2.as_ref() {
+            wrwr += a * a;
+        }
+        self.sum_wrr += wrr / 2.0;
+        self.sum_wrwr += wrwr / 2.0;
+        self.sum_rm_du += F::dot(&rm, &du);
         self.active += 1;
     }
 

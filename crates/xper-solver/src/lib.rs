@@ -25,6 +25,7 @@ pub mod anderson;
 mod cohesive;
 mod contact_solve;
 mod error;
+mod frame;
 pub mod lemke;
 mod local;
 pub mod newton;
@@ -41,7 +42,10 @@ pub use alart_curnier::LocalParams;
 pub use anderson::{Acceleration, AndersonMixer};
 pub use cohesive::{solve_one_cohesive_contact, CohesiveTerm, PreparedCohesiveContact};
 pub use contact_solve::{ContactSolve, OneProcessSolve};
-pub use error::{natural_map_error, project_on_cone, ConvergenceNorms, NormAccumulator};
+pub use error::{
+    natural_map_error, natural_map_error_of, project_on_cone, ConvergenceNorms, NormAccumulator,
+};
+pub use frame::{dot, is_zero, sub, ContactFrame, Frame2, Frame3, LocalVector};
 pub use lemke::{lemke, LemkeParams};
 pub use local::solve_one_contact;
 pub use newton::{newton, NewtonParams, RhoStrategy};
@@ -49,7 +53,7 @@ pub use nlgs::{
     check_contact_sizes, CheckPass, ConvergenceNorm, NlgsParams, NlgsSweeper, SolveError, SolveInfo,
 };
 pub use nsgs::{nsgs, NsgsParams};
-pub use operator::{Block2, ContactOperator, DenseProblem};
+pub use operator::{Block2, BlockOf, ContactOperator, DenseProblem, VectorOf};
 pub use problem::{
     error_measure, project_on_cone_nd, CsrMatrix, FrictionProblem, ProblemError,
     ProblemErrorMeasure,

@@ -1,18 +1,19 @@
-//! Non-linear Gauss-Seidel (NLGS) over contacts with the exact 2D local solve.
+//! Non-linear Gauss-Seidel (NLGS) over contacts, in a 2D or 3D contact frame.
 //!
 //! Each sweep visits the contacts in order; for contact `a` it forms the velocity without its
-//! own impulse, `u_free = U_a - W_aa R_a`, solves the one-contact problem exactly
-//! ([`crate::solve_one_contact`]) and applies the relaxed increment, so that later contacts of
-//! the sweep see it (M. Jean, CMAME 177, 1999; LMGC90's `nlgs`). Convergence is checked
-//! every `check_every` sweeps by LMGC90's norms or by the natural-map error.
+//! own impulse, `u_free = U_a - W_aa R_a`, solves the one-contact problem
+//! ([`ContactFrame::solve`]: exactly in 2D, [`crate::solve_one_contact`]; by Alart-Curnier's
+//! Newton in 3D) and applies the relaxed increment, so that later contacts of the sweep see it
+//! (M. Jean, CMAME 177, 1999; LMGC90's `nlgs`). Convergence is checked every `check_every`
+//! sweeps by LMGC90's norms or by the natural-map error.
 
 use crate::anderson::{Acceleration, AndersonMixer};
-use crate::cohesive::{CohesiveTerm, PreparedCohesiveContact};
-use crate::error::{natural_map_error, NormAccumulator};
+use crate::cohesive::CohesiveTerm;
+use crate::error::{natural_map_error_of, NormAccumulator};
 pub use crate::outcome::{SolveError, SolveInfo};
 
-use crate::local::{solve_one_contact_factored, LocalFactors};
-use crate::operator::{block_mul, Block2, ContactOperator};
+use crate::frame::{is_zero, ContactFrame, Frame2};
+use crate::operator::{ContactOperator, VectorOf};
 
 /// Which measure decides convergence.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -84,7 +85,7 @@ impl Default for NlgsParams {
 /// factorised cohesive contacts) and one Gauss-Seidel sweep over the contacts. [`nlgs`] loops
 /// the sweep with its convergence checks; a domain-decomposition solver interleaves sweeps
 /// with exchanges between processes; both loop it with [`crate::sweep_until_converged`].
-pub struct NlgsSweeper<'a> {
+pub struct NlgsSweeper<'a, F: ContactFrame = Frame2> {
     mu: &'a [f64],
     normal_shift: &'a [f64],
     omega: f64,
@@ -93,21 +94,22 @@ pub struct NlgsSweeper<'a> {
     /// Whether each contact is adhesive; empty when none is.
     is_adhesive: Vec<bool>,
     /// Factorised adhesive contacts; empty when none is adhesive.
-    prepared: Vec<PreparedCohesiveContact>,
-    /// The local solve's reciprocal of each contact (of `W_aa + eps I` where proximal).
-    factors: Vec<LocalFactors>,
+    prepared: Vec<F::Cohesive>,
+    /// What the local solve precomputes for each contact (of `W_aa + eps I` where
+    /// proximal): in 2D the reciprocal of its determinant.
+    factors: Vec<F::Factors>,
     q_norm: f64,
 }
 
-impl<'a> NlgsSweeper<'a> {
+impl<'a, F: ContactFrame> NlgsSweeper<'a, F> {
     /// Checks the data, projects the warm start `impulses` on the cones (where not adhesive) and
     /// applies it to `op`, which must be in the state of zero impulses.
-    pub fn new<O: ContactOperator>(
+    pub fn new<O: ContactOperator<Frame = F>>(
         op: &mut O,
         mu: &'a [f64],
         normal_shift: &'a [f64],
         cohesion: &[CohesiveTerm],
-        impulses: &mut [[f64; 2]],
+        impulses: &mut [F::Vector],
         params: &NlgsParams,
     ) -> Result<Self, SolveError> {
         let n = op.contact_count();
@@ -143,9 +145,10 @@ impl<'a> NlgsSweeper<'a> {
                 });
             }
             if !w
+                .as_ref()
                 .iter()
-                .chain(&u)
-                .chain(impulses[a].iter())
+                .chain(u.as_ref())
+                .chain(impulses[a].as_ref())
                 .all(|x| x.is_finite())
                 || !normal_shift[a].is_finite()
             {
@@ -154,13 +157,18 @@ impl<'a> NlgsSweeper<'a> {
                     what: "non-finite W, q, shift or warm start".into(),
                 });
             }
-            if w[0] <= 0.0 {
+            let w_nn = w.as_ref()[0];
+            if w_nn <= 0.0 {
                 return Err(SolveError::InvalidData {
                     contact: a,
-                    what: format!("W_nn = {} is not positive", w[0]),
+                    what: format!("W_nn = {w_nn} is not positive"),
                 });
             }
-            q_norm2 += (u[0] + normal_shift[a]).powi(2) + u[1] * u[1];
+            let mut q2 = (u[0] + normal_shift[a]).powi(2);
+            for &uk in &u.as_ref()[1..] {
+                q2 += uk * uk;
+            }
+            q_norm2 += q2;
         }
         let is_adhesive: Vec<bool> = if cohesion.is_empty() {
             Vec::new()
@@ -170,14 +178,14 @@ impl<'a> NlgsSweeper<'a> {
         let adhesive = |a: usize| !is_adhesive.is_empty() && is_adhesive[a];
         for (a, r) in impulses.iter_mut().enumerate() {
             if !adhesive(a) {
-                *r = crate::error::project_on_cone(*r, mu[a]);
+                *r = F::project_on_cone(*r, mu[a]);
             }
-            if r[0] != 0.0 || r[1] != 0.0 {
+            if !is_zero(r) {
                 op.apply_impulse(a, *r);
             }
         }
         let mut proximal: Vec<f64> = (0..n)
-            .map(|a| proximal_weight(&op.diagonal_block(a)))
+            .map(|a| F::proximal_weight(&op.diagonal_block(a)))
             .collect();
         if proximal.iter().all(|&eps| eps == 0.0) {
             proximal = Vec::new();
@@ -186,22 +194,22 @@ impl<'a> NlgsSweeper<'a> {
         let local_block = |a: usize| {
             let w = op.diagonal_block(a);
             let eps = proximal.get(a).copied().unwrap_or(0.0);
-            [w[0] + eps, w[1], w[2], w[3] + eps]
+            F::add_to_diagonal(&w, eps)
         };
-        let prepared: Vec<PreparedCohesiveContact> = if is_adhesive.is_empty() {
+        let prepared: Vec<F::Cohesive> = if is_adhesive.is_empty() {
             Vec::new()
         } else {
             (0..n)
                 .map(|a| {
                     if !adhesive(a) {
-                        return PreparedCohesiveContact::default();
+                        return Ok(F::Cohesive::default());
                     }
-                    PreparedCohesiveContact::new(&local_block(a), &cohesion[a])
+                    F::prepare_cohesive(&local_block(a), &cohesion[a])
+                        .map_err(|what| SolveError::InvalidData { contact: a, what })
                 })
-                .collect()
+                .collect::<Result<_, _>>()?
         };
-        let factors: Vec<LocalFactors> =
-            (0..n).map(|a| LocalFactors::new(&local_block(a))).collect();
+        let factors: Vec<F::Factors> = (0..n).map(|a| F::factors(&local_block(a))).collect();
         Ok(NlgsSweeper {
             mu,
             normal_shift,
@@ -235,11 +243,11 @@ impl<'a> NlgsSweeper<'a> {
     /// constrains it.
     /// `reduce` sums the mixer's partial sums over the processes of a distributed solve (see
     /// [`AndersonMixer::mix_reduced`]); a solve on one process passes a no-op.
-    pub fn accelerate<O: ContactOperator>(
+    pub fn accelerate<O: ContactOperator<Frame = F>>(
         &self,
         op: &mut O,
-        impulses: &mut [[f64; 2]],
-        mixer: &mut AndersonMixer,
+        impulses: &mut [F::Vector],
+        mixer: &mut AndersonMixer<F>,
         reduce: impl FnOnce(&mut [f64]),
     ) {
         mixer.mix_reduced(impulses, reduce, |a, old, mixed| {
@@ -247,10 +255,10 @@ impl<'a> NlgsSweeper<'a> {
             let r = if adhesive {
                 mixed
             } else {
-                crate::error::project_on_cone(mixed, self.mu[a])
+                F::project_on_cone(mixed, self.mu[a])
             };
-            let d = [r[0] - old[0], r[1] - old[1]];
-            if d[0] != 0.0 || d[1] != 0.0 {
+            let d = F::sub(r, old);
+            if !is_zero(&d) {
                 op.apply_impulse(a, d);
             }
             r
@@ -258,15 +266,15 @@ impl<'a> NlgsSweeper<'a> {
     }
 
     /// One sweep over the contacts in order.
-    pub fn sweep<O: ContactOperator>(&self, op: &mut O, impulses: &mut [[f64; 2]]) {
+    pub fn sweep<O: ContactOperator<Frame = F>>(&self, op: &mut O, impulses: &mut [F::Vector]) {
         self.sweep_accumulating(op, impulses, None);
     }
 
     /// One sweep, adding each contact's update to `acc` when given.
-    pub fn sweep_accumulating<O: ContactOperator>(
+    pub fn sweep_accumulating<O: ContactOperator<Frame = F>>(
         &self,
         op: &mut O,
-        impulses: &mut [[f64; 2]],
+        impulses: &mut [F::Vector],
         acc: Option<&mut NormAccumulator>,
     ) {
         match acc {
@@ -278,10 +286,10 @@ impl<'a> NlgsSweeper<'a> {
     /// The part `contacts` of a sweep (in order), adding each contact's update to `acc` when
     /// given: a domain decomposition sweeps the contacts of its interface bodies first, then
     /// the others while their velocities travel.
-    pub fn sweep_part_accumulating<O: ContactOperator>(
+    pub fn sweep_part_accumulating<O: ContactOperator<Frame = F>>(
         &self,
         op: &mut O,
-        impulses: &mut [[f64; 2]],
+        impulses: &mut [F::Vector],
         contacts: std::ops::Range<usize>,
         acc: Option<&mut NormAccumulator>,
     ) {
@@ -297,10 +305,10 @@ impl<'a> NlgsSweeper<'a> {
     /// the indices known to start at 0: computed from a range's start, they cost the plain
     /// sweep 15 % on box10k's settled steps.
     #[inline(always)]
-    fn sweep_into<O: ContactOperator, A: AccumulateUpdate, const PART: bool>(
+    fn sweep_into<O: ContactOperator<Frame = F>, A: AccumulateUpdate<F>, const PART: bool>(
         &self,
         op: &mut O,
-        impulses: &mut [[f64; 2]],
+        impulses: &mut [F::Vector],
         contacts: std::ops::Range<usize>,
         acc: &mut A,
     ) {
@@ -319,15 +327,15 @@ impl<'a> NlgsSweeper<'a> {
     /// adhesive term, `PART` when `contacts` may not be all of them.
     #[inline(always)]
     fn sweep_with<
-        O: ContactOperator,
-        A: AccumulateUpdate,
+        O: ContactOperator<Frame = F>,
+        A: AccumulateUpdate<F>,
         const RELAXED: bool,
         const ADHESIVE: bool,
         const PART: bool,
     >(
         &self,
         op: &mut O,
-        impulses: &mut [[f64; 2]],
+        impulses: &mut [F::Vector],
         contacts: std::ops::Range<usize>,
         acc: &mut A,
     ) {
@@ -365,15 +373,13 @@ impl<'a> NlgsSweeper<'a> {
                 r_new = if !RELAXED || omega == 1.0 || adhesive {
                     local
                 } else {
-                    crate::error::project_on_cone(
-                        [
-                            omega * local[0] + (1.0 - omega) * r[0],
-                            omega * local[1] + (1.0 - omega) * r[1],
-                        ],
-                        mu[k],
-                    )
+                    let mut relaxed = local;
+                    for (x, &r) in relaxed.as_mut().iter_mut().zip(r.as_ref()) {
+                        *x = omega * *x + (1.0 - omega) * r;
+                    }
+                    F::project_on_cone(relaxed, mu[k])
                 };
-                [r_new[0] - r[0], r_new[1] - r[1]]
+                F::sub(r_new, r)
             });
             *impulse = r_new;
             acc.add(&w, r, r_new, delta);
@@ -381,7 +387,7 @@ impl<'a> NlgsSweeper<'a> {
     }
 }
 
-impl NlgsSweeper<'_> {
+impl<F: ContactFrame> NlgsSweeper<'_, F> {
     /// The solution of contact `a`'s local problem (before relaxation) for its block `w`, its
     /// local velocity `u` with every current impulse applied and its impulse `r`; `(mu, shift,
     /// factors)` are its own.
@@ -389,13 +395,15 @@ impl NlgsSweeper<'_> {
     fn local_solution<const RELAXED: bool, const ADHESIVE: bool>(
         &self,
         a: usize,
-        w: &Block2,
-        u: [f64; 2],
-        r: [f64; 2],
-        (mu, shift, factors): (f64, f64, &LocalFactors),
-    ) -> [f64; 2] {
-        let wr = block_mul(w, r);
-        let mut u_free = [u[0] + shift - wr[0], u[1] - wr[1]];
+        w: &F::Block,
+        u: F::Vector,
+        r: F::Vector,
+        (mu, shift, factors): (f64, f64, &F::Factors),
+    ) -> F::Vector {
+        let wr = F::block_mul(w, r);
+        let mut shifted = u;
+        shifted[0] += shift;
+        let mut u_free = F::sub(shifted, wr);
         let eps = if RELAXED && !self.proximal.is_empty() {
             self.proximal[a]
         } else {
@@ -404,24 +412,25 @@ impl NlgsSweeper<'_> {
         let mut w_local = *w;
         if eps > 0.0 {
             // A singular block: proximal step, exact at convergence (see proximal_weight).
-            w_local[0] += eps;
-            w_local[3] += eps;
-            u_free = [u_free[0] - eps * r[0], u_free[1] - eps * r[1]];
+            w_local = F::add_to_diagonal(w, eps);
+            for (x, &r) in u_free.as_mut().iter_mut().zip(r.as_ref()) {
+                *x -= eps * r;
+            }
         }
         if ADHESIVE && self.is_adhesive[a] {
-            self.prepared[a].solve(u_free, mu)
+            F::solve_cohesive(&self.prepared[a], u_free, mu)
         } else {
-            solve_one_contact_factored(&w_local, factors, u_free, mu)
+            F::solve(&w_local, factors, u_free, mu, r)
         }
     }
 
     /// LMGC90's check pass ([`CheckPass::Lmgc90`]) over the contacts `contacts`: each
     /// contact's local problem is solved on the current state and its change (without
     /// relaxation) added to `acc`; nothing is applied, so `op` and `impulses` are unchanged.
-    pub fn check_pass<O: ContactOperator>(
+    pub fn check_pass<O: ContactOperator<Frame = F>>(
         &self,
         op: &O,
-        impulses: &[[f64; 2]],
+        impulses: &[F::Vector],
         contacts: std::ops::Range<usize>,
         acc: &mut NormAccumulator,
     ) {
@@ -434,10 +443,14 @@ impl NlgsSweeper<'_> {
     }
 
     /// [`Self::check_pass`] compiled for the terms present (as [`Self::sweep_with`]).
-    fn check_pass_with<O: ContactOperator, const PROXIMAL: bool, const ADHESIVE: bool>(
+    fn check_pass_with<
+        O: ContactOperator<Frame = F>,
+        const PROXIMAL: bool,
+        const ADHESIVE: bool,
+    >(
         &self,
         op: &O,
-        impulses: &[[f64; 2]],
+        impulses: &[F::Vector],
         contacts: std::ops::Range<usize>,
         acc: &mut NormAccumulator,
     ) {
@@ -445,19 +458,19 @@ impl NlgsSweeper<'_> {
             let (w, u, r) = (op.diagonal_block(a), op.local_velocity(a), impulses[a]);
             let data = (self.mu[a], self.normal_shift[a], &self.factors[a]);
             let local = self.local_solution::<PROXIMAL, ADHESIVE>(a, &w, u, r, data);
-            AccumulateUpdate::add(acc, &w, r, local, [local[0] - r[0], local[1] - r[1]]);
+            AccumulateUpdate::<F>::add(acc, &w, r, local, F::sub(local, r));
         }
     }
 }
 
 /// Checks that `n` contacts have one friction coefficient, shift and impulse each, and one
 /// cohesive term each or none.
-pub fn check_contact_sizes(
+pub fn check_contact_sizes<V>(
     n: usize,
     mu: &[f64],
     normal_shift: &[f64],
     cohesion: &[CohesiveTerm],
-    impulses: &[[f64; 2]],
+    impulses: &[V],
 ) -> Result<(), SolveError> {
     if mu.len() != n
         || normal_shift.len() != n
@@ -479,21 +492,24 @@ pub fn check_contact_sizes(
 
 /// Where a sweep puts each contact's update: nowhere (`()`), or LMGC90's sums on a check
 /// sweep. A type parameter so that the plain sweep compiles without the accumulation.
-trait AccumulateUpdate {
-    fn add(&mut self, w: &Block2, r: [f64; 2], r_new: [f64; 2], delta: [f64; 2]);
+trait AccumulateUpdate<F: ContactFrame> {
+    fn add(&mut self, w: &F::Block, r: F::Vector, r_new: F::Vector, delta: F::Vector);
 }
 
-impl AccumulateUpdate for () {
+impl<F: ContactFrame> AccumulateUpdate<F> for () {
     #[inline(always)]
-    fn add(&mut self, _: &Block2, _: [f64; 2], _: [f64; 2], _: [f64; 2]) {}
+    fn add(&mut self, _: &F::Block, _: F::Vector, _: F::Vector, _: F::Vector) {}
 }
 
-impl AccumulateUpdate for NormAccumulator {
+impl<F: ContactFrame> AccumulateUpdate<F> for NormAccumulator {
     /// The velocity change of the contact is `-W delta`.
     #[inline(always)]
-    fn add(&mut self, w: &Block2, r: [f64; 2], r_new: [f64; 2], delta: [f64; 2]) {
-        let wd = block_mul(w, delta);
-        NormAccumulator::add(self, w, r, r_new, [-wd[0], -wd[1]]);
+    fn add(&mut self, w: &F::Block, r: F::Vector, r_new: F::Vector, delta: F::Vector) {
+        let mut du = F::block_mul(w, delta);
+        for x in du.as_mut() {
+            *x = -*x;
+        }
+        NormAccumulator::add_in::<F>(self, w, r, r_new, du);
     }
 }
 
@@ -503,38 +519,22 @@ pub(crate) fn scaled_natural_map_error<O: ContactOperator>(
     op: &O,
     mu: &[f64],
     normal_shift: &[f64],
-    impulses: &[[f64; 2]],
+    impulses: &[VectorOf<O>],
     q_norm: f64,
 ) -> f64 {
-    let u: Vec<[f64; 2]> = (0..op.contact_count())
+    let u: Vec<VectorOf<O>> = (0..op.contact_count())
         .map(|a| {
-            let u = op.local_velocity(a);
-            [u[0] + normal_shift[a], u[1]]
+            let mut u = op.local_velocity(a);
+            u[0] += normal_shift[a];
+            u
         })
         .collect();
-    let norm = |v: &[[f64; 2]]| {
+    let norm = |v: &[VectorOf<O>]| {
         v.iter()
-            .map(|x| x[0] * x[0] + x[1] * x[1])
+            .map(|x| <O::Frame as ContactFrame>::dot(x, x))
             .sum::<f64>()
             .sqrt()
     };
     let scale = q_norm.max(norm(&u)).max(norm(impulses));
-    natural_map_error(&u, impulses, mu) / if scale > 0.0 { scale } else { 1.0 }
-}
-
-/// The proximal weight `eps` of a contact whose block `W_aa` is singular (rank one: e.g. both
-/// bodies share an imposed velocity component, so normal and tangential velocities move
-/// together), 0 otherwise. On such a block the local impulse is not unique and plain
-/// Gauss-Seidel can wander without converging; the local solve then minimises
-/// `dual(R_a) + eps |R_a - R_a,old|^2 / 2`, i.e. uses `W_aa + eps I` and
-/// `u_free - eps R_a,old` (a proximal-point step, exact at its fixed point; B. Martinet 1970,
-/// R.T. Rockafellar 1976), with `eps` a tenth of the block's trace.
-fn proximal_weight(w: &[f64; 4]) -> f64 {
-    let trace = w[0] + w[3];
-    let det = w[0] * w[3] - w[1] * w[2];
-    if trace > 0.0 && det <= 1e-9 * trace * trace {
-        0.1 * trace
-    } else {
-        0.0
-    }
+    natural_map_error_of::<O::Frame>(&u, impulses, mu) / if scale > 0.0 { scale } else { 1.0 }
 }

@@ -21,7 +21,7 @@ use crate::nlgs::{
     scaled_natural_map_error, CheckPass, ConvergenceNorm, NlgsParams, NlgsSweeper, SolveError,
     SolveInfo,
 };
-use crate::operator::ContactOperator;
+use crate::operator::{ContactOperator, VectorOf};
 
 /// What an NLGS iteration exchanges with other processes.
 pub trait SweepExchange<O: ContactOperator> {
@@ -29,9 +29,9 @@ pub trait SweepExchange<O: ContactOperator> {
     /// given, with the exchanges it needs.
     fn sweep(
         &mut self,
-        sweeper: &NlgsSweeper,
+        sweeper: &NlgsSweeper<O::Frame>,
         op: &mut O,
-        impulses: &mut [[f64; 2]],
+        impulses: &mut [VectorOf<O>],
         acc: Option<&mut NormAccumulator>,
     );
     /// The check sweep's accumulator over all processes.
@@ -39,7 +39,12 @@ pub trait SweepExchange<O: ContactOperator> {
     /// Sums over all processes, in place.
     fn reduce_sums(&mut self, sums: &mut [f64]);
     /// The natural-map error of all contacts, scaled by `max(|q|, |u|, |r|)`.
-    fn natural_map_error(&mut self, sweeper: &NlgsSweeper, op: &O, impulses: &[[f64; 2]]) -> f64;
+    fn natural_map_error(
+        &mut self,
+        sweeper: &NlgsSweeper<O::Frame>,
+        op: &O,
+        impulses: &[VectorOf<O>],
+    ) -> f64;
     /// After the impulses changed outside a sweep (mixing): make the copies agree again.
     fn after_mixing(&mut self, op: &mut O);
 }
@@ -51,9 +56,9 @@ impl<O: ContactOperator> SweepExchange<O> for OneProcess {
     #[inline(always)]
     fn sweep(
         &mut self,
-        sweeper: &NlgsSweeper,
+        sweeper: &NlgsSweeper<O::Frame>,
         op: &mut O,
-        impulses: &mut [[f64; 2]],
+        impulses: &mut [VectorOf<O>],
         acc: Option<&mut NormAccumulator>,
     ) {
         sweeper.sweep_accumulating(op, impulses, acc);
@@ -62,7 +67,12 @@ impl<O: ContactOperator> SweepExchange<O> for OneProcess {
         *acc
     }
     fn reduce_sums(&mut self, _sums: &mut [f64]) {}
-    fn natural_map_error(&mut self, sweeper: &NlgsSweeper, op: &O, impulses: &[[f64; 2]]) -> f64 {
+    fn natural_map_error(
+        &mut self,
+        sweeper: &NlgsSweeper<O::Frame>,
+        op: &O,
+        impulses: &[VectorOf<O>],
+    ) -> f64 {
         let (mu, shift) = (sweeper.mu(), sweeper.normal_shift());
         scaled_natural_map_error(op, mu, shift, impulses, sweeper.q_norm())
     }
@@ -74,9 +84,9 @@ impl<O: ContactOperator> SweepExchange<O> for OneProcess {
 /// [`NlgsSweeper::new`]) hold the result. The problem has at least one contact on some
 /// process.
 pub fn sweep_until_converged<O: ContactOperator, X: SweepExchange<O>>(
-    sweeper: &NlgsSweeper,
+    sweeper: &NlgsSweeper<O::Frame>,
     op: &mut O,
-    impulses: &mut [[f64; 2]],
+    impulses: &mut [VectorOf<O>],
     params: &NlgsParams,
     exchange: &mut X,
 ) -> SolveInfo {
@@ -118,7 +128,7 @@ pub fn nlgs<O: ContactOperator>(
     op: &mut O,
     mu: &[f64],
     normal_shift: &[f64],
-    impulses: &mut [[f64; 2]],
+    impulses: &mut [VectorOf<O>],
     params: &NlgsParams,
 ) -> Result<SolveInfo, SolveError> {
     nlgs_with_cohesion(op, mu, normal_shift, &[], impulses, params)
@@ -132,7 +142,7 @@ pub fn nlgs_with_cohesion<O: ContactOperator>(
     mu: &[f64],
     normal_shift: &[f64],
     cohesion: &[CohesiveTerm],
-    impulses: &mut [[f64; 2]],
+    impulses: &mut [VectorOf<O>],
     params: &NlgsParams,
 ) -> Result<SolveInfo, SolveError> {
     let sweeper = NlgsSweeper::new(op, mu, normal_shift, cohesion, impulses, params)?;

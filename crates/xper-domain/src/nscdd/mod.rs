@@ -36,8 +36,8 @@ pub mod split;
 use crate::comm::Communicator;
 use crate::nscdd::interface::InterfaceMap;
 use xper_solver::{
-    natural_map_error, sweep_until_converged, Block2, CohesiveTerm, ContactOperator, NlgsParams,
-    NlgsSweeper, NormAccumulator, SolveError, SolveInfo, SweepExchange,
+    dot, sweep_until_converged, BlockOf, CohesiveTerm, ContactFrame, ContactOperator, NlgsParams,
+    NlgsSweeper, NormAccumulator, SolveError, SolveInfo, SweepExchange, VectorOf,
 };
 
 /// A contact operator whose bodies each carry a velocity of `DOFS` components: what the glue
@@ -79,7 +79,7 @@ pub trait SplitMasses: BodyVelocities {
     /// Multiplies the inverse mass of body `b` by `factor`.
     fn scale_inverse_mass(&mut self, b: usize, factor: f64);
     /// Sets the Delassus block of row `a`.
-    fn set_block(&mut self, a: usize, block: Block2);
+    fn set_block(&mut self, a: usize, block: BlockOf<Self>);
     /// Recomputes the Delassus block of row `a` from the current inverse masses.
     fn refresh_block(&mut self, a: usize);
     /// The inverse masses of the components of [`BodyVelocities::global_velocity`]
@@ -114,7 +114,7 @@ pub fn distributed_nlgs<C: Communicator + ?Sized, O: BodyVelocities>(
     mu: &[f64],
     normal_shift: &[f64],
     cohesion: &[CohesiveTerm],
-    impulses: &mut [[f64; 2]],
+    impulses: &mut [VectorOf<O>],
     params: &NlgsParams,
 ) -> Result<SolveInfo, SolveError> {
     if interface.multiplicity.len() != op.body_count() {
@@ -203,7 +203,7 @@ fn solve_interface_first<C: Communicator + ?Sized, O: BodyVelocities>(
     op: &mut O,
     interface: &InterfaceMap,
     rows: RowData,
-    impulses: &mut [[f64; 2]],
+    impulses: &mut [VectorOf<O>],
     params: &NlgsParams,
     interface_rows: usize,
 ) -> Result<SolveInfo, SolveError> {
@@ -256,9 +256,9 @@ struct InterfaceExchange<'a, C: ?Sized> {
 impl<C: Communicator + ?Sized, O: BodyVelocities> SweepExchange<O> for InterfaceExchange<'_, C> {
     fn sweep(
         &mut self,
-        sweeper: &NlgsSweeper,
+        sweeper: &NlgsSweeper<O::Frame>,
         op: &mut O,
-        impulses: &mut [[f64; 2]],
+        impulses: &mut [VectorOf<O>],
         mut acc: Option<&mut NormAccumulator>,
     ) {
         let n = impulses.len();
@@ -275,7 +275,12 @@ impl<C: Communicator + ?Sized, O: BodyVelocities> SweepExchange<O> for Interface
     fn reduce_sums(&mut self, sums: &mut [f64]) {
         self.comm.all_reduce_sum(sums);
     }
-    fn natural_map_error(&mut self, sweeper: &NlgsSweeper, op: &O, impulses: &[[f64; 2]]) -> f64 {
+    fn natural_map_error(
+        &mut self,
+        sweeper: &NlgsSweeper<O::Frame>,
+        op: &O,
+        impulses: &[VectorOf<O>],
+    ) -> f64 {
         let (mu, shift) = (sweeper.mu(), sweeper.normal_shift());
         global_error(self.comm, op, mu, shift, impulses, self.q_norm)
     }
@@ -297,7 +302,7 @@ pub fn solve_with_split_masses<C: Communicator + ?Sized, O: SplitMasses>(
     mu: &[f64],
     normal_shift: &[f64],
     cohesion: &[CohesiveTerm],
-    impulses: &mut [[f64; 2]],
+    impulses: &mut [VectorOf<O>],
     params: &NlgsParams,
 ) -> Result<SolveInfo, SolveError> {
     let multiplicity = &interface.multiplicity;
@@ -510,17 +515,17 @@ fn global_error<C: Communicator + ?Sized, O: ContactOperator>(
     op: &O,
     mu: &[f64],
     normal_shift: &[f64],
-    impulses: &[[f64; 2]],
+    impulses: &[VectorOf<O>],
     q_norm: f64,
 ) -> f64 {
     let mut sums = [0.0; 3];
     for a in 0..op.contact_count() {
-        let u = op.local_velocity(a);
-        let u = [u[0] + normal_shift[a], u[1]];
+        let mut u = op.local_velocity(a);
+        u[0] += normal_shift[a];
         let r = impulses[a];
-        sums[0] += natural_map_error(&[u], &[r], &mu[a..a + 1]).powi(2);
-        sums[1] += u[0] * u[0] + u[1] * u[1];
-        sums[2] += r[0] * r[0] + r[1] * r[1];
+        sums[0] += <O::Frame as ContactFrame>::natural_map_error2(u, r, mu[a]);
+        sums[1] += dot(u.as_ref(), u.as_ref());
+        sums[2] += dot(r.as_ref(), r.as_ref());
     }
     comm.all_reduce_sum(&mut sums);
     let scale = q_norm.max(sums[1].sqrt()).max(sums[2].sqrt());
