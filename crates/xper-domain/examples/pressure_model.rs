@@ -27,7 +27,7 @@ mod common;
 
 use common::{arguments, write_json, ALPHA, BETA};
 use std::time::Instant;
-use xper_domain::comm::halo::{strip_neighbours, StripComm};
+use xper_domain::halo::{strip_neighbours, StripComm};
 use xper_domain::{run_on_threads, Communicator};
 use xper_poisson::{
     Boundary, GridShape, Multigrid, MultigridParams, RowExchange, RowLinks, StripLayout,

@@ -26,8 +26,8 @@
 //! 3. **Gather** (outputs, checkpoints): rank 0 receives every block's rows and holds the whole
 //!    fluid, from which a run resumes on any number of processes.
 
-use crate::comm::halo::{exchange_with_neighbours, strip_neighbours, StripComm};
 use crate::comm::Communicator;
+use crate::halo::{exchange_with_neighbours, strip_neighbours, StripComm};
 use crate::rigid::stepper::RankLoad;
 use std::ops::Range;
 use xper_bodies::Shape;

@@ -46,9 +46,9 @@ fn solve_in_strips(
         let rows = layout.rows(comm.rank());
         let mut solver = StripMultigrid::new(shape, boundary, params, layout, comm.rank()).unwrap();
         let periodic = boundary.bottom == PoissonSide::Periodic;
-        let mut links = xper_domain::comm::halo::StripComm {
+        let mut links = xper_domain::halo::StripComm {
             comm,
-            neighbours: xper_domain::comm::halo::strip_neighbours(comm.rank(), ranks, periodic),
+            neighbours: xper_domain::halo::strip_neighbours(comm.rank(), ranks, periodic),
         };
         let local = &rhs[rows.start * nx..rows.end * nx];
         let mut phi = vec![0.0; local.len()];

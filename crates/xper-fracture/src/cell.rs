@@ -123,7 +123,7 @@ impl FractureModel {
     }
 
     /// Mass of each component of the macroscopic strain of a periodic cell (kg m^2), see
-    /// [`crate::cell`]; zeros without one.
+    /// the crate's `cell` module; zeros without one.
     pub fn cell_mass(&self) -> [f64; 3] {
         match &self.spec.periodic {
             Some(p) => p.component_mass(self.total_mass()),

@@ -14,6 +14,7 @@
 
 mod cell;
 mod dense;
+mod domain;
 mod homogenize;
 mod interface;
 mod model;

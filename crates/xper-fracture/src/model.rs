@@ -106,7 +106,7 @@ pub struct FractureSpec {
     pub theta: f64,
     /// NLGS parameters of the interface problem.
     pub nlgs: NlgsParams,
-    /// A periodic cell and its macroscopic loading ([`crate::cell`]); `None` for a specimen.
+    /// A periodic cell and its macroscopic loading (the crate's `cell` module); `None` for a specimen.
     #[serde(default)]
     pub periodic: Option<PeriodicSpec>,
     /// The stiffness of elastoplastic elements in the step's implicit part.

@@ -33,6 +33,7 @@
 
 mod assemble;
 mod contact_solve;
+mod domain;
 mod operator;
 mod report;
 mod select;

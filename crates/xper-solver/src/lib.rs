@@ -47,7 +47,7 @@ pub use error::{
 };
 pub use frame::{dot, is_zero, sub, ContactFrame, Frame2, Frame3, LocalVector};
 pub use lemke::{lemke, LemkeParams};
-pub use local::solve_one_contact;
+pub use local::{solve_one_contact, solve_one_contact_factored, LocalFactors};
 pub use newton::{newton, NewtonParams, RhoStrategy};
 pub use nlgs::{
     check_contact_sizes, CheckPass, ConvergenceNorm, NlgsParams, NlgsSweeper, SolveError, SolveInfo,

@@ -45,7 +45,7 @@ pub enum CheckPass {
     Strict,
 }
 
-/// Tuning of [`nlgs`].
+/// Tuning of [`nlgs`](crate::nlgs()).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct NlgsParams {
     /// Tolerance of the chosen norm (LMGC90's default 1.666e-4).
@@ -82,7 +82,7 @@ impl Default for NlgsParams {
 }
 
 /// What NLGS prepares once per solve (checked data, proximal weights of singular blocks,
-/// factorised cohesive contacts) and one Gauss-Seidel sweep over the contacts. [`nlgs`] loops
+/// factorised cohesive contacts) and one Gauss-Seidel sweep over the contacts. [`nlgs`](crate::nlgs()) loops
 /// the sweep with its convergence checks; a domain-decomposition solver interleaves sweeps
 /// with exchanges between processes; both loop it with [`crate::sweep_until_converged`].
 pub struct NlgsSweeper<'a, F: ContactFrame = Frame2> {

@@ -160,9 +160,9 @@ fn pressure_matches_one_strip(comm: &MpiCommunicator) -> bool {
     let (whole, _, _) = solve(StripLayout::balanced(nx, ny, 1).unwrap(), 0, &mut OneStrip);
     let layout = StripLayout::balanced(nx, ny, size)
         .unwrap_or_else(|e| comm.abort(&format!("strips: {e}"), 2));
-    let mut links = xper_domain::comm::halo::StripComm {
+    let mut links = xper_domain::halo::StripComm {
         comm,
-        neighbours: xper_domain::comm::halo::strip_neighbours(rank, size, false),
+        neighbours: xper_domain::halo::strip_neighbours(rank, size, false),
     };
     let (mine, gathered, rows) = solve(layout, rank, &mut links);
     let differing = (mine.iter().zip(&whole[nx * rows.start..nx * rows.end]))

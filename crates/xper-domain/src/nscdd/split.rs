@@ -7,8 +7,8 @@
 //! copies; [`split_problem`] builds the same local problem from a whole one, which is how the
 //! decomposition is tested against the undivided solve.
 
-use crate::nscdd::interface::InterfaceMap;
 use xper_nscd::{RigidContactOperator, RigidProblem, SolverBody};
+use xper_parallel::InterfaceMap;
 
 /// One process's part of a [`RigidProblem`].
 #[derive(Clone, Debug, Default)]
@@ -37,7 +37,7 @@ impl LocalProblem {
             bodies: self.problem.bodies.clone(),
             rows: self.problem.rows.clone(),
         };
-        interface.split_masses(&mut op.bodies);
+        split_masses(interface, &mut op.bodies);
         op.refresh_blocks();
         op
     }
@@ -89,4 +89,15 @@ pub fn split_problem(whole: &RigidProblem, owners: &[u32], rank: u32) -> LocalPr
         local.global_rows.push(a as u32);
     }
     local
+}
+
+/// Multiplies the inverse masses of the shared bodies by their multiplicity.
+fn split_masses(interface: &InterfaceMap, bodies: &mut [SolverBody]) {
+    for (body, &m) in bodies.iter_mut().zip(&interface.multiplicity) {
+        if m > 1 {
+            for w in &mut body.inv_mass {
+                *w *= m as f64;
+            }
+        }
+    }
 }

@@ -7,7 +7,6 @@
 //! contacts (Visseq et al., Comput. Mech. 49 (2012) 709, section 3).
 
 use crate::comm::{exchange_by_rank, Communicator};
-use xper_nscd::SolverBody;
 
 /// The shared bodies of one process and the processes it shares them with.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -102,17 +101,6 @@ impl InterfaceMap {
         InterfaceMap {
             multiplicity,
             neighbours,
-        }
-    }
-
-    /// Multiplies the inverse masses of the shared bodies by their multiplicity.
-    pub fn split_masses(&self, bodies: &mut [SolverBody]) {
-        for (body, &m) in bodies.iter_mut().zip(&self.multiplicity) {
-            if m > 1 {
-                for w in &mut body.inv_mass {
-                    *w *= m as f64;
-                }
-            }
         }
     }
 

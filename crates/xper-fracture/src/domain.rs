@@ -1,58 +1,18 @@
-//! The two operators the domain decomposition serves: rigid bodies (`vx, vy, w`) and
-//! element bodies (the six nodal velocity components of a triangle, and the free strain rates
-//! of a periodic cell, which every process holds).
+//! The element operator in a domain decomposition ([`xper_parallel::nscdd`]): each triangle
+//! carries its six nodal velocity components, and the free strain rates of a periodic cell
+//! are held by every process.
 
-use super::{permuted, BodyVelocities, SplitMasses};
-use xper_nscd::RigidContactOperator;
+use crate::operator::ElementContactOperator;
+use crate::Mat6;
+use xper_parallel::{permuted, BodyVelocities, SplitMasses};
 use xper_solver::Block2;
 
-impl BodyVelocities for RigidContactOperator {
-    const DOFS: usize = 3;
-    fn body_count(&self) -> usize {
-        self.bodies.len()
-    }
-    fn body_velocity(&self, b: usize) -> &[f64] {
-        &self.bodies[b].velocity
-    }
-    fn body_velocity_mut(&mut self, b: usize) -> &mut [f64] {
-        &mut self.bodies[b].velocity
-    }
-    fn row_bodies(&self, a: usize) -> [u32; 2] {
-        self.rows[a].bodies
-    }
-    fn permute_rows(&mut self, order: &[u32]) {
-        self.rows = permuted(&self.rows, order);
-    }
-}
-
-impl SplitMasses for RigidContactOperator {
-    type InverseMass = [f64; 3];
-    fn inverse_mass(&self, b: usize) -> [f64; 3] {
+impl SplitMasses for ElementContactOperator {
+    type InverseMass = Mat6;
+    fn inverse_mass(&self, b: usize) -> Mat6 {
         self.bodies[b].inv_mass
     }
-    fn set_inverse_mass(&mut self, b: usize, inverse_mass: [f64; 3]) {
-        self.bodies[b].inv_mass = inverse_mass;
-    }
-    fn scale_inverse_mass(&mut self, b: usize, factor: f64) {
-        for w in &mut self.bodies[b].inv_mass {
-            *w *= factor;
-        }
-    }
-    fn set_block(&mut self, a: usize, block: Block2) {
-        self.rows[a].set_full_block(block);
-    }
-    fn refresh_block(&mut self, a: usize) {
-        let bodies = &self.bodies;
-        self.rows[a].refresh_block(|b| bodies[b].inv_mass);
-    }
-}
-
-impl SplitMasses for xper_fracture::ElementContactOperator {
-    type InverseMass = xper_fracture::Mat6;
-    fn inverse_mass(&self, b: usize) -> xper_fracture::Mat6 {
-        self.bodies[b].inv_mass
-    }
-    fn set_inverse_mass(&mut self, b: usize, inverse_mass: xper_fracture::Mat6) {
+    fn set_inverse_mass(&mut self, b: usize, inverse_mass: Mat6) {
         self.bodies[b].inv_mass = inverse_mass;
     }
     fn scale_inverse_mass(&mut self, b: usize, factor: f64) {
@@ -80,7 +40,7 @@ impl SplitMasses for xper_fracture::ElementContactOperator {
     }
 }
 
-impl BodyVelocities for xper_fracture::ElementContactOperator {
+impl BodyVelocities for ElementContactOperator {
     const DOFS: usize = 6;
     fn body_count(&self) -> usize {
         self.bodies.len()

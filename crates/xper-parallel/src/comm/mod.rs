@@ -1,6 +1,5 @@
 //! What the distributed algorithms need from a group of processes.
 
-pub mod halo;
 #[cfg(feature = "mpi")]
 pub mod mpi;
 pub mod threads;

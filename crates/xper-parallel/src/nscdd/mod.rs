@@ -2,7 +2,8 @@
 //! interface bodies glued by averaging after every sweep.
 //!
 //! Each process owns a subset of the contacts and holds copies of their bodies, the shared
-//! ones with split masses ([`InterfaceMap::split_masses`]). One iteration is
+//! ones with their inverse masses multiplied by their number of copies
+//! ([`InterfaceMap::multiplicity`]). One iteration is
 //!
 //! ```text
 //! 1. a Gauss-Seidel sweep over the local contacts (xper_solver::NlgsSweeper), updating the
@@ -30,8 +31,6 @@
 //! Math. 168 (2004) 375.
 
 pub mod interface;
-mod operators;
-pub mod split;
 
 use crate::comm::Communicator;
 use crate::nscdd::interface::InterfaceMap;
@@ -185,7 +184,7 @@ fn touches_shared<O: BodyVelocities>(op: &O, interface: &InterfaceMap, a: usize)
 }
 
 /// `values` in the order `order` (entry `k` is `values[order[k]]`).
-pub(crate) fn permuted<T: Copy>(values: &[T], order: &[u32]) -> Vec<T> {
+pub fn permuted<T: Copy>(values: &[T], order: &[u32]) -> Vec<T> {
     order.iter().map(|&a| values[a as usize]).collect()
 }
 
