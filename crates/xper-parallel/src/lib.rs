@@ -21,3 +21,22 @@ pub use comm::threads::{run_on_threads, ThreadCommunicator};
 pub use comm::{exchange_by_rank, CommStats, Communicator, SingleProcess};
 pub use nscdd::interface::InterfaceMap;
 pub use nscdd::{distributed_nlgs, permuted, solve_with_split_masses, BodyVelocities, SplitMasses};
+
+/// What one process holds and did, for the run's load summary.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RankLoad {
+    /// Movable bodies owned.
+    pub bodies: usize,
+    /// Shadow copies of other processes' bodies.
+    pub shadows: usize,
+    /// Contacts owned (those of the last step).
+    pub contacts: usize,
+    /// Bodies shared with other processes in the last solve.
+    pub interface_bodies: usize,
+    /// Bodies received by migration since the start.
+    pub migrated_in: u64,
+    /// Fluid cells held (runs with a fluid).
+    pub cells: usize,
+    /// Times the fluid's blocks of rows were cut again (runs with a fluid).
+    pub recuts: u64,
+}

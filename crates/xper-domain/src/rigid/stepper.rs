@@ -42,6 +42,7 @@ use xper_math::{Real, Vector};
 use xper_nscd::{
     contact_owner_body, Detection, EnergyBudget, MoreauJean, StepError, StepReport, World,
 };
+pub use xper_parallel::RankLoad;
 
 /// Tuning of a distributed run.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -56,25 +57,6 @@ impl Default for DistributedParams {
             rebalance_every: 50,
         }
     }
-}
-
-/// What one process holds and did, for the run's load summary.
-#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
-pub struct RankLoad {
-    /// Movable bodies owned.
-    pub bodies: usize,
-    /// Shadow copies of other processes' bodies.
-    pub shadows: usize,
-    /// Contacts owned (those of the last step).
-    pub contacts: usize,
-    /// Bodies shared with other processes in the last solve.
-    pub interface_bodies: usize,
-    /// Bodies received by migration since the start.
-    pub migrated_in: u64,
-    /// Fluid cells held (runs with a fluid).
-    pub cells: usize,
-    /// Times the fluid's blocks of rows were cut again (runs with a fluid).
-    pub recuts: u64,
 }
 
 const STATE: usize = 7;

@@ -1,5 +1,5 @@
 //! The [`Simulation`] every physics implements, so that one run driver
-//! ([`crate::driver::run`]) steps them all, on one process or on the processes of a
+//! ([`crate::drive`]) steps them all, on one process or on the processes of a
 //! communicator, with the same schedule of series, frames and checkpoints.
 //!
 //! A simulation holds its whole state on the process that writes outputs (rank 0, or the only
@@ -28,7 +28,7 @@ pub struct RunOptions {
     /// efficiency and the largest position difference in `summary.json`.
     pub compare_serial: bool,
     /// Largest memory the run may need by its estimate (bytes,
-    /// [`crate::resources::estimate`]); the memory available now when `None`.
+    /// `xper_simulation::resources::estimate`); the memory available now when `None`.
     pub max_memory: Option<f64>,
 }
 

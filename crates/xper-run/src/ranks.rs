@@ -1,7 +1,7 @@
 //! Each process's share of a distributed run, as `summary.json` reports it.
 
 use serde::{Deserialize, Serialize};
-use xper_domain::{CommStats, Communicator, RankLoad};
+use xper_parallel::{CommStats, Communicator, RankLoad};
 
 /// A process's share of a distributed run, in `summary.json`.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]

@@ -1,0 +1,76 @@
+//! The 2D mapping: vectors of two components, angular quantities scalars.
+
+use crate::Real;
+
+/// Number of space dimensions.
+pub const DIM: usize = 2;
+/// Number of rotational degrees of freedom of a rigid body (1 in 2D, 3 in 3D).
+pub const ANGULAR_DIM: usize = 1;
+/// Number of generalised velocity components of a rigid body.
+pub const DOFS: usize = DIM + ANGULAR_DIM;
+/// A spatial vector (position, velocity, force).
+pub type Vector = nalgebra::Vector2<Real>;
+/// An angular quantity (angle increment, angular velocity, torque): a scalar in 2D.
+pub type AngVector = Real;
+/// Generalised velocity or force of a rigid body: translations then rotations.
+pub type Generalized = [Real; DOFS];
+/// The orientation of a body: its angle (rad).
+pub type Rotation = Real;
+/// A second-order tensor of angular quantities (inertia, kg m^2): a scalar in 2D.
+pub type AngMatrix = Real;
+
+/// The angular part of `r x f` (2D: the scalar `r_x f_y - r_y f_x`).
+#[inline(always)]
+pub fn cross(r: &Vector, f: &Vector) -> AngVector {
+    r.x * f.y - r.y * f.x
+}
+
+/// Linear velocity `w x r` of a point at offset `r` on a body spinning at `w`.
+#[inline(always)]
+pub fn spin_velocity(w: AngVector, r: &Vector) -> Vector {
+    Vector::new(-w * r.y, w * r.x)
+}
+
+/// The tangent of a contact frame with normal `n` (2D: `n` rotated by +90 degrees).
+#[inline(always)]
+pub fn tangent(n: &Vector) -> Vector {
+    Vector::new(-n.y, n.x)
+}
+
+/// Rotates `v` by `angle` radians.
+#[inline(always)]
+pub fn rotate(v: &Vector, angle: AngVector) -> Vector {
+    let (s, c) = angle.sin_cos();
+    Vector::new(c * v.x - s * v.y, s * v.x + c * v.y)
+}
+
+/// The orientation after turning at the angular velocity `w` (rad/s) for `h` seconds from
+/// `angle`: `angle + h w`, exact in 2D.
+#[inline(always)]
+pub fn integrate_rotation(angle: &Rotation, w: &AngVector, h: Real) -> Rotation {
+    angle + h * w
+}
+
+/// The inverse inertia in the world frame: in 2D the body's own, whatever its angle.
+#[inline(always)]
+pub fn world_inverse_inertia(_angle: &Rotation, inv_body: &AngMatrix) -> AngMatrix {
+    *inv_body
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cross_and_spin_are_consistent() {
+        let r = Vector::new(0.3, -1.2);
+        let n = Vector::new(0.6, 0.8);
+        let w = 2.5;
+        // (w x r) . n == w (r x n)
+        assert!((spin_velocity(w, &r).dot(&n) - w * cross(&r, &n)).abs() < 1e-14);
+        let t = tangent(&n);
+        assert!(n.dot(&t).abs() < 1e-15 && (cross(&n, &t) - 1.0).abs() < 1e-15);
+        let v = rotate(&n, std::f64::consts::FRAC_PI_2);
+        assert!((v - t).norm() < 1e-15);
+    }
+}
