@@ -2,7 +2,7 @@
 
 use crate::{Drive, Shape};
 use serde::{Deserialize, Serialize};
-use xper_math::{AngVector, Real, Vector, DOFS};
+use xper_math::{integrate_rotation, AngMatrix, AngVector, Real, Rotation, Vector, DOFS};
 
 /// Index of a body in its [`BodySet`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
@@ -36,16 +36,16 @@ pub struct Body {
     pub shape: Shape,
     /// Centre of mass (m).
     pub position: Vector,
-    /// Rotation (rad).
-    pub angle: Real,
+    /// Orientation (2D: the angle, rad).
+    pub rotation: Rotation,
     /// Velocity of the centre of mass (m/s).
     pub velocity: Vector,
     /// Angular velocity (rad/s).
-    pub angular_velocity: Real,
+    pub angular_velocity: AngVector,
     /// Mass (kg per m of thickness); `INFINITY` for walls.
     pub mass: Real,
     /// Moment of inertia about the centre of mass (kg m^2 per m); `INFINITY` for walls.
-    pub inertia: Real,
+    pub inertia: AngMatrix,
     /// Index of the body's group in the law table.
     pub group: u16,
     /// Drives of the x, y and rotation degrees of freedom.
@@ -57,7 +57,7 @@ pub struct Body {
 #[derive(Clone, Debug, Default)]
 pub struct Configuration {
     position: Vec<Vector>,
-    angle: Vec<AngVector>,
+    rotation: Vec<Rotation>,
 }
 
 /// All bodies of a run. Field `k` of every array belongs to body `k`.
@@ -65,16 +65,16 @@ pub struct Configuration {
 pub struct BodySet {
     /// Centres of mass (m).
     pub position: Vec<Vector>,
-    /// Rotations (rad).
-    pub angle: Vec<Real>,
+    /// Orientations (2D: angles, rad).
+    pub rotation: Vec<Rotation>,
     /// Velocities (m/s).
     pub velocity: Vec<Vector>,
     /// Angular velocities (rad/s).
-    pub angular_velocity: Vec<Real>,
+    pub angular_velocity: Vec<AngVector>,
     /// Masses (kg per m).
     pub mass: Vec<Real>,
-    /// Moments of inertia (kg m^2 per m).
-    pub inertia: Vec<Real>,
+    /// Moments of inertia about the centre of mass, in the body's frame (kg m^2 per m).
+    pub inertia: Vec<AngMatrix>,
     /// The degrees of freedom whose velocity is imposed, one bit each (x: 1, y: 2,
     /// rotation: 4); see [`BodySet::inv_mass`].
     pub imposed: Vec<u8>,
@@ -113,7 +113,7 @@ impl BodySet {
             .filter(|(_, d)| d.is_imposed_velocity())
             .fold(0u8, |bits, (k, _)| bits | 1 << k);
         self.position.push(body.position);
-        self.angle.push(body.angle);
+        self.rotation.push(body.rotation);
         self.velocity.push(body.velocity);
         self.angular_velocity.push(body.angular_velocity);
         self.mass.push(body.mass);
@@ -135,12 +135,12 @@ impl BodySet {
     /// `advance_explicitly(h * (1 - theta), saved)`.
     pub fn advance_explicitly(&mut self, dt: Real, saved: &mut Configuration) {
         saved.position.clone_from(&self.position);
-        saved.angle.clone_from(&self.angle);
+        saved.rotation.clone_from(&self.rotation);
         for (q, v) in self.position.iter_mut().zip(&self.velocity) {
             *q += v * dt;
         }
-        for (a, w) in self.angle.iter_mut().zip(&self.angular_velocity) {
-            *a += w * dt;
+        for (r, w) in self.rotation.iter_mut().zip(&self.angular_velocity) {
+            *r = integrate_rotation(r, w, dt);
         }
     }
 
@@ -148,14 +148,14 @@ impl BodySet {
     /// saved.
     pub fn restore_configuration(&mut self, saved: &Configuration) {
         self.position.copy_from_slice(&saved.position);
-        self.angle.copy_from_slice(&saved.angle);
+        self.rotation.copy_from_slice(&saved.rotation);
     }
 
     /// Releases the room the arrays have beyond their bodies (a set filled by
     /// [`BodySet::insert`] grows by doubling, up to twice the room it needs).
     pub fn shrink_to_fit(&mut self) {
         self.position.shrink_to_fit();
-        self.angle.shrink_to_fit();
+        self.rotation.shrink_to_fit();
         self.velocity.shrink_to_fit();
         self.angular_velocity.shrink_to_fit();
         self.mass.shrink_to_fit();
@@ -264,7 +264,7 @@ impl Body {
         };
         let zero = || Drive::Velocity(crate::TimeFunction::Constant(0.0));
         Body {
-            angle: d.y.atan2(d.x),
+            rotation: d.y.atan2(d.x),
             drives: [zero(), zero(), zero()],
             ..Self::free(shape, Real::INFINITY, Real::INFINITY, (a + b) / 2.0)
         }
@@ -274,7 +274,7 @@ impl Body {
         Body {
             shape,
             position,
-            angle: 0.0,
+            rotation: 0.0,
             velocity: Vector::zeros(),
             angular_velocity: 0.0,
             mass,
@@ -284,9 +284,9 @@ impl Body {
         }
     }
 
-    /// Sets the rotation (rad).
-    pub fn with_angle(mut self, angle: Real) -> Self {
-        self.angle = angle;
+    /// Sets the orientation (2D: the angle, rad).
+    pub fn with_rotation(mut self, rotation: Rotation) -> Self {
+        self.rotation = rotation;
         self
     }
 

@@ -68,7 +68,7 @@ fn reversed(world: &World) -> (World, Vec<usize>) {
         set.insert(xper_bodies::Body {
             shape: world.bodies.shape[b].clone(),
             position: world.bodies.position[b],
-            angle: world.bodies.angle[b],
+            rotation: world.bodies.rotation[b],
             velocity: world.bodies.velocity[b],
             angular_velocity: world.bodies.angular_velocity[b],
             mass: world.bodies.mass[b],

@@ -112,7 +112,7 @@ impl BroadPhase {
         self.large.clear();
         for b in 0..n {
             let aabb = bodies.shape[b]
-                .aabb(&bodies.position[b], bodies.angle[b])
+                .aabb(&bodies.position[b], bodies.rotation[b])
                 .loosened(alert / 2.0);
             self.aabbs.push(OuterBox::around(&aabb));
             if matches!(bodies.shape[b], Shape::Segment { .. }) {

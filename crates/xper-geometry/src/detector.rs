@@ -203,7 +203,7 @@ impl Detector {
             let m = if disks.len > 0 {
                 disks
             } else {
-                let (angle_a, angle_b) = (bodies.angle[a], bodies.angle[b]);
+                let (angle_a, angle_b) = (bodies.rotation[a], bodies.rotation[b]);
                 collide(shape_a, pa, angle_a, shape_b, pb, angle_b, alert)
             };
             if m.as_slice().is_empty() {
@@ -248,7 +248,7 @@ impl Detector {
             let (dx, dy) = (p.x - x as Real, p.y - y as Real);
             let mut squared = dx * dx + dy * dy;
             if let Some(&(_, [angle_built, reach])) = turning.next_if(|t| t.0 as usize == b) {
-                let angle = bodies.angle[b];
+                let angle = bodies.rotation[b];
                 let turned = wrapped(angle - angle_built as Real).abs() + wrap_error(angle);
                 let d = squared.sqrt() + reach as Real * turned;
                 squared = d * d;
@@ -278,7 +278,7 @@ impl Detector {
                     Shape::Segment { half_length } => *half_length,
                 };
                 let p = bodies.position[b];
-                let (pose, hidden) = BuildPose::rounded(p.x, p.y, bodies.angle[b], reach);
+                let (pose, hidden) = BuildPose::rounded(p.x, p.y, bodies.rotation[b], reach);
                 rounding = rounding.max(hidden);
                 if pose.reach > 0.0 {
                     self.built_turning

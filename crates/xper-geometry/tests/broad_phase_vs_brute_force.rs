@@ -25,8 +25,8 @@ proptest! {
         let mut brute = Vec::new();
         for i in 0..n {
             for j in i + 1..n {
-                let bi = set.shape[i].aabb(&set.position[i], set.angle[i]).loosened(alert / 2.0);
-                let bj = set.shape[j].aabb(&set.position[j], set.angle[j]).loosened(alert / 2.0);
+                let bi = set.shape[i].aabb(&set.position[i], set.rotation[i]).loosened(alert / 2.0);
+                let bj = set.shape[j].aabb(&set.position[j], set.rotation[j]).loosened(alert / 2.0);
                 // The grid's boxes are the exact ones rounded outwards to single precision:
                 // the same pairs, and at least every pair of the exact boxes.
                 if OuterBox::around(&bi).intersects(&OuterBox::around(&bj)) {
@@ -41,7 +41,7 @@ proptest! {
         // Every narrow-phase contact within the alert distance comes from a reported pair.
         for i in 0..n {
             for j in i + 1..n {
-                let m = collide(&set.shape[i], &set.position[i], set.angle[i], &set.shape[j], &set.position[j], set.angle[j], alert);
+                let m = collide(&set.shape[i], &set.position[i], set.rotation[i], &set.shape[j], &set.position[j], set.rotation[j], alert);
                 if m.len > 0 {
                     prop_assert!(found.binary_search(&(i as u32, j as u32)).is_ok());
                 }

@@ -65,7 +65,7 @@ proptest! {
                 let jump = if noise(3 * k + 2) > 0.97 { 10.0 } else { 1.0 };
                 set.position[b].x += jump * step * noise(3 * k);
                 set.position[b].y += jump * step * noise(3 * k + 1);
-                set.angle[b] += spin * noise(3 * k + 2);
+                set.rotation[b] += spin * noise(3 * k + 2);
             }
         }
         // Bodies at rest never invalidate the first list.

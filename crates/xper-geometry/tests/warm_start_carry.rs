@@ -10,7 +10,7 @@ fn disk(x: Real, y: Real, radius: Real) -> Body {
     Body {
         shape: Shape::Disk { radius },
         position: Vector::new(x, y),
-        angle: 0.0,
+        rotation: 0.0,
         velocity: Vector::zeros(),
         angular_velocity: 0.0,
         mass: 1.0,

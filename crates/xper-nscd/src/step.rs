@@ -549,7 +549,7 @@ impl MoreauJean {
                 std::array::from_fn(|d| h * ((1.0 - theta) * v0[d] + theta * v1[d]));
             bodies.position[b].x += dq[0];
             bodies.position[b].y += dq[1];
-            bodies.angle[b] += dq[2];
+            bodies.rotation[b] += dq[2];
             bodies.set_generalized_velocity(b, v1);
             if !(v1.iter().all(|x| x.is_finite())
                 && bodies.position[b].iter().all(|x| x.is_finite()))

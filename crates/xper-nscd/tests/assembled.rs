@@ -86,7 +86,8 @@ fn mixed_world() -> World {
         800.0,
         Vector::new(0.12, 0.0101),
     ));
-    bodies.push(Body::polygon(square(0.008), 800.0, Vector::new(0.1205, 0.0283)).with_angle(0.05));
+    bodies
+        .push(Body::polygon(square(0.008), 800.0, Vector::new(0.1205, 0.0283)).with_rotation(0.05));
     let mut driven = Body::disk(r, 1000.0, Vector::new(0.17, r + 2e-4));
     driven.drives[0] = Drive::Velocity(TimeFunction::Constant(0.01));
     bodies.push(driven);

@@ -85,7 +85,7 @@ fn the_predicted_detection_leaves_the_bodies_where_they_were() {
         let x = k as Real * 0.1;
         let body = Body::disk(0.03, 1000.0, Vector::new(x, x.sin()))
             .with_velocity(Vector::new(x.cos(), 0.3 - x))
-            .with_angle(0.1 * x);
+            .with_rotation(0.1 * x);
         set.insert(body);
     }
     for b in 0..set.len() {
@@ -98,8 +98,8 @@ fn the_predicted_detection_leaves_the_bodies_where_they_were() {
         let moved = before.position[b] + before.velocity[b] * 1.7e-3;
         assert_eq!(set.position[b], moved);
         assert_eq!(
-            set.angle[b],
-            before.angle[b] + before.angular_velocity[b] * 1.7e-3
+            set.rotation[b],
+            before.rotation[b] + before.angular_velocity[b] * 1.7e-3
         );
     }
     set.restore_configuration(&saved);

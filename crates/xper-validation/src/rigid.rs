@@ -73,7 +73,7 @@ fn slide_on_incline(slope: Real, mu: Real, steps: usize) -> Result<(Real, Real, 
         Vector::new(w / 2.0, h / 2.0),
         Vector::new(-w / 2.0, h / 2.0),
     ];
-    let block = Body::polygon(corners, 1000.0, up * (h / 2.0)).with_angle(slope);
+    let block = Body::polygon(corners, 1000.0, up * (h / 2.0)).with_rotation(slope);
     let mut world = world(
         vec![block, Body::wall(-dir * 5.0, dir * 5.0)],
         mu,
@@ -83,7 +83,7 @@ fn slide_on_incline(slope: Real, mu: Real, steps: usize) -> Result<(Real, Real, 
     let start = world.bodies.position[0];
     run_steps(&mut world, steps)?;
     let d = world.bodies.position[0] - start;
-    Ok((-d.dot(&dir), d.dot(&up), world.bodies.angle[0] - slope))
+    Ok((-d.dot(&dir), d.dot(&up), world.bodies.rotation[0] - slope))
 }
 
 fn incline_cases() -> Result<Vec<Case>, RunError> {

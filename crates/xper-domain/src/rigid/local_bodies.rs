@@ -74,7 +74,7 @@ pub(crate) fn refresh(
         }
         let b = g as usize;
         local.position[k] = all.position[b];
-        local.angle[k] = all.angle[b];
+        local.rotation[k] = all.rotation[b];
         local.velocity[k] = all.velocity[b];
         local.angular_velocity[k] = all.angular_velocity[b];
     }
@@ -89,7 +89,7 @@ fn describe(all: &BodySet, held: &[(u32, Ownership)], driven_of: &[u32], local: 
         column.extend(values);
     }
     fill(&mut local.position, ids().map(|b| all.position[b]));
-    fill(&mut local.angle, ids().map(|b| all.angle[b]));
+    fill(&mut local.rotation, ids().map(|b| all.rotation[b]));
     fill(&mut local.velocity, ids().map(|b| all.velocity[b]));
     fill(
         &mut local.angular_velocity,

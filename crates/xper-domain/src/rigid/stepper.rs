@@ -384,7 +384,7 @@ impl<'c, C: Communicator + ?Sized> DistributedStepper<'c, C> {
             let b = g as usize;
             if local.ownership[k] == Ownership::Owned || !self.movable[b] {
                 all.position[b] = local.position[k];
-                all.angle[b] = local.angle[k];
+                all.rotation[b] = local.rotation[k];
                 all.velocity[b] = local.velocity[k];
                 all.angular_velocity[b] = local.angular_velocity[k];
             }
@@ -526,7 +526,7 @@ fn write_state(out: &mut Vec<f64>, bodies: &BodySet, b: u32) {
         b as f64,
         x.x,
         x.y,
-        bodies.angle[k],
+        bodies.rotation[k],
         v.x,
         v.y,
         bodies.angular_velocity[k],
@@ -536,7 +536,7 @@ fn write_state(out: &mut Vec<f64>, bodies: &BodySet, b: u32) {
 fn set_state(bodies: &mut BodySet, s: &[f64]) -> u32 {
     let b = s[0] as usize;
     bodies.position[b] = Vector::new(s[1], s[2]);
-    bodies.angle[b] = s[3];
+    bodies.rotation[b] = s[3];
     bodies.velocity[b] = Vector::new(s[4], s[5]);
     bodies.angular_velocity[b] = s[6];
     b as u32

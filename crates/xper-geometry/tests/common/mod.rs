@@ -9,7 +9,7 @@ pub fn body(shape: Shape, x: Real, y: Real, angle: Real) -> Body {
     Body {
         shape,
         position: Vector::new(x, y),
-        angle,
+        rotation: angle,
         velocity: Vector::zeros(),
         angular_velocity: 0.0,
         mass: if fixed { Real::INFINITY } else { 1.0 },

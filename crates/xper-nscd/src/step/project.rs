@@ -84,7 +84,7 @@ impl MoreauJean {
             }
             bodies.position[b].x += body.velocity[0];
             bodies.position[b].y += body.velocity[1];
-            bodies.angle[b] += body.velocity[2];
+            bodies.rotation[b] += body.velocity[2];
         }
         self.exchange_rows();
         Ok((info.iterations, deepest))

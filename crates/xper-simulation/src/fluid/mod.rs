@@ -135,7 +135,7 @@ impl<'c> FluidSimulation<'c> {
                 b as f64,
                 x.x,
                 x.y,
-                bodies.angle[b],
+                bodies.rotation[b],
                 v.x,
                 v.y,
                 bodies.angular_velocity[b],

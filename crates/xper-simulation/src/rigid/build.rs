@@ -54,7 +54,7 @@ pub fn world_from_scene(scene: &Scene) -> World {
         bodies.insert(Body {
             shape,
             position: Vector::new(b.position[0], b.position[1]),
-            angle: b.angle,
+            rotation: b.angle,
             velocity: Vector::new(b.velocity[0], b.velocity[1]),
             angular_velocity: b.angular_velocity,
             mass: b.mass,

@@ -18,7 +18,7 @@ pub fn bodies_grid(world: &World) -> UnstructuredGrid {
     let mut g = UnstructuredGrid::default();
     let mut kind = Vec::with_capacity(b.len());
     for k in 0..b.len() {
-        let (p, angle) = (b.position[k], b.angle[k]);
+        let (p, angle) = (b.position[k], b.rotation[k]);
         let first = g.points.len() as i64;
         let (cell_type, count, shape_kind) = match &b.shape[k] {
             Shape::Disk { radius } => {
@@ -61,7 +61,7 @@ pub fn bodies_grid(world: &World) -> UnstructuredGrid {
                 .collect(),
         ),
         f64_array("angular_velocity", 1, b.angular_velocity.clone()),
-        f64_array("angle", 1, b.angle.clone()),
+        f64_array("angle", 1, b.rotation.clone()),
     ];
     g
 }
