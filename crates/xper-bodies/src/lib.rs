@@ -8,8 +8,15 @@
 
 mod drive;
 mod set;
+#[cfg(feature = "dim2")]
+mod shape;
+#[cfg(feature = "dim3")]
+#[path = "shape3d.rs"]
 mod shape;
 
 pub use drive::{Drive, TimeFunction};
-pub use set::{Body, BodyHandle, BodySet, Configuration, Ownership};
+pub use set::{Body, BodyHandle, BodySet, Configuration, InverseMass, Ownership};
+#[cfg(feature = "dim2")]
 pub use shape::{ConvexPolygon, Shape};
+#[cfg(feature = "dim3")]
+pub use shape::{ConvexPolyhedron, Shape};
