@@ -68,6 +68,13 @@ pub enum Shape {
 const _: () = assert!(std::mem::size_of::<Shape>() == 16);
 
 impl Shape {
+    /// Whether the shape is a wall (held in place, of any size): the broad phase tests walls
+    /// against the cells they cover instead of binning them.
+    #[inline]
+    pub fn is_wall(&self) -> bool {
+        matches!(self, Shape::Segment { .. })
+    }
+
     /// Bounding box of the shape placed at `position` with rotation `angle`.
     pub fn aabb(&self, position: &Vector, angle: Real) -> Aabb {
         match self {

@@ -207,6 +207,13 @@ pub enum Shape {
 }
 
 impl Shape {
+    /// Whether the shape is a wall (held in place, of any size): the broad phase tests walls
+    /// against the cells they cover instead of binning them.
+    #[inline]
+    pub fn is_wall(&self) -> bool {
+        matches!(self, Shape::Plane { .. })
+    }
+
     /// Bounding box of the shape placed at `position` with orientation `rotation`.
     pub fn aabb(&self, position: &Vector, rotation: Rotation) -> Aabb {
         let around = |points: &mut dyn Iterator<Item = Vector>| {

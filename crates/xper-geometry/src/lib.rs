@@ -5,14 +5,25 @@
 //! distance, negative when overlapping) and the point midway between the surfaces, which a
 //! contact set keeps as the lever arms from the two bodies' positions. Pairs farther apart
 //! than the alert distance produce no contact.
+//!
+//! One source, two builds: `xper-geometry` (2D) and `xper-geometry3d` (3D, feature `dim3`),
+//! which so far holds the broad phase only; the 3D narrow phase, detector and contact set
+//! are the next steps of docs/3d-plan.md.
 
 mod broad;
+#[cfg(feature = "dim2")]
 mod carry;
+#[cfg(feature = "dim2")]
 mod contacts;
+#[cfg(feature = "dim2")]
 mod detector;
+#[cfg(feature = "dim2")]
 pub mod narrow;
 
 pub use broad::{BroadPhase, OuterBox};
+#[cfg(feature = "dim2")]
 pub use contacts::{Contact, ContactKey, ContactRow, ContactSet};
+#[cfg(feature = "dim2")]
 pub use detector::{Detector, DetectorStats, SKIN_CAP_OVER_SIZE, TARGET_STEPS_PER_BUILD};
+#[cfg(feature = "dim2")]
 pub use narrow::{collide, ContactPoint, Manifold};
