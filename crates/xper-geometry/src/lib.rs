@@ -7,8 +7,8 @@
 //! than the alert distance produce no contact.
 //!
 //! One source, two builds: `xper-geometry` (2D) and `xper-geometry3d` (3D, feature `dim3`),
-//! which so far holds the broad phase only; the 3D narrow phase, detector and contact set
-//! are the next steps of docs/3d-plan.md.
+//! which so far holds the broad phase and the narrow phase of spheres, polyhedra and
+//! planes; the 3D detector and contact set are the next steps of docs/3d-plan.md.
 
 mod broad;
 #[cfg(feature = "dim2")]
@@ -17,7 +17,6 @@ mod carry;
 mod contacts;
 #[cfg(feature = "dim2")]
 mod detector;
-#[cfg(feature = "dim2")]
 pub mod narrow;
 
 pub use broad::{BroadPhase, OuterBox};
@@ -25,5 +24,4 @@ pub use broad::{BroadPhase, OuterBox};
 pub use contacts::{Contact, ContactKey, ContactRow, ContactSet};
 #[cfg(feature = "dim2")]
 pub use detector::{Detector, DetectorStats, SKIN_CAP_OVER_SIZE, TARGET_STEPS_PER_BUILD};
-#[cfg(feature = "dim2")]
-pub use narrow::{collide, ContactPoint, Manifold};
+pub use narrow::{collide, ContactPoint, Manifold, MANIFOLD_POINTS};

@@ -1,19 +1,57 @@
-//! Narrow phase: exact contact points between two placed shapes.
+//! Narrow phase: exact contact points between two placed shapes, one file per shape pair
+//! (2D: disks, polygons, segments; 3D: spheres, polyhedra, planes).
 
+#[cfg(feature = "dim3")]
+mod dim3;
+#[cfg(feature = "dim2")]
 mod disk_disk;
+#[cfg(feature = "dim2")]
 mod disk_polygon;
+#[cfg(feature = "dim2")]
 mod disk_segment;
+#[cfg(feature = "dim2")]
 mod polygon_polygon;
+#[cfg(feature = "dim2")]
 mod polygon_segment;
+#[cfg(feature = "dim3")]
+mod polyhedron_plane;
+#[cfg(feature = "dim3")]
+mod sphere_plane;
+#[cfg(feature = "dim3")]
+mod sphere_polyhedron;
+#[cfg(feature = "dim3")]
+mod sphere_sphere;
 
+#[cfg(feature = "dim2")]
 use xper_bodies::Shape;
-use xper_math::{Real, Vector};
+#[cfg(feature = "dim2")]
+use xper_math::Rotation;
+use xper_math::{Real, Vector, DIM};
 
+#[cfg(feature = "dim3")]
+pub use dim3::*;
+#[cfg(feature = "dim2")]
 pub use disk_disk::{collide_disk_disk, disk_disk_point};
+#[cfg(feature = "dim2")]
 pub use disk_polygon::collide_disk_polygon;
+#[cfg(feature = "dim2")]
 pub use disk_segment::collide_disk_segment;
+#[cfg(feature = "dim2")]
 pub use polygon_polygon::{collide_polygons, WorldPolygon};
+#[cfg(feature = "dim2")]
 pub use polygon_segment::collide_polygon_segment;
+#[cfg(feature = "dim3")]
+pub use polyhedron_plane::collide_polyhedron_plane;
+#[cfg(feature = "dim3")]
+pub use sphere_plane::collide_sphere_plane;
+#[cfg(feature = "dim3")]
+pub use sphere_polyhedron::collide_sphere_polyhedron;
+#[cfg(feature = "dim3")]
+pub use sphere_sphere::collide_spheres;
+
+/// The most contact points between two bodies: 2 in 2D (an edge on an edge), 4 in 3D (a face
+/// on a face, reduced to four).
+pub const MANIFOLD_POINTS: usize = 2 * (DIM - 1);
 
 /// One contact point between two bodies.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -38,11 +76,11 @@ impl ContactPoint {
     }
 }
 
-/// Up to two contact points between two bodies.
+/// Up to [`MANIFOLD_POINTS`] contact points between two bodies.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Manifold {
     /// Storage; only the first `len` entries are meaningful.
-    pub points: [ContactPoint; 2],
+    pub points: [ContactPoint; MANIFOLD_POINTS],
     /// Number of points.
     pub len: usize,
 }
@@ -51,25 +89,25 @@ impl Manifold {
     /// No contact.
     pub const EMPTY: Manifold = Manifold {
         points: [ContactPoint {
-            point: Vector::new(0.0, 0.0),
-            normal: Vector::new(0.0, 0.0),
+            point: ZERO,
+            normal: ZERO,
             gap: 0.0,
             feature: 0,
-        }; 2],
+        }; MANIFOLD_POINTS],
         len: 0,
     };
 
     /// A manifold of one point.
     pub fn one(p: ContactPoint) -> Self {
         Manifold {
-            points: [p, p],
+            points: [p; MANIFOLD_POINTS],
             len: 1,
         }
     }
 
-    /// Adds a point (at most two are kept).
+    /// Adds a point (at most [`MANIFOLD_POINTS`] are kept).
     pub fn push(&mut self, p: ContactPoint) {
-        if self.len < 2 {
+        if self.len < MANIFOLD_POINTS {
             self.points[self.len] = p;
             self.len += 1;
         }
@@ -80,7 +118,8 @@ impl Manifold {
         &self.points[..self.len]
     }
 
-    fn flipped(mut self) -> Self {
+    /// The same contacts seen from the other body.
+    pub fn flipped(mut self) -> Self {
         for p in &mut self.points[..self.len] {
             *p = p.flipped();
         }
@@ -88,15 +127,19 @@ impl Manifold {
     }
 }
 
+/// The zero vector, as a constant.
+const ZERO: Vector = Vector::from_array_storage(nalgebra::ArrayStorage([[0.0; DIM]; 1]));
+
 /// Contact points between shape `a` placed at (`pa`, `angle_a`) and shape `b`, with normals
 /// from `a` to `b`, keeping points whose gap is at most `alert`.
+#[cfg(feature = "dim2")]
 pub fn collide(
     a: &Shape,
     pa: &Vector,
-    angle_a: Real,
+    angle_a: Rotation,
     b: &Shape,
     pb: &Vector,
-    angle_b: Real,
+    angle_b: Rotation,
     alert: Real,
 ) -> Manifold {
     use Shape::*;

@@ -1,0 +1,171 @@
+//! Convex polyhedron against a planar wall: the vertices over the rectangle within the alert
+//! distance, at most four kept.
+
+use super::{ContactPoint, Manifold, MANIFOLD_POINTS};
+use xper_bodies::ConvexPolyhedron;
+use xper_math::{Real, Rotation, Vector};
+
+/// Contact between a wall (centre `cw`, orientation `qw`, outward normal `qw e_z`,
+/// half-extents `half`) and a polyhedron (centroid `cp`, orientation `qp`); normal from the
+/// wall to the polyhedron, one point per vertex over the rectangle within `alert` of its
+/// plane (`feature` the vertex). A face lying on the wall gives its corners: four for a box,
+/// each carrying its share of the load. More than four candidates (a face of many vertices)
+/// are reduced to four spanning the largest area: the deepest, the farthest from it, then
+/// the two farthest on either side of the line through those two.
+///
+/// Edges crossing the rectangle's border are not tested: walls are meant larger than the
+/// bodies on them.
+pub fn collide_polyhedron_plane(
+    poly: &ConvexPolyhedron,
+    cp: &Vector,
+    qp: Rotation,
+    cw: &Vector,
+    qw: Rotation,
+    half: [Real; 2],
+    alert: Real,
+) -> Manifold {
+    let to_wall = qw.inverse();
+    let centre = to_wall * (cp - cw);
+    if centre.z - poly.bounding_radius > alert {
+        return Manifold::EMPTY;
+    }
+    let normal = qw * Vector::z();
+    let mut candidates: Vec<(Vector, Real, u32)> = Vec::new();
+    for (k, v) in poly.vertices.iter().enumerate() {
+        let local = centre + to_wall * (qp * v);
+        if local.z <= alert && local.x.abs() <= half[0] && local.y.abs() <= half[1] {
+            candidates.push((local, local.z, k as u32));
+        }
+    }
+    let keep = reduce(&candidates);
+    let mut m = Manifold::EMPTY;
+    for &k in &keep {
+        let (local, gap, feature) = candidates[k];
+        let on_wall = cw + qw * Vector::new(local.x, local.y, 0.0);
+        m.push(ContactPoint {
+            point: on_wall + normal * (gap / 2.0),
+            normal,
+            gap,
+            feature,
+        });
+    }
+    m
+}
+
+/// The indices of at most [`MANIFOLD_POINTS`] candidates (wall-frame points, gaps): all when
+/// few enough; else the deepest, the farthest from it in the plane, and the farthest on each
+/// side of the line through those two.
+fn reduce(candidates: &[(Vector, Real, u32)]) -> Vec<usize> {
+    if candidates.len() <= MANIFOLD_POINTS {
+        return (0..candidates.len()).collect();
+    }
+    let flat = |k: usize| Vector::new(candidates[k].0.x, candidates[k].0.y, 0.0);
+    let deepest = (0..candidates.len())
+        .min_by(|&a, &b| candidates[a].1.total_cmp(&candidates[b].1))
+        .unwrap_or(0);
+    let far = (0..candidates.len())
+        .max_by(|&a, &b| {
+            let d = |k| (flat(k) - flat(deepest)).norm_squared();
+            d(a).total_cmp(&d(b))
+        })
+        .unwrap_or(0);
+    let side = |k: usize| {
+        (flat(far) - flat(deepest))
+            .cross(&(flat(k) - flat(deepest)))
+            .z
+    };
+    let left = (0..candidates.len()).max_by(|&a, &b| side(a).total_cmp(&side(b)));
+    let right = (0..candidates.len()).min_by(|&a, &b| side(a).total_cmp(&side(b)));
+    let mut keep = vec![deepest, far];
+    for k in [left, right].into_iter().flatten() {
+        if !keep.contains(&k) {
+            keep.push(k);
+        }
+    }
+    keep
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A box resting face-down gives its four bottom corners, each at the same gap; tilted
+    /// about an edge, the two corners of that edge; on its corner, one.
+    #[test]
+    fn a_box_on_a_plane() {
+        let half = Vector::new(0.2, 0.1, 0.05);
+        let cube = ConvexPolyhedron::cuboid(half);
+        let (cw, qw) = (Vector::zeros(), Rotation::identity());
+        let cp = Vector::new(0.3, -0.2, 0.05 + 1e-4);
+        let m = collide_polyhedron_plane(&cube, &cp, Rotation::identity(), &cw, qw, [1.0; 2], 1e-3);
+        assert_eq!(m.len, 4);
+        for p in m.as_slice() {
+            assert!((p.gap - 1e-4).abs() < 1e-15);
+            assert!((p.normal - Vector::z()).norm() < 1e-15);
+        }
+        let sum: Vector = m.as_slice().iter().map(|p| p.point).sum();
+        assert!((sum / 4.0 - Vector::new(0.3, -0.2, 5e-5)).norm() < 1e-14);
+        let about_edge = Rotation::from_scaled_axis(Vector::new(0.0, 0.1, 0.0));
+        let m = collide_polyhedron_plane(
+            &cube,
+            &(cp + Vector::z()),
+            about_edge,
+            &cw,
+            qw,
+            [1.0; 2],
+            1.0,
+        );
+        let lowest = m
+            .as_slice()
+            .iter()
+            .map(|p| p.gap)
+            .fold(Real::INFINITY, Real::min);
+        let count = m
+            .as_slice()
+            .iter()
+            .filter(|p| p.gap < lowest + 1e-12)
+            .count();
+        assert_eq!(count, 2, "{m:?}");
+        let corner = Rotation::from_scaled_axis(Vector::new(0.3, 0.2, 0.0));
+        let m = collide_polyhedron_plane(
+            &cube,
+            &(cp + Vector::z() * 0.05),
+            corner,
+            &cw,
+            qw,
+            [1.0; 2],
+            0.0,
+        );
+        assert_eq!(m.len, 1);
+    }
+
+    /// A prism whose bottom face has eight corners keeps four of them, spanning the face.
+    #[test]
+    fn many_coplanar_vertices_are_reduced_to_four() {
+        let points: Vec<Vector> = (0..8)
+            .flat_map(|k| {
+                let a = k as Real * std::f64::consts::FRAC_PI_4;
+                [
+                    Vector::new(a.cos(), a.sin(), 0.0),
+                    Vector::new(a.cos(), a.sin(), 1.0),
+                ]
+            })
+            .collect();
+        let (prism, centroid) = ConvexPolyhedron::hull(&points).unwrap();
+        let m = collide_polyhedron_plane(
+            &prism,
+            &centroid,
+            Rotation::identity(),
+            &Vector::zeros(),
+            Rotation::identity(),
+            [10.0; 2],
+            0.1,
+        );
+        assert_eq!(m.len, 4);
+        let area = |a: Vector, b: Vector, c: Vector| (b - a).cross(&(c - a)).norm() / 2.0;
+        let p: Vec<Vector> = m.as_slice().iter().map(|p| p.point).collect();
+        // The quadrilateral's area: that of the square inscribed in the unit octagon, 2.
+        let quad = area(p[0], p[1], p[2]) + area(p[0], p[1], p[3]);
+        assert!((quad - 2.0).abs() < 1e-9, "{quad}");
+    }
+}
