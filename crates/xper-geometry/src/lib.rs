@@ -8,7 +8,7 @@
 //!
 //! One source, two builds: `xper-geometry` (2D) and `xper-geometry3d` (3D, feature `dim3`),
 //! which so far holds the broad phase and the narrow phase of spheres, polyhedra and
-//! planes; the 3D detector and contact set are the next steps of docs/3d-plan.md.
+//! planes (every pair); the 3D detector and contact set are the next steps of docs/3d-plan.md.
 
 mod broad;
 #[cfg(feature = "dim2")]

@@ -1,15 +1,14 @@
 //! The 3D narrow phase: which pair function handles which pair of shapes.
 
 use super::{
-    collide_polyhedron_plane, collide_sphere_plane, collide_sphere_polyhedron, collide_spheres,
-    Manifold,
+    collide_polyhedra, collide_polyhedron_plane, collide_sphere_plane, collide_sphere_polyhedron,
+    collide_spheres, Manifold,
 };
 use xper_bodies::Shape;
 use xper_math::{Real, Rotation, Vector};
 
 /// Contact points between shape `a` placed at (`pa`, `qa`) and shape `b`, with normals from
-/// `a` to `b`, keeping points whose gap is at most `alert`. Two polyhedra give no contact
-/// yet (their face clipping is the next step of docs/3d-plan.md); two walls never touch.
+/// `a` to `b`, keeping points whose gap is at most `alert`. Two walls never touch.
 pub fn collide(
     a: &Shape,
     pa: &Vector,
@@ -40,6 +39,7 @@ pub fn collide(
         (Polyhedron(p), Plane { half_extents }) => {
             collide_polyhedron_plane(p, pa, qa, pb, qb, *half_extents, alert).flipped()
         }
-        (Polyhedron(_), Polyhedron(_)) | (Plane { .. }, Plane { .. }) => Manifold::EMPTY,
+        (Polyhedron(p), Polyhedron(r)) => collide_polyhedra(p, pa, qa, r, pb, qb, alert),
+        (Plane { .. }, Plane { .. }) => Manifold::EMPTY,
     }
 }

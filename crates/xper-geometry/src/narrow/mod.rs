@@ -16,6 +16,8 @@ mod polygon_segment;
 #[cfg(feature = "dim3")]
 mod polyhedron_plane;
 #[cfg(feature = "dim3")]
+mod polyhedron_polyhedron;
+#[cfg(feature = "dim3")]
 mod sphere_plane;
 #[cfg(feature = "dim3")]
 mod sphere_polyhedron;
@@ -42,6 +44,8 @@ pub use polygon_polygon::{collide_polygons, WorldPolygon};
 pub use polygon_segment::collide_polygon_segment;
 #[cfg(feature = "dim3")]
 pub use polyhedron_plane::collide_polyhedron_plane;
+#[cfg(feature = "dim3")]
+pub use polyhedron_polyhedron::collide_polyhedra;
 #[cfg(feature = "dim3")]
 pub use sphere_plane::collide_sphere_plane;
 #[cfg(feature = "dim3")]
