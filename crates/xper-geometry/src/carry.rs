@@ -122,7 +122,8 @@ impl Drop for CarryOver<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contacts::{ContactKey, ContactRow};
+    use crate::contacts::ContactKey;
+    use crate::ContactRow;
 
     fn contact(bodies: [u32; 2], feature: u32, impulse: Real) -> Contact {
         Contact {

@@ -23,8 +23,9 @@
 
 use crate::broad::BroadPhase;
 use crate::carry::CarryOver;
-use crate::contacts::{Contact, ContactKey, ContactRow, ContactSet};
+use crate::contacts::{Contact, ContactKey, ContactSet};
 use crate::narrow::{collide, disk_disk_point, Manifold};
+use crate::ContactRow;
 use xper_bodies::{BodySet, Shape};
 use xper_math::buffer::refill;
 use xper_math::Real;

@@ -7,21 +7,28 @@
 //! than the alert distance produce no contact.
 //!
 //! One source, two builds: `xper-geometry` (2D) and `xper-geometry3d` (3D, feature `dim3`),
-//! which so far holds the broad phase and the narrow phase of spheres, polyhedra and
-//! planes (every pair); the 3D detector and contact set are the next steps of docs/3d-plan.md.
+//! which so far holds the broad phase, the narrow phase of spheres, polyhedra and planes
+//! (every pair), the contact row and the contact set; the 3D detector and warm-start carry
+//! are the next steps of docs/3d-plan.md.
 
 mod broad;
 #[cfg(feature = "dim2")]
 mod carry;
-#[cfg(feature = "dim2")]
 mod contacts;
 #[cfg(feature = "dim2")]
 mod detector;
 pub mod narrow;
+#[cfg(feature = "dim2")]
+mod row2d;
+#[cfg(feature = "dim3")]
+mod row3d;
 
 pub use broad::{BroadPhase, OuterBox};
-#[cfg(feature = "dim2")]
-pub use contacts::{Contact, ContactKey, ContactRow, ContactSet};
+pub use contacts::{Contact, ContactKey, ContactSet};
 #[cfg(feature = "dim2")]
 pub use detector::{Detector, DetectorStats, SKIN_CAP_OVER_SIZE, TARGET_STEPS_PER_BUILD};
 pub use narrow::{collide, ContactPoint, Manifold, MANIFOLD_POINTS};
+#[cfg(feature = "dim2")]
+pub use row2d::ContactRow;
+#[cfg(feature = "dim3")]
+pub use row3d::ContactRow;
