@@ -1,7 +1,10 @@
 //! The contacts of a detection written over the previous ones, in the same buffers.
 //!
 //! A new contact takes the impulse of the previous contact with the same bodies and feature:
-//! the warm start of the next solve. Both lists are in ascending order of bodies, so one pass
+//! the warm start of the next solve. In 3D the impulse is carried as a vector of the world
+//! ([`ContactRow::carry_out`]) and expressed in the new contact's frame by the caller
+//! ([`ContactRow::carry_in`]), since the tangents turn with the normal; in 2D both are the
+//! identity (the tangent is the normal turned by a quarter). Both lists are in ascending order of bodies, so one pass
 //! merges them, writing the new contacts from the front of the buffers while reading the
 //! previous ones ahead of them. Where the new contacts get ahead (more of them than of the
 //! previous ones so far), the previous contacts in their way are moved aside into a short
@@ -9,14 +12,17 @@
 //! new ones) and none is moved but those few.
 
 use crate::contacts::{Contact, ContactSet};
+#[cfg(doc)]
+use crate::ContactRow;
+use crate::MANIFOLD_POINTS;
 use std::collections::VecDeque;
-use xper_math::Real;
+use xper_math::{Real, DIM};
 
 /// The most points a pair of bodies has (a narrow phase's manifold).
-const POINTS_PER_PAIR: usize = 2;
+const POINTS_PER_PAIR: usize = MANIFOLD_POINTS;
 
-/// A previous contact moved aside: its bodies, feature and impulse.
-type Aside = ([u32; 2], u32, [Real; 2]);
+/// A previous contact moved aside: its bodies, feature and carried impulse.
+type Aside = ([u32; 2], u32, [Real; DIM]);
 
 /// A merge in progress over a contact set: `[0, written)` holds the new contacts; the previous
 /// contacts not yet read are `aside`, then `[read, end)`.
@@ -43,16 +49,16 @@ impl<'a> CarryOver<'a> {
         }
     }
 
-    /// The impulses of the previous contacts of pair `bodies`, as `(feature, impulse)`;
-    /// the previous contacts of the pairs before it are dropped. Pairs come in ascending
-    /// order.
+    /// The carried impulses ([`ContactRow::carry_out`]) of the previous contacts of pair
+    /// `bodies`, as `(feature, impulse)`; the previous contacts of the pairs before it are
+    /// dropped. Pairs come in ascending order.
     pub fn previous_of(
         &mut self,
         bodies: [u32; 2],
-    ) -> ([(u32, [Real; 2]); POINTS_PER_PAIR], usize) {
-        let mut found = [(0, [0.0; 2]); POINTS_PER_PAIR];
+    ) -> ([(u32, [Real; DIM]); POINTS_PER_PAIR], usize) {
+        let mut found = [(0, [0.0; DIM]); POINTS_PER_PAIR];
         let mut count = 0;
-        let mut keep = |feature: u32, impulse: [Real; 2]| {
+        let mut keep = |feature: u32, impulse: [Real; DIM]| {
             if count < POINTS_PER_PAIR {
                 found[count] = (feature, impulse);
                 count += 1;
@@ -70,7 +76,11 @@ impl<'a> CarryOver<'a> {
         let set = &*self.set;
         while self.read < self.end && set.rows[self.read].bodies <= bodies {
             if set.rows[self.read].bodies == bodies {
-                keep(set.keys[self.read].feature, set.impulses[self.read]);
+                let row = &set.rows[self.read];
+                keep(
+                    set.keys[self.read].feature,
+                    row.carry_out(set.impulses[self.read]),
+                );
             }
             self.read += 1;
         }
@@ -84,8 +94,8 @@ impl<'a> CarryOver<'a> {
         if k == self.read && self.read < self.end {
             // A previous contact not yet read is in the way: aside with it.
             let b = set.rows[k].bodies;
-            self.aside
-                .push_back((b, set.keys[k].feature, set.impulses[k]));
+            let carried = set.rows[k].carry_out(set.impulses[k]);
+            self.aside.push_back((b, set.keys[k].feature, carried));
             self.read += 1;
         }
         if k < set.rows.len() {
@@ -125,16 +135,21 @@ mod tests {
     use crate::contacts::ContactKey;
     use crate::ContactRow;
 
+    use xper_math::Vector;
+
+    /// A contact with normal `e_x` and impulse `[r, -r, ...]`.
     fn contact(bodies: [u32; 2], feature: u32, impulse: Real) -> Contact {
+        let zero = Vector::zeros();
         Contact {
-            row: ContactRow {
-                bodies,
-                ..Default::default()
-            },
+            row: ContactRow::new(bodies, &zero, &Vector::x(), &zero, &zero),
             key: ContactKey { feature },
             gap: 0.0,
-            impulse: [impulse, -impulse],
+            impulse: std::array::from_fn(|c| if c == 0 { impulse } else { -impulse }),
         }
+    }
+
+    fn both(r: Real) -> [Real; DIM] {
+        std::array::from_fn(|c| if c == 0 { r } else { -r })
     }
 
     /// The merge against a plain lookup in a copy of the previous contacts, for new lists
@@ -194,7 +209,11 @@ mod tests {
                     .find(|p| p.row.bodies == bodies && p.key.feature == f)
                     .map_or(0.0, |p| p.impulse[0]);
                 assert_eq!((c.row.bodies, c.key.feature), (bodies, f), "trial {trial}");
-                assert_eq!(c.impulse, [expected, -expected], "trial {trial} {bodies:?}");
+                let carried = c.row.carry_in(c.row.carry_out(both(expected)));
+                let error = (0..DIM)
+                    .map(|k| (c.impulse[k] - carried[k]).abs())
+                    .fold(0.0, Real::max);
+                assert!(error <= 1e-12 * expected.abs(), "trial {trial} {bodies:?}");
             }
         }
     }
@@ -208,9 +227,15 @@ mod tests {
         assert_eq!(merge.previous_of([0, 1]).1, 0);
         merge.push(contact([0, 1], 0, 0.0));
         let (found, count) = merge.previous_of([2, 3]);
-        assert_eq!((count, found[0].1), (1, [5.0, -5.0]));
+        assert_eq!(count, 1);
+        let row = contact([2, 3], 0, 0.0).row;
+        let back = row.carry_in(found[0].1);
+        assert!(
+            (0..DIM).all(|k| (back[k] - both(5.0)[k]).abs() < 1e-14),
+            "{back:?}"
+        );
         merge.push(contact([2, 3], 0, 5.0));
         drop(merge);
-        assert_eq!(set.impulses, [[0.0, -0.0], [5.0, -5.0]]);
+        assert_eq!(set.impulses, [both(0.0), both(5.0)]);
     }
 }

@@ -212,11 +212,12 @@ impl Detector {
             }
             let (previous, count) = merge.previous_of([i, j]);
             for p in m.as_slice() {
+                let row = ContactRow::new([i, j], &p.point, &p.normal, pa, pb);
                 let impulse = (previous[..count].iter())
                     .find(|c| c.0 == p.feature)
-                    .map_or([0.0, 0.0], |c| c.1);
+                    .map_or([0.0, 0.0], |c| row.carry_in(c.1));
                 merge.push(Contact {
-                    row: ContactRow::new([i, j], &p.point, &p.normal, pa, pb),
+                    row,
                     key: ContactKey { feature: p.feature },
                     gap: p.gap,
                     impulse,

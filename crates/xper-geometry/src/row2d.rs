@@ -61,6 +61,19 @@ impl ContactRow {
         position_i + n * self.arms[1] - tangent(&n) * self.arms[0]
     }
 
+    /// An impulse of this contact as the next detection carries it to the contact that
+    /// replaces it: in 2D its components, unchanged (the tangent turns with the normal).
+    #[inline(always)]
+    pub fn carry_out(&self, impulse: [Real; 2]) -> [Real; 2] {
+        impulse
+    }
+
+    /// A carried impulse ([`ContactRow::carry_out`]) in this contact's frame: unchanged in 2D.
+    #[inline(always)]
+    pub fn carry_in(&self, carried: [Real; 2]) -> [Real; 2] {
+        carried
+    }
+
     /// Recomputes `W_aa = G_i^T M_i^-1 G_i + G_j^T M_j^-1 G_j` from the inverse masses per
     /// degree of freedom of each body (`inv_mass(b)`), e.g. after a domain decomposition has
     /// split the mass of shared bodies.

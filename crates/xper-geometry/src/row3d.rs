@@ -74,6 +74,24 @@ impl ContactRow {
         position_i + Vector::from(self.arms[0])
     }
 
+    /// An impulse of this contact (in its frame) as the next detection carries it to the
+    /// contact that replaces it: the world vector `F R`, since the new contact's tangents are
+    /// not this one's (they turn with the normal).
+    #[inline]
+    pub fn carry_out(&self, impulse: [Real; 3]) -> [Real; 3] {
+        let [n, t1, t2] = self.frame();
+        (n * impulse[0] + t1 * impulse[1] + t2 * impulse[2]).into()
+    }
+
+    /// A carried world impulse ([`ContactRow::carry_out`]) in this contact's frame, `F^T R`:
+    /// its normal part is the component along this normal, its tangential part the projection
+    /// on this tangent plane.
+    #[inline]
+    pub fn carry_in(&self, carried: [Real; 3]) -> [Real; 3] {
+        let r = Vector::from(carried);
+        self.frame().map(|a| a.dot(&r))
+    }
+
     /// Recomputes `W_aa` (see the module documentation) from each body's inverse mass
     /// (`inv_mass(b)`), e.g. after a domain decomposition has split the mass of shared bodies.
     pub fn refresh_block(&mut self, inv_mass: impl Fn(usize) -> InverseMass) {
@@ -185,5 +203,31 @@ mod tests {
             let [a, b, c] = frame;
             assert!((a.dot(&b)).abs() < 1e-15 && (a.cross(&b) - c).norm() < 1e-15);
         }
+    }
+
+    /// A carried impulse keeps its world direction: back to the same contact it is the
+    /// identity, and across `n_z = 0`, where the tangents of `tangents` jump, the new frame's
+    /// components rebuild the same world vector.
+    #[test]
+    fn carried_impulses_keep_their_world_direction() {
+        let zero = Vector::zeros();
+        let n = Vector::new(0.3, -0.4, 0.2).normalize();
+        let old = ContactRow::new([0, 1], &zero, &n, &zero, &zero);
+        let r = [2.0, 0.3, -0.7];
+        let world = Vector::from(old.carry_out(r));
+        let [a, b, c] = old.frame();
+        assert!((world - (a * 2.0 + b * 0.3 - c * 0.7)).norm() < 1e-15);
+        let back = old.carry_in(old.carry_out(r));
+        assert!((0..3).all(|k| (back[k] - r[k]).abs() < 1e-14), "{back:?}");
+        let (up, down) = (Vector::new(1.0, 0.0, 1e-9), Vector::new(1.0, 0.0, -1e-9));
+        let before = ContactRow::new([0, 1], &zero, &up.normalize(), &zero, &zero);
+        let after = ContactRow::new([0, 1], &zero, &down.normalize(), &zero, &zero);
+        let moved = after.carry_in(before.carry_out(r));
+        let [n2, t1, t2] = after.frame();
+        let rebuilt = n2 * moved[0] + t1 * moved[1] + t2 * moved[2];
+        assert!(
+            (rebuilt - Vector::from(before.carry_out(r))).norm() < 1e-8,
+            "{moved:?}"
+        );
     }
 }
