@@ -4,9 +4,11 @@
 //! The broad phase runs with the alert distance grown by a skin `s`, and its pairs are kept as
 //! candidates until the bodies have moved enough to invalidate them (L. Verlet, "Computer
 //! 'experiments' on classical fluids", Phys. Rev. 159:98, 1967, for molecular dynamics): a
-//! point of body `b` has moved by at most `d_b = |x_b - x_b0| + reach_b |theta_b - theta_b0|`
-//! since the build (`reach_b` the largest distance from the body's position to its shape, 0
-//! for a disk; the rotation taken modulo 2 pi, on which a shape depends), so its box lies in
+//! point of body `b` has moved by at most `d_b = |x_b - x_b0| + reach_b theta_b` since the
+//! build (`reach_b` the largest distance from the body's position to its shape, 0 for a disk
+//! or a sphere; `theta_b` the angle of the rotation from the built orientation to the
+//! current one: in 2D `|theta - theta_0|` modulo 2 pi, in 3D the angle of `q_0^-1 q`; see the
+//! `pose2d.rs`/`pose3d.rs` files), so its box lies in
 //! its box at the build grown by `d_b`, and every pair within the alert distance is still a
 //! candidate while the two largest `d_b` sum to at most `s`.
 //!
@@ -24,11 +26,12 @@
 use crate::broad::BroadPhase;
 use crate::carry::CarryOver;
 use crate::contacts::{Contact, ContactKey, ContactSet};
-use crate::narrow::{collide, disk_disk_point, Manifold};
+use crate::narrow::{collide, Manifold};
+use crate::pose::{self, Orientation};
 use crate::ContactRow;
-use xper_bodies::{BodySet, Shape};
+use xper_bodies::BodySet;
 use xper_math::buffer::refill;
-use xper_math::Real;
+use xper_math::{Real, DIM};
 
 /// Calls a candidate list should last, at the rate the bodies moved during the previous one.
 /// On box10k, 8 rather than 4 builds the list 328 times instead of 406 in 1500 steps and
@@ -39,60 +42,6 @@ pub const TARGET_STEPS_PER_BUILD: Real = 8.0;
 /// Largest skin, as a fraction of the largest bounding-box extent of a body that is not a
 /// wall: beyond it, the candidates would reach past the nearest neighbours.
 pub const SKIN_CAP_OVER_SIZE: Real = 0.25;
-
-/// A body's pose when the candidate list was built, in single precision: the rounding is
-/// bounded by [`Detector::pose_rounding`] and added to the displacement bounds, so no pair
-/// within the alert distance is missed. A detector keeps the position of every body (8 bytes)
-/// and the rotation and reach only of the bodies with a reach (not disks).
-#[derive(Clone, Copy, Debug)]
-struct BuildPose {
-    x: f32,
-    y: f32,
-    /// The rotation brought into `[-pi, pi]` (see [`wrapped`]), so that its rounding stays
-    /// small however long the body has turned (a rotating drum).
-    angle: f32,
-    /// The reach, rounded up.
-    reach: f32,
-}
-
-impl BuildPose {
-    /// The pose of `(x, y, angle)` with `reach`, and the most its rounding can hide of the
-    /// displacement bound `d_b`: `|p' - p| + reach' (|angle' - wrapped(angle)| + e)`, with `e`
-    /// the rounding of the wrap itself.
-    fn rounded(x: Real, y: Real, angle: Real, reach: Real) -> (Self, Real) {
-        let mut reach32 = reach as f32;
-        if (reach32 as Real) < reach {
-            reach32 = reach32.next_up();
-        }
-        let turned = wrapped(angle);
-        let pose = BuildPose {
-            x: x as f32,
-            y: y as f32,
-            angle: turned as f32,
-            reach: reach32,
-        };
-        let (dx, dy) = (pose.x as Real - x, pose.y as Real - y);
-        let angle_error = (pose.angle as Real - turned).abs() + wrap_error(angle);
-        let hidden = (dx * dx + dy * dy).sqrt() + reach32 as Real * angle_error;
-        (pose, hidden)
-    }
-}
-
-/// `angle` less the nearest multiple of 2 pi, in `[-pi, pi]`: the smallest rotation that
-/// brings a shape from one orientation to another is `|wrapped(theta - theta_0)|`, whatever
-/// whole turns lie between them.
-#[inline]
-fn wrapped(angle: Real) -> Real {
-    use std::f64::consts::TAU;
-    angle - TAU * (angle / TAU).round()
-}
-
-/// A bound on the rounding of [`wrapped`]`(angle)` (a few units in the last place of `angle`
-/// and of 2 pi times the turns).
-#[inline]
-fn wrap_error(angle: Real) -> Real {
-    8.0 * Real::EPSILON * (angle.abs() + 1.0)
-}
 
 /// A fingerprint of the bodies' ids in order: a list is kept only for the bodies, in the
 /// order, it was built for. It is the wrapping sum over the bodies of a multiplicative mix of
@@ -132,11 +81,11 @@ pub struct Detector {
     first_start: Vec<u32>,
     /// The second body of each candidate pair, ascending within each first body's.
     seconds: Vec<u32>,
-    /// Each body's position at the build, `[x, y]` of its [`BuildPose`].
-    built: Vec<[f32; 2]>,
-    /// The bodies with a reach (not disks), ascending, with `[angle, reach]` of their
-    /// [`BuildPose`].
-    built_turning: Vec<(u32, [f32; 2])>,
+    /// Each body's position at the build, in single precision (see `pose::rounded`).
+    built: Vec<[f32; DIM]>,
+    /// The bodies with a reach (not disks or spheres), ascending, with their orientation and
+    /// reach at the build.
+    built_turning: Vec<(u32, Orientation, f32)>,
     /// [`ids_fingerprint`] of the bodies at the build.
     built_ids: u64,
     /// The largest displacement bound the single-precision poses may hide (m).
@@ -188,15 +137,11 @@ impl Detector {
             let (a, b) = (i as usize, j as usize);
             let (shape_a, shape_b) = (&bodies.shape[a], &bodies.shape[b]);
             let (pa, pb) = (&bodies.position[a], &bodies.position[b]);
-            // Disk pairs, the common case, without the general dispatch.
-            let disks = match (shape_a, shape_b) {
-                (Shape::Disk { radius: ra }, Shape::Disk { radius: rb }) => {
-                    match disk_disk_point(pa, *ra, pb, *rb, alert) {
-                        Some(p) => Manifold::one(p),
-                        None => return,
-                    }
-                }
-                _ => Manifold::EMPTY,
+            // Pairs of disks (spheres), the common case, without the general dispatch.
+            let disks = match pose::round_pair(shape_a, shape_b, pa, pb, alert) {
+                Some(Some(p)) => Manifold::one(p),
+                Some(None) => return,
+                None => Manifold::EMPTY,
             };
             if law_of(bodies.group[a], bodies.group[b]).is_none() || immobile(a) && immobile(b) {
                 return;
@@ -215,7 +160,7 @@ impl Detector {
                 let row = ContactRow::new([i, j], &p.point, &p.normal, pa, pb);
                 let impulse = (previous[..count].iter())
                     .find(|c| c.0 == p.feature)
-                    .map_or([0.0, 0.0], |c| row.carry_in(c.1));
+                    .map_or([0.0; DIM], |c| row.carry_in(c.1));
                 merge.push(Contact {
                     row,
                     key: ContactKey { feature: p.feature },
@@ -245,14 +190,16 @@ impl Detector {
         // disk, `d_b^2` is the squared displacement itself).
         let (mut first, mut second): (Real, Real) = (0.0, 0.0);
         let mut turning = self.built_turning.iter().peekable();
-        for (b, &[x, y]) in self.built.iter().enumerate() {
+        for (b, built) in self.built.iter().enumerate() {
             let p = bodies.position[b];
-            let (dx, dy) = (p.x - x as Real, p.y - y as Real);
-            let mut squared = dx * dx + dy * dy;
-            if let Some(&(_, [angle_built, reach])) = turning.next_if(|t| t.0 as usize == b) {
-                let angle = bodies.rotation[b];
-                let turned = wrapped(angle - angle_built as Real).abs() + wrap_error(angle);
-                let d = squared.sqrt() + reach as Real * turned;
+            let d: [Real; DIM] = std::array::from_fn(|k| p[k] - built[k] as Real);
+            let mut squared = d[0] * d[0];
+            for x in &d[1..] {
+                squared += x * x;
+            }
+            if let Some((_, orientation, reach)) = turning.next_if(|t| t.0 as usize == b) {
+                let turned = pose::turned(bodies.rotation[b], orientation);
+                let d = squared.sqrt() + *reach as Real * turned;
                 squared = d * d;
             }
             second = second.max(squared.min(first));
@@ -274,19 +221,15 @@ impl Detector {
         refill(
             &mut self.built,
             (0..bodies.len()).map(|b| {
-                let reach = match &bodies.shape[b] {
-                    Shape::Disk { .. } => 0.0,
-                    Shape::Polygon(p) => p.bounding_radius,
-                    Shape::Segment { half_length } => *half_length,
-                };
+                let reach = pose::reach(&bodies.shape[b]);
                 let p = bodies.position[b];
-                let (pose, hidden) = BuildPose::rounded(p.x, p.y, bodies.rotation[b], reach);
+                let (pose, hidden) = pose::rounded(&p, bodies.rotation[b], reach);
                 rounding = rounding.max(hidden);
                 if pose.reach > 0.0 {
                     self.built_turning
-                        .push((b as u32, [pose.angle, pose.reach]));
+                        .push((b as u32, pose.orientation, pose.reach));
                 }
-                [pose.x, pose.y]
+                pose.position
             }),
         );
         self.built_turning.shrink_to_fit();
@@ -318,7 +261,7 @@ impl Detector {
             return alert;
         };
         let size = (bodies.shape.iter())
-            .filter(|s| !matches!(s, Shape::Segment { .. }))
+            .filter(|s| !s.is_wall())
             .map(|s| 2.0 * s.size())
             .fold(0.0, Real::max);
         let cap = (SKIN_CAP_OVER_SIZE * size).max(alert);
@@ -359,49 +302,6 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_single_precision_pose_hides_no_more_than_its_rounding_bound() {
-        let mut s = 3u64;
-        let mut rnd = || {
-            s = s
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (s >> 11) as Real / (1u64 << 53) as Real * 2.0 - 1.0
-        };
-        for _ in 0..10_000 {
-            let scale = 10f64.powi((rnd() * 6.0) as i32);
-            let (x, y, angle, reach) = (rnd() * scale, rnd() * scale, rnd() * 7.0, rnd().abs());
-            let (pose, hidden) = BuildPose::rounded(x, y, angle, reach);
-            assert!(pose.reach as Real >= reach, "reach rounded up");
-            // The bound a body at the true pose gets from the stored one, and what it hides.
-            let (dx, dy) = (x - pose.x as Real, y - pose.y as Real);
-            let seen = (dx * dx + dy * dy).sqrt()
-                + pose.reach as Real * wrapped(angle - pose.angle as Real).abs();
-            assert!(seen <= hidden * (1.0 + 1e-12), "{seen} > {hidden}");
-            assert!(hidden <= 4.0 * f32::EPSILON as Real * (x.abs() + y.abs() + angle.abs() + 1.0));
-        }
-    }
-
-    /// Regression: with the rotation stored as it is, a body that had turned for long (a
-    /// drum of 0.5 m after 1000 turns, 6283 rad) hid 1.2e-4 m in its single-precision angle,
-    /// as much as an alert distance, and its list was rebuilt at every step.
-    #[test]
-    fn a_long_turning_body_hides_no_more_than_one_that_never_turned() {
-        let reach = 0.5;
-        for turns in [0.0, 1.0, 1000.0, 1.0e5] {
-            let angle = 0.3 + std::f64::consts::TAU * turns;
-            let (pose, hidden) = BuildPose::rounded(0.1, 0.2, angle, reach);
-            assert!(
-                hidden <= 1e-7 * (1.0 + turns * 1e-8),
-                "{turns} turns: {hidden} m"
-            );
-            // A further turn and a small rotation read as that small rotation.
-            let later = angle + std::f64::consts::TAU + 1e-3;
-            let turned = wrapped(later - pose.angle as Real).abs();
-            assert!((turned - 1e-3).abs() < 1e-6, "{turns} turns: {turned}");
-        }
-    }
-
-    #[test]
     fn the_ids_fingerprint_changes_when_bodies_are_renumbered_added_or_removed() {
         let ids: Vec<u64> = (0..100).collect();
         let mut swapped = ids.clone();
@@ -415,6 +315,85 @@ mod tests {
         for a in 0..fingerprints.len() {
             for b in a + 1..fingerprints.len() {
                 assert_ne!(fingerprints[a], fingerprints[b], "{a} and {b}");
+            }
+        }
+    }
+}
+
+/// The 3D detector's kept candidate list against a detection from scratch at every call of
+/// a sequence of random moves and rotations (some larger than the skin): the same contacts in
+/// the same order; bodies at rest never rebuild the list.
+#[cfg(all(test, feature = "dim3"))]
+mod tests_3d {
+    use super::*;
+    use xper_bodies::Body;
+    use xper_math::{Rotation, SplitMix64, Vector};
+
+    #[test]
+    fn kept_candidates_give_the_contacts_of_a_fresh_detection_in_3d() {
+        let mut rng = SplitMix64::new(29);
+        for case in 0..6 {
+            let mut set = BodySet::new();
+            set.insert(Body::plane(Vector::zeros(), Vector::z(), [4.0, 4.0]));
+            for k in 0..120 {
+                let p = Vector::new(
+                    3.0 * rng.next_f64(),
+                    3.0 * rng.next_f64(),
+                    2.0 * rng.next_f64(),
+                );
+                let r = 0.1 + 0.2 * rng.next_f64();
+                let body = if k % 3 == 0 {
+                    let points: Vec<Vector> = (0..8)
+                        .map(|_| {
+                            p + Vector::new(rng.next_f64(), rng.next_f64(), rng.next_f64()) * r
+                        })
+                        .collect();
+                    Body::polyhedron(&points, 1000.0).unwrap()
+                } else {
+                    Body::sphere(r, 1000.0, p)
+                };
+                set.insert(body);
+            }
+            let (step, spin) = if case == 0 { (0.0, 0.0) } else { (0.02, 0.05) };
+            let alert = 0.02;
+            let law = |_: u16, _: u16| Some(0u16);
+            let mut kept = Detector::new();
+            let mut kept_contacts = ContactSet::default();
+            for call in 0..20 {
+                kept.detect(&set, alert, law, &mut kept_contacts);
+                let mut fresh = ContactSet::default();
+                Detector::new().detect(&set, alert, law, &mut fresh);
+                let strip = |c: &ContactSet| -> Vec<_> {
+                    c.iter().map(|c| (c.row, c.key, c.gap.to_bits())).collect()
+                };
+                let (k, f) = (strip(&kept_contacts), strip(&fresh));
+                let only_k: Vec<_> = k
+                    .iter()
+                    .filter(|x| !f.contains(x))
+                    .map(|x| (x.0.bodies, x.1))
+                    .collect();
+                let only_f: Vec<_> = f
+                    .iter()
+                    .filter(|x| !k.contains(x))
+                    .map(|x| (x.0.bodies, x.1))
+                    .collect();
+                assert!(
+                    k == f,
+                    "case {case} call {call}: kept only {only_k:?}, fresh only {only_f:?}, {:?}",
+                    kept.stats()
+                );
+                assert!(fresh.len() > 20, "case {case}: {} contacts", fresh.len());
+                for b in 1..set.len() {
+                    let jump = if rng.next_f64() > 0.98 { 10.0 } else { 1.0 };
+                    let d = Vector::new(rng.next_f64(), rng.next_f64(), rng.next_f64())
+                        - Vector::repeat(0.5);
+                    set.position[b] += d * (2.0 * jump * step);
+                    let w = Vector::new(rng.next_f64(), rng.next_f64(), rng.next_f64());
+                    set.rotation[b] = Rotation::from_scaled_axis(w * spin) * set.rotation[b];
+                }
+            }
+            if case == 0 {
+                assert_eq!(kept.stats().builds, 1);
             }
         }
     }

@@ -8,17 +8,20 @@
 //!
 //! One source, two builds: `xper-geometry` (2D) and `xper-geometry3d` (3D, feature `dim3`),
 //! which so far holds the broad phase, the narrow phase of spheres, polyhedra and planes
-//! (every pair), the contact row, the contact set and the warm-start carry; the 3D
-//! detector is the next step of docs/3d-plan.md.
+//! (every pair), the contact row, the contact set, the warm-start carry and the detector:
+//! all of it.
 
 mod broad;
-// The 3D detector, which will use it, is the next step.
-#[cfg_attr(feature = "dim3", allow(dead_code))]
 mod carry;
 mod contacts;
-#[cfg(feature = "dim2")]
 mod detector;
 pub mod narrow;
+#[cfg(feature = "dim2")]
+#[path = "pose2d.rs"]
+mod pose;
+#[cfg(feature = "dim3")]
+#[path = "pose3d.rs"]
+mod pose;
 #[cfg(feature = "dim2")]
 mod row2d;
 #[cfg(feature = "dim3")]
@@ -26,7 +29,6 @@ mod row3d;
 
 pub use broad::{BroadPhase, OuterBox};
 pub use contacts::{Contact, ContactKey, ContactSet};
-#[cfg(feature = "dim2")]
 pub use detector::{Detector, DetectorStats, SKIN_CAP_OVER_SIZE, TARGET_STEPS_PER_BUILD};
 pub use narrow::{collide, ContactPoint, Manifold, MANIFOLD_POINTS};
 #[cfg(feature = "dim2")]

@@ -14,7 +14,7 @@ use xper_math::{Real, Rotation, Vector};
 /// the two farthest on either side of the line through those two.
 ///
 /// Edges crossing the rectangle's border are not tested: walls are meant larger than the
-/// bodies on them.
+/// bodies on them. A body entirely behind the wall (by more than `alert`) touches nothing.
 pub fn collide_polyhedron_plane(
     poly: &ConvexPolyhedron,
     cp: &Vector,
@@ -36,6 +36,14 @@ pub fn collide_polyhedron_plane(
         if local.z <= alert && local.x.abs() <= half[0] && local.y.abs() <= half[1] {
             candidates.push((local, local.z, k as u32));
         }
+    }
+    // A body entirely behind the wall, farther than the alert distance, does not touch it:
+    // its box and the wall's do not meet, so the broad phase would not pair them either.
+    let highest = (poly.vertices.iter())
+        .map(|v| (centre + to_wall * (qp * v)).z)
+        .fold(Real::NEG_INFINITY, Real::max);
+    if highest < -alert {
+        return Manifold::EMPTY;
     }
     let keep = reduce(&candidates);
     let mut m = Manifold::EMPTY;

@@ -7,8 +7,9 @@ use xper_math::{Real, Rotation, Vector};
 /// Contact between a wall (centre `cw`, orientation `q`, outward normal `q e_z`, half-extents
 /// `half` along `q e_x`, `q e_y`) and a sphere; normal from the wall to the sphere. A centre
 /// above the rectangle touches the face (normal `q e_z`, gap its height minus the radius, also
-/// when negative); beside it, the nearest point of the rectangle's border; behind the plane
-/// and beside the rectangle, nothing.
+/// when negative, unless the sphere lies wholly behind the plane by more than `alert`);
+/// beside it, the nearest point of the rectangle's border; behind the plane and beside the
+/// rectangle, nothing.
 pub fn collide_sphere_plane(
     cs: &Vector,
     radius: Real,
@@ -25,6 +26,10 @@ pub fn collide_sphere_plane(
     );
     let beside = clamped.x != local.x || clamped.y != local.y;
     let (normal_local, dist, feature) = if !beside {
+        // Entirely behind the wall by more than `alert`: no contact (the boxes do not meet).
+        if local.z + radius < -alert {
+            return Manifold::EMPTY;
+        }
         (Vector::z(), local.z, 0)
     } else {
         if local.z < 0.0 {
@@ -75,7 +80,10 @@ mod tests {
             );
             let cs = cw + q * local;
             let m = collide_sphere_plane(&cs, 0.3, &cw, q, half, 10.0);
-            if local.z < 0.0 && (local.x.abs() > half[0] || local.y.abs() > half[1]) {
+            let wholly_behind = local.z + 0.3 < -10.0;
+            if wholly_behind
+                || local.z < 0.0 && (local.x.abs() > half[0] || local.y.abs() > half[1])
+            {
                 assert_eq!(m.len, 0);
                 continue;
             }
