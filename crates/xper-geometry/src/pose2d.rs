@@ -1,7 +1,7 @@
 //! The 2D pose of a body at a candidate-list build (see `detector.rs`): position and angle in
 //! single precision, with the bound on what their rounding hides.
 
-use crate::narrow::{disk_disk_point, ContactPoint};
+use crate::narrow::{round_point, ContactPoint};
 use xper_bodies::Shape;
 use xper_math::{Real, Rotation, Vector};
 
@@ -56,7 +56,7 @@ pub(crate) fn round_pair(
 ) -> Option<Option<ContactPoint>> {
     match (a, b) {
         (Shape::Disk { radius: ra }, Shape::Disk { radius: rb }) => {
-            Some(disk_disk_point(pa, *ra, pb, *rb, alert))
+            Some(round_point(pa, *ra, pb, *rb, alert))
         }
         _ => None,
     }

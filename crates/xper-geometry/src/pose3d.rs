@@ -7,7 +7,7 @@
 //! rotations), so the angle from the stored orientation plus the angle between the stored and
 //! the true one at the build bounds the turn since the build.
 
-use crate::narrow::{collide_spheres, ContactPoint};
+use crate::narrow::{round_point, ContactPoint};
 use nalgebra::Quaternion;
 use xper_bodies::Shape;
 use xper_math::{Real, Rotation, Vector};
@@ -88,8 +88,7 @@ pub(crate) fn round_pair(
 ) -> Option<Option<ContactPoint>> {
     match (a, b) {
         (Shape::Sphere { radius: ra }, Shape::Sphere { radius: rb }) => {
-            let m = collide_spheres(pa, *ra, pb, *rb, alert);
-            Some((m.len > 0).then_some(m.points[0]))
+            Some(round_point(pa, *ra, pb, *rb, alert))
         }
         _ => None,
     }

@@ -2,7 +2,7 @@
 
 use super::{
     collide_polyhedra, collide_polyhedron_plane, collide_sphere_plane, collide_sphere_polyhedron,
-    collide_spheres, Manifold,
+    collide_spheres, Manifold, MANIFOLD_POINTS,
 };
 use xper_bodies::Shape;
 use xper_math::{Real, Rotation, Vector};
@@ -42,4 +42,58 @@ pub fn collide(
         (Polyhedron(p), Polyhedron(r)) => collide_polyhedra(p, pa, qa, r, pb, qb, alert),
         (Plane { .. }, Plane { .. }) => Manifold::EMPTY,
     }
+}
+
+/// At most [`MANIFOLD_POINTS`] of `count` contact candidates (point `point(k)`, gap `gap(k)`)
+/// on a face of normal `n`, spanning the largest area: all when few enough; else the deepest,
+/// the farthest from it in the face's plane, and the farthest on each side of the line
+/// through those two.
+pub(super) fn reduce(
+    count: usize,
+    point: impl Fn(usize) -> Vector,
+    gap: impl Fn(usize) -> Real,
+    n: &Vector,
+) -> Vec<usize> {
+    if count <= MANIFOLD_POINTS {
+        return (0..count).collect();
+    }
+    let deepest = (0..count)
+        .min_by(|&a, &b| gap(a).total_cmp(&gap(b)))
+        .unwrap_or(0);
+    // Offsets from the deepest point, in the face's plane.
+    let offset = |k: usize| {
+        let d = point(k) - point(deepest);
+        d - n * n.dot(&d)
+    };
+    let far = (0..count)
+        .max_by(|&a, &b| {
+            offset(a)
+                .norm_squared()
+                .total_cmp(&offset(b).norm_squared())
+        })
+        .unwrap_or(0);
+    let side = |k: usize| offset(far).cross(&offset(k)).dot(n);
+    let mut keep = vec![deepest, far];
+    let left = (0..count).max_by(|&a, &b| side(a).total_cmp(&side(b)));
+    let right = (0..count).min_by(|&a, &b| side(a).total_cmp(&side(b)));
+    for k in [left, right].into_iter().flatten() {
+        if !keep.contains(&k) {
+            keep.push(k);
+        }
+    }
+    keep
+}
+
+/// Whether `x`, on the plane of a convex face of `count` vertices (`vertex(k)`,
+/// counter-clockwise about its outward normal `n`), lies inside the face (borders included).
+pub(super) fn inside_face(
+    count: usize,
+    vertex: impl Fn(usize) -> Vector,
+    n: &Vector,
+    x: &Vector,
+) -> bool {
+    (0..count).all(|k| {
+        let a = vertex(k);
+        (vertex((k + 1) % count) - a).cross(&(x - a)).dot(n) >= 0.0
+    })
 }

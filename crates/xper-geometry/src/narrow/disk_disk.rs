@@ -1,41 +1,11 @@
 //! Disk against disk.
 
-use super::{ContactPoint, Manifold};
+use super::{round_point, Manifold};
 use xper_math::{Real, Vector};
 
 /// Contact between disk `a` (centre `ca`, radius `ra`) and disk `b`; normal from `a` to `b`.
 pub fn collide_disk_disk(ca: &Vector, ra: Real, cb: &Vector, rb: Real, alert: Real) -> Manifold {
-    disk_disk_point(ca, ra, cb, rb, alert).map_or(Manifold::EMPTY, Manifold::one)
-}
-
-/// The contact point of [`collide_disk_disk`], `None` beyond the alert distance.
-#[inline(always)]
-pub fn disk_disk_point(
-    ca: &Vector,
-    ra: Real,
-    cb: &Vector,
-    rb: Real,
-    alert: Real,
-) -> Option<ContactPoint> {
-    let d = cb - ca;
-    let dist2 = d.norm_squared();
-    let reach = ra + rb + alert;
-    if dist2 > reach * reach {
-        return None;
-    }
-    let dist = dist2.sqrt();
-    let normal = if dist > 0.0 {
-        d / dist
-    } else {
-        Vector::new(1.0, 0.0)
-    };
-    let gap = dist - ra - rb;
-    Some(ContactPoint {
-        point: ca + normal * (ra + gap / 2.0),
-        normal,
-        gap,
-        feature: 0,
-    })
+    round_point(ca, ra, cb, rb, alert).map_or(Manifold::EMPTY, Manifold::one)
 }
 
 #[cfg(test)]

@@ -33,7 +33,7 @@ use xper_math::{Real, Vector, DIM};
 #[cfg(feature = "dim3")]
 pub use dim3::*;
 #[cfg(feature = "dim2")]
-pub use disk_disk::{collide_disk_disk, disk_disk_point};
+pub use disk_disk::collide_disk_disk;
 #[cfg(feature = "dim2")]
 pub use disk_polygon::collide_disk_polygon;
 #[cfg(feature = "dim2")]
@@ -129,6 +129,35 @@ impl Manifold {
         }
         self
     }
+}
+
+/// The contact point of two round shapes (disks in 2D, spheres in 3D) of centres `ca`, `cb`
+/// and radii `ra`, `rb`: normal along the line of centres from `a` to `b` (the first axis
+/// when they coincide), gap the distance between the surfaces, point midway; `None` beyond
+/// the alert distance.
+#[inline(always)]
+pub fn round_point(
+    ca: &Vector,
+    ra: Real,
+    cb: &Vector,
+    rb: Real,
+    alert: Real,
+) -> Option<ContactPoint> {
+    let d = cb - ca;
+    let dist2 = d.norm_squared();
+    let reach = ra + rb + alert;
+    if dist2 > reach * reach {
+        return None;
+    }
+    let dist = dist2.sqrt();
+    let normal = if dist > 0.0 { d / dist } else { Vector::x() };
+    let gap = dist - ra - rb;
+    Some(ContactPoint {
+        point: ca + normal * (ra + gap / 2.0),
+        normal,
+        gap,
+        feature: 0,
+    })
 }
 
 /// The zero vector, as a constant.

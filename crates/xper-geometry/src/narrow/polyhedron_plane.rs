@@ -1,7 +1,8 @@
 //! Convex polyhedron against a planar wall: the vertices over the rectangle within the alert
 //! distance, at most four kept.
 
-use super::{ContactPoint, Manifold, MANIFOLD_POINTS};
+use super::dim3::reduce;
+use super::{ContactPoint, Manifold};
 use xper_bodies::ConvexPolyhedron;
 use xper_math::{Real, Rotation, Vector};
 
@@ -45,7 +46,12 @@ pub fn collide_polyhedron_plane(
     if highest < -alert {
         return Manifold::EMPTY;
     }
-    let keep = reduce(&candidates);
+    let keep = reduce(
+        candidates.len(),
+        |k| candidates[k].0,
+        |k| candidates[k].1,
+        &Vector::z(),
+    );
     let mut m = Manifold::EMPTY;
     for &k in &keep {
         let (local, gap, feature) = candidates[k];
@@ -58,39 +64,6 @@ pub fn collide_polyhedron_plane(
         });
     }
     m
-}
-
-/// The indices of at most [`MANIFOLD_POINTS`] candidates (wall-frame points, gaps): all when
-/// few enough; else the deepest, the farthest from it in the plane, and the farthest on each
-/// side of the line through those two.
-fn reduce(candidates: &[(Vector, Real, u32)]) -> Vec<usize> {
-    if candidates.len() <= MANIFOLD_POINTS {
-        return (0..candidates.len()).collect();
-    }
-    let flat = |k: usize| Vector::new(candidates[k].0.x, candidates[k].0.y, 0.0);
-    let deepest = (0..candidates.len())
-        .min_by(|&a, &b| candidates[a].1.total_cmp(&candidates[b].1))
-        .unwrap_or(0);
-    let far = (0..candidates.len())
-        .max_by(|&a, &b| {
-            let d = |k| (flat(k) - flat(deepest)).norm_squared();
-            d(a).total_cmp(&d(b))
-        })
-        .unwrap_or(0);
-    let side = |k: usize| {
-        (flat(far) - flat(deepest))
-            .cross(&(flat(k) - flat(deepest)))
-            .z
-    };
-    let left = (0..candidates.len()).max_by(|&a, &b| side(a).total_cmp(&side(b)));
-    let right = (0..candidates.len()).min_by(|&a, &b| side(a).total_cmp(&side(b)));
-    let mut keep = vec![deepest, far];
-    for k in [left, right].into_iter().flatten() {
-        if !keep.contains(&k) {
-            keep.push(k);
-        }
-    }
-    keep
 }
 
 #[cfg(test)]

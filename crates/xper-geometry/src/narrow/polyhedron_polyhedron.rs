@@ -13,7 +13,8 @@
 //! not flicker to edge contacts. The separation on these axes never exceeds the distance
 //! between the bodies, so no contact within the alert distance is missed.
 
-use super::{ContactPoint, Manifold, MANIFOLD_POINTS};
+use super::dim3::{inside_face, reduce};
+use super::{ContactPoint, Manifold};
 use xper_bodies::ConvexPolyhedron;
 use xper_math::{Real, Rotation, Vector};
 
@@ -213,7 +214,13 @@ fn face_contact(
         .filter(|&(_, gap)| gap <= alert)
         .collect();
     let mut m = Manifold::EMPTY;
-    for (k, &i) in reduce(&candidates, &normal).iter().enumerate() {
+    let keep = reduce(
+        candidates.len(),
+        |k| candidates[k].0,
+        |k| candidates[k].1,
+        &normal,
+    );
+    for (k, &i) in keep.iter().enumerate() {
         let (x, gap) = candidates[i];
         m.push(ContactPoint {
             point: x - normal * (gap / 2.0),
@@ -263,10 +270,7 @@ fn nearest_points(
                 let face = to.face(f);
                 let n = to.normals[f];
                 let x = v - n * n.dot(&(v - face[0]));
-                let m = face.len();
-                let inside = (0..m)
-                    .all(|e| (face[(e + 1) % m] - face[e]).cross(&(x - face[e])).dot(&n) >= 0.0);
-                if inside {
+                if inside_face(face.len(), |e| face[e], &n, &x) {
                     let feature = (3 << 28) | (1 << 27) | (k as u32 & 0x07ff_ffff);
                     if flip {
                         consider(x, *v, feature);
@@ -303,33 +307,6 @@ fn clip(poly: &[Vector], p: &Vector, out: &Vector) -> Vec<Vector> {
         }
     }
     kept
-}
-
-/// At most [`MANIFOLD_POINTS`] of the candidates: all when few enough; else the deepest, the
-/// farthest from it, and the farthest on each side of the line through those two (in the
-/// plane normal to `n`).
-fn reduce(candidates: &[(Vector, Real)], n: &Vector) -> Vec<usize> {
-    let count = candidates.len();
-    if count <= MANIFOLD_POINTS {
-        return (0..count).collect();
-    }
-    let deepest = (0..count)
-        .min_by(|&a, &b| candidates[a].1.total_cmp(&candidates[b].1))
-        .unwrap_or(0);
-    let p = |k: usize| candidates[k].0 - candidates[deepest].0;
-    let far = (0..count)
-        .max_by(|&a, &b| p(a).norm_squared().total_cmp(&p(b).norm_squared()))
-        .unwrap_or(0);
-    let side = |k: usize| p(far).cross(&p(k)).dot(n);
-    let mut keep = vec![deepest, far];
-    let left = (0..count).max_by(|&a, &b| side(a).total_cmp(&side(b)));
-    let right = (0..count).min_by(|&a, &b| side(a).total_cmp(&side(b)));
-    for k in [left, right].into_iter().flatten() {
-        if !keep.contains(&k) {
-            keep.push(k);
-        }
-    }
-    keep
 }
 
 /// The nearest points of segments `[p0, p1]` and `[q0, q1]` (clamped closest points of the

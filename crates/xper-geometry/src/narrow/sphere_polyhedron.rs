@@ -1,5 +1,6 @@
 //! Sphere against a convex polyhedron.
 
+use super::dim3::inside_face;
 use super::{ContactPoint, Manifold};
 use xper_bodies::ConvexPolyhedron;
 use xper_math::{Real, Rotation, Vector};
@@ -66,9 +67,7 @@ pub fn collide_sphere_polyhedron(
 fn closest_on_face(poly: &ConvexPolyhedron, face: &[u32], n: &Vector, c: &Vector) -> Vector {
     let v = |k: usize| poly.vertices[face[k % face.len()] as usize];
     let projected = c - n * n.dot(&(c - v(0)));
-    let inside =
-        (0..face.len()).all(|k| (v(k + 1) - v(k)).cross(&(projected - v(k))).dot(n) >= 0.0);
-    if inside {
+    if inside_face(face.len(), v, n, &projected) {
         return projected;
     }
     (0..face.len())

@@ -1,26 +1,12 @@
 //! Sphere against sphere.
 
-use super::{ContactPoint, Manifold};
+use super::{round_point, Manifold};
 use xper_math::{Real, Vector};
 
 /// Contact between sphere `a` (centre `ca`, radius `ra`) and sphere `b`; normal from `a` to
 /// `b`, gap the distance between the surfaces along the line of centres.
 pub fn collide_spheres(ca: &Vector, ra: Real, cb: &Vector, rb: Real, alert: Real) -> Manifold {
-    let d = cb - ca;
-    let reach = ra + rb + alert;
-    let dist2 = d.norm_squared();
-    if dist2 > reach * reach {
-        return Manifold::EMPTY;
-    }
-    let dist = dist2.sqrt();
-    let normal = if dist > 0.0 { d / dist } else { Vector::z() };
-    let gap = dist - ra - rb;
-    Manifold::one(ContactPoint {
-        point: ca + normal * (ra + gap / 2.0),
-        normal,
-        gap,
-        feature: 0,
-    })
+    round_point(ca, ra, cb, rb, alert).map_or(Manifold::EMPTY, Manifold::one)
 }
 
 #[cfg(test)]
