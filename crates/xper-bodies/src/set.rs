@@ -182,10 +182,24 @@ impl BodySet {
         self.mass[b].is_finite()
     }
 
+    /// The finite-mass bodies this process owns, whose energies it counts.
+    fn owned_dynamic(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.len()).filter(|&b| self.is_dynamic(b) && self.ownership[b] == Ownership::Owned)
+    }
+
+    /// Kinetic energy of the finite-mass bodies (2D: J per m; 3D: J): `m |v|^2 / 2` plus the
+    /// rotational part (2D: `I w^2 / 2`; 3D: `w . (R I R^T w) / 2`).
+    pub fn kinetic_energy(&self) -> Real {
+        self.owned_dynamic()
+            .map(|b| {
+                0.5 * self.mass[b] * self.velocity[b].norm_squared() + self.rotational_energy(b)
+            })
+            .sum()
+    }
+
     /// Gravitational potential energy of the finite-mass bodies (J per m), zero at the origin.
     pub fn potential_energy(&self, gravity: &Vector) -> Real {
-        (0..self.len())
-            .filter(|&b| self.is_dynamic(b) && self.ownership[b] == Ownership::Owned)
+        self.owned_dynamic()
             .map(|b| -self.mass[b] * gravity.dot(&self.position[b]))
             .sum()
     }

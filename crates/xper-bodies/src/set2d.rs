@@ -1,7 +1,7 @@
 //! The 2D parts of the body set: inverse masses, generalised velocities, kinetic energy and
 //! the bodies of 2D scenes (disks, polygons, wall segments).
 
-use super::{Body, BodySet, Ownership};
+use super::{Body, BodySet};
 use crate::{Drive, Shape};
 use xper_math::{Real, Vector, DOFS};
 
@@ -55,15 +55,10 @@ impl BodySet {
         self.angular_velocity[b] = v[2];
     }
 
-    /// Kinetic energy of the finite-mass bodies (J per m).
-    pub fn kinetic_energy(&self) -> Real {
-        (0..self.len())
-            .filter(|&b| self.is_dynamic(b) && self.ownership[b] == Ownership::Owned)
-            .map(|b| {
-                0.5 * self.mass[b] * self.velocity[b].norm_squared()
-                    + 0.5 * self.inertia[b] * self.angular_velocity[b].powi(2)
-            })
-            .sum()
+    /// `I w^2 / 2` of body `b` (J per m).
+    #[inline(always)]
+    pub(super) fn rotational_energy(&self, b: usize) -> Real {
+        0.5 * self.inertia[b] * self.angular_velocity[b].powi(2)
     }
 }
 

@@ -2,7 +2,7 @@
 //! generalised velocities, kinetic energy and the bodies of 3D scenes (spheres, polyhedra,
 //! planar walls).
 
-use super::{Body, BodySet, Ownership};
+use super::{Body, BodySet};
 use crate::{ConvexPolyhedron, Drive, Shape};
 use xper_math::{AngMatrix, AngVector, Real, Rotation, Vector, DOFS};
 
@@ -63,11 +63,14 @@ impl BodySet {
     }
 
     /// Whether contacts can move body `b`: some degree of freedom is free and of finite,
-    /// positive mass.
+    /// positive mass (some [`BodySet::inv_mass`] is not 0), without computing the inverse.
     #[inline]
     pub fn is_movable(&self, b: usize) -> bool {
-        let inv = self.inv_mass(b);
-        inv.linear.iter().any(|&w| w != 0.0) || inv.angular.iter().any(|&w| w != 0.0)
+        let free = |k: usize| self.imposed[b] & 1 << k == 0;
+        let (m, inertia) = (self.mass[b], &self.inertia[b]);
+        let finite = m.is_finite() && m > 0.0;
+        let turns = inertia.iter().all(|x| x.is_finite()) && inertia.trace() > 0.0;
+        (free(0) || free(1) || free(2)) && finite || (free(3) || free(4) || free(5)) && turns
     }
 
     /// Generalised velocity `(vx, vy, vz, wx, wy, wz)` of a body.
@@ -84,16 +87,11 @@ impl BodySet {
         self.angular_velocity[b] = AngVector::new(v[3], v[4], v[5]);
     }
 
-    /// Kinetic energy of the finite-mass bodies (J): `m |v|^2 / 2 + w . (R I R^T w) / 2`.
-    pub fn kinetic_energy(&self) -> Real {
-        (0..self.len())
-            .filter(|&b| self.is_dynamic(b) && self.ownership[b] == Ownership::Owned)
-            .map(|b| {
-                let body_w = self.rotation[b].inverse() * self.angular_velocity[b];
-                0.5 * self.mass[b] * self.velocity[b].norm_squared()
-                    + 0.5 * body_w.dot(&(self.inertia[b] * body_w))
-            })
-            .sum()
+    /// `w . (R I R^T w) / 2` of body `b` (J), with `I` its inertia in its own frame.
+    #[inline]
+    pub(super) fn rotational_energy(&self, b: usize) -> Real {
+        let body_w = self.rotation[b].inverse() * self.angular_velocity[b];
+        0.5 * body_w.dot(&(self.inertia[b] * body_w))
     }
 }
 
