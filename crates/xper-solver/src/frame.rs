@@ -99,16 +99,6 @@ pub fn dot(a: &[f64], b: &[f64]) -> f64 {
     s
 }
 
-/// `a - b`, component by component.
-#[inline(always)]
-pub fn sub<V: Copy + AsRef<[f64]> + AsMut<[f64]>>(a: V, b: V) -> V {
-    let mut d = a;
-    for (d, b) in d.as_mut().iter_mut().zip(b.as_ref()) {
-        *d -= b;
-    }
-    d
-}
-
 /// Whether every component is zero.
 #[inline(always)]
 pub fn is_zero<V: AsRef<[f64]>>(v: &V) -> bool {
@@ -330,6 +320,9 @@ mod tests {
         let p = Frame3::project_on_cone(x, 0.5);
         let pt = (p[1] * p[1] + p[2] * p[2]).sqrt();
         assert!((pt - 0.5 * p[0]).abs() < 1e-14, "{p:?} on the boundary");
-        assert!(dot(&sub(x, p), &p).abs() < 1e-14, "{p:?} orthogonal");
+        assert!(
+            Frame3::dot(&Frame3::sub(x, p), &p).abs() < 1e-14,
+            "{p:?} orthogonal"
+        );
     }
 }

@@ -45,7 +45,7 @@ pub use contact_solve::{ContactSolve, OneProcessSolve};
 pub use error::{
     natural_map_error, natural_map_error_of, project_on_cone, ConvergenceNorms, NormAccumulator,
 };
-pub use frame::{dot, is_zero, sub, ContactFrame, Frame2, Frame3, LocalVector};
+pub use frame::{dot, is_zero, ContactFrame, Frame2, Frame3, LocalVector};
 pub use lemke::{lemke, LemkeParams};
 pub use local::{solve_one_contact, solve_one_contact_factored, LocalFactors};
 pub use newton::{newton, NewtonParams, RhoStrategy};
