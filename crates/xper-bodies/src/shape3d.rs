@@ -233,11 +233,17 @@ impl Shape {
             Shape::Polyhedron(p) => around(&mut p.vertices.iter().copied()),
             Shape::Plane {
                 half_extents: [a, b],
-            } => around(
-                &mut [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
-                    .into_iter()
-                    .map(|(s, t)| Vector::new(s * a, t * b, 0.0)),
-            ),
+            } => {
+                // Per world axis k, |R_k0| a + |R_k1| b, with an axis the rectangle does not
+                // span contributing 0 even for an infinite half-extent (a half-space).
+                let r = rotation.to_rotation_matrix();
+                let spread = |c: Real, e: Real| if c == 0.0 { 0.0 } else { c.abs() * e };
+                let half = Vector::from_fn(|k, _| spread(r[(k, 0)], *a) + spread(r[(k, 1)], *b));
+                Aabb {
+                    min: position - half,
+                    max: position + half,
+                }
+            }
         }
     }
 

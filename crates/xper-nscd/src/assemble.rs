@@ -1,7 +1,7 @@
-//! The velocity problem of a step as an explicit [`FrictionProblem`] (2D, local form).
+//! The velocity problem of a step as an explicit [`FrictionProblem`] (local form).
 //!
-//! With `G_a^b` the `3 x 2` map from the local impulse `(R_N, R_T)` of contact `a` to the
-//! generalised impulse `(P_x, P_y, torque)` it exerts on body `b` (see
+//! With `G_a^b` the `DOFS x DIM` map from the local impulse `(R_N, R_T)` of contact `a` to the
+//! generalised impulse (force, torque) it exerts on body `b` (see
 //! [`RigidContactOperator::generalized_impulses`]; `-` on the first body, `+` on the second),
 //!
 //! ```text
@@ -9,29 +9,30 @@
 //! q_a  = U_a(v_free) + (s_a, 0)
 //! ```
 //!
-//! `M_c^-1` is the diagonal of the body's inverse masses per degree of freedom: a dof with
-//! inverse mass 0 (infinite mass or imposed velocity) contributes nothing, so walls do not
-//! couple the contacts they carry. `q_a` is the local velocity of the operator in its state
+//! `M_c^-1` is the body's inverse mass (2D: diagonal per degree of freedom; 3D: with the world
+//! inverse inertia): a dof with inverse mass 0 (infinite mass or imposed velocity)
+//! contributes nothing, so walls do not couple the contacts they carry. `q_a` is the local velocity of the operator in its state
 //! of zero impulses (the free velocities), with the normal shift `s_a` of
 //! [`crate::normal_shift`] added to its normal component, so that the problem is
 //! `u = W r + q`, Signorini-Coulomb on `(u, r)`: exactly what NLGS solves on the operator.
 
+use crate::dimension::inverse_mass_product;
 use crate::operator::{ContactRow, RigidContactOperator};
-use xper_math::{Real, DOFS};
+use xper_math::{Real, DIM, DOFS};
 use xper_solver::{ContactOperator, CsrMatrix, FrictionProblem, ProblemError};
 
-/// `G` of a contact on each of its bodies, row-major `[dof][normal, tangent]`.
-type LocalMap = [[Real; 2]; DOFS];
+/// `G` of a contact on each of its bodies, column by column: the generalised impulse of a
+/// unit local impulse along each axis of the contact frame.
+type LocalMap = [[Real; DOFS]; DIM];
 
 /// The maps `(G_i, G_j)` of a row, read off [`RigidContactOperator::generalized_impulses`]
-/// with unit normal and tangent impulses.
+/// with unit impulses along the normal and the tangents.
 fn maps(row: &ContactRow) -> (LocalMap, LocalMap) {
-    let (ni, nj) = RigidContactOperator::generalized_impulses(row, [1.0, 0.0]);
-    let (ti, tj) = RigidContactOperator::generalized_impulses(row, [0.0, 1.0]);
-    (
-        std::array::from_fn(|d| [ni[d], ti[d]]),
-        std::array::from_fn(|d| [nj[d], tj[d]]),
-    )
+    let columns: [_; DIM] = std::array::from_fn(|k| {
+        let unit = std::array::from_fn(|l| if l == k { 1.0 } else { 0.0 });
+        RigidContactOperator::generalized_impulses(row, unit)
+    });
+    (columns.map(|(gi, _)| gi), columns.map(|(_, gj)| gj))
 }
 
 /// Assembles the problem of the contacts of `op` (its rows, in order) with friction
@@ -67,7 +68,7 @@ pub fn assemble_problem(
             row.bodies
         )));
     }
-    let mobile = |b: usize| op.bodies[b].inv_mass.iter().any(|&m| m != 0.0);
+    let mobile = |b: usize| op.bodies[b].is_movable();
 
     // Contacts incident to each mobile body (counting sort, contacts in increasing order).
     let mut start = vec![0usize; nb + 1];
@@ -81,7 +82,7 @@ pub fn assemble_problem(
     for b in 0..nb {
         start[b + 1] += start[b];
     }
-    let mut incident: Vec<(usize, LocalMap)> = vec![(0, [[0.0; 2]; DOFS]); start[nb]];
+    let mut incident: Vec<(usize, LocalMap)> = vec![(0, [[0.0; DOFS]; DIM]); start[nb]];
     let mut fill = start.clone();
     for (a, row) in op.rows.iter().enumerate() {
         let (gi, gj) = maps(row);
@@ -93,30 +94,33 @@ pub fn assemble_problem(
         }
     }
 
-    // One 2 x 2 block per ordered pair of contacts on a body.
+    // One DIM x DIM block per ordered pair of contacts on a body.
     let blocks: usize = (0..nb).map(|b| (start[b + 1] - start[b]).pow(2)).sum();
-    let mut entries: Vec<(usize, usize, f64)> = Vec::with_capacity(4 * blocks);
+    let mut entries: Vec<(usize, usize, f64)> = Vec::with_capacity(DIM * DIM * blocks);
     for b in 0..nb {
-        let m = op.bodies[b].inv_mass;
+        let m = &op.bodies[b].inv_mass;
         let on_b = &incident[start[b]..start[b + 1]];
         for (a, ga) in on_b {
             for (c, gc) in on_b {
-                for (k, l) in [(0, 0), (0, 1), (1, 0), (1, 1)] {
-                    // m_d (G_a[d][k] G_c[d][l]): the product commutes, so W is symmetric.
-                    let v: Real = (0..DOFS).map(|d| m[d] * (ga[d][k] * gc[d][l])).sum();
-                    entries.push((2 * a + k, 2 * c + l, v));
+                for (k, gak) in ga.iter().enumerate() {
+                    for (l, gcl) in gc.iter().enumerate() {
+                        // The same bits for (a, k, c, l) and (c, l, a, k): W is symmetric.
+                        let v = inverse_mass_product(m, gak, gcl);
+                        entries.push((DIM * a + k, DIM * c + l, v));
+                    }
                 }
             }
         }
     }
-    let w = CsrMatrix::from_triplets(2 * n, 2 * n, &entries)?;
-    let mut q = Vec::with_capacity(2 * n);
+    let w = CsrMatrix::from_triplets(DIM * n, DIM * n, &entries)?;
+    let mut q = Vec::with_capacity(DIM * n);
     for (a, s) in normal_shift.iter().enumerate() {
-        let u = op.local_velocity(a);
-        q.extend_from_slice(&[u[0] + s, u[1]]);
+        let mut u = op.local_velocity(a);
+        u[0] += s;
+        q.extend_from_slice(&u);
     }
     Ok(FrictionProblem {
-        dim: 2,
+        dim: DIM,
         w,
         q,
         mu: mu.to_vec(),

@@ -1,12 +1,13 @@
 //! The rigid-body operator in a domain decomposition ([`xper_parallel::nscdd`]): each body
-//! carries its velocity `(vx, vy, w)` and a diagonal inverse mass.
+//! carries its generalised velocity and its inverse mass.
 
 use crate::operator::RigidContactOperator;
+use xper_bodies::InverseMass;
 use xper_parallel::{permuted, BodyVelocities, SplitMasses};
-use xper_solver::Block2;
+use xper_solver::BlockOf;
 
 impl BodyVelocities for RigidContactOperator {
-    const DOFS: usize = 3;
+    const DOFS: usize = xper_math::DOFS;
     fn body_count(&self) -> usize {
         self.bodies.len()
     }
@@ -25,19 +26,17 @@ impl BodyVelocities for RigidContactOperator {
 }
 
 impl SplitMasses for RigidContactOperator {
-    type InverseMass = [f64; 3];
-    fn inverse_mass(&self, b: usize) -> [f64; 3] {
+    type InverseMass = InverseMass;
+    fn inverse_mass(&self, b: usize) -> InverseMass {
         self.bodies[b].inv_mass
     }
-    fn set_inverse_mass(&mut self, b: usize, inverse_mass: [f64; 3]) {
+    fn set_inverse_mass(&mut self, b: usize, inverse_mass: InverseMass) {
         self.bodies[b].inv_mass = inverse_mass;
     }
     fn scale_inverse_mass(&mut self, b: usize, factor: f64) {
-        for w in &mut self.bodies[b].inv_mass {
-            *w *= factor;
-        }
+        self.bodies[b].scale_inverse_mass(factor);
     }
-    fn set_block(&mut self, a: usize, block: Block2) {
+    fn set_block(&mut self, a: usize, block: BlockOf<Self>) {
         self.rows[a].set_full_block(block);
     }
     fn refresh_block(&mut self, a: usize) {

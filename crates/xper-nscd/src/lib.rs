@@ -33,6 +33,12 @@
 
 mod assemble;
 mod contact_solve;
+#[cfg(feature = "dim2")]
+#[path = "body2d.rs"]
+mod dimension;
+#[cfg(feature = "dim3")]
+#[path = "body3d.rs"]
+mod dimension;
 mod domain;
 mod operator;
 mod report;
@@ -41,6 +47,7 @@ mod step;
 mod world;
 
 pub use assemble::assemble_problem;
+pub use dimension::Local;
 pub use operator::{ContactRow, RigidContactOperator, RigidProblem, SolverBody};
 pub use select::{contact_owner_body, is_movable, normal_shift, predicted_gap};
 pub use step::{energy_blown_up, ContactSolve, MoreauJean, StageTimes, StepError, StepReport};

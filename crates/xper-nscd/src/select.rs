@@ -1,16 +1,17 @@
 //! Which contacts a step solves: the normal shift of the Signorini condition per interaction
 //! law, and, in a distributed run, the process that owns a contact.
 
+use crate::operator::SolverBody;
 use crate::world::Detection;
 use xper_bodies::BodySet;
-use xper_math::{Real, DOFS};
+use xper_math::Real;
 
-/// Whether a body with these inverse masses per degree of freedom can be moved by contacts
-/// (at least one free degree of freedom); immovable bodies (walls, fully driven bodies) are
-/// held by every process of a distributed run.
+/// Whether a body in this working state can be moved by contacts (at least one free degree
+/// of freedom); immovable bodies (walls, fully driven bodies) are held by every process of a
+/// distributed run.
 #[inline]
-pub fn is_movable(inv_mass: &[Real; DOFS]) -> bool {
-    inv_mass.iter().any(|&w| w != 0.0)
+pub fn is_movable(body: &SolverBody) -> bool {
+    body.is_movable()
 }
 
 /// The body whose owner owns contact `(i, j)`: the first, or the second when the first is

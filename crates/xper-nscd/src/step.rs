@@ -5,6 +5,7 @@
 use crate::assemble::assemble_problem;
 use crate::contact_solve::reborrow;
 pub use crate::contact_solve::ContactSolve;
+use crate::dimension::{advance, imposed_velocity_work, Local};
 use crate::operator::{ContactRow, RigidContactOperator, RigidProblem};
 pub use crate::report::{energy_blown_up, StageTimes, StepError, StepReport};
 use crate::select::{contact_owner_body, normal_shift, predicted_gap};
@@ -14,7 +15,7 @@ use xper_bodies::{Configuration, Ownership};
 use xper_geometry::Detector;
 use xper_laws::InteractionLaw;
 use xper_math::buffer::{renew, renew_for};
-use xper_math::{Real, DOFS};
+use xper_math::{Real, DIM, DOFS};
 use xper_solver::{nlgs, solve, ContactOperator, FrictionProblem, ProblemError, SolveError};
 
 mod project;
@@ -47,7 +48,7 @@ pub struct MoreauJean {
     active: Vec<u32>,
     mu: Vec<Real>,
     shift: Vec<Real>,
-    impulses: Vec<[Real; 2]>,
+    impulses: Vec<Local>,
     /// Forces applied to the bodies during each step besides gravity and drives (e.g. the
     /// fluid's), one generalised force per body; empty when there are none.
     external_forces: Vec<[Real; DOFS]>,
@@ -180,12 +181,16 @@ impl MoreauJean {
             let (r, row) = (self.impulses[k], &self.op.rows[k]);
             let u0 = self.op.local_velocity_at(k, &world.bodies);
             let u1 = self.op.local_velocity(k);
-            dissipated -= r[0] * (u0[0] + u1[0]) / 2.0 + r[1] * (u0[1] + u1[1]) / 2.0;
+            let mut power = r[0] * (u0[0] + u1[0]) / 2.0;
+            for k in 1..DIM {
+                power += r[k] * (u0[k] + u1[k]) / 2.0;
+            }
+            dissipated -= power;
             let (gi, gj) = RigidContactOperator::generalized_impulses(row, r);
             for (b, g) in [(row.bodies[0] as usize, gi), (row.bodies[1] as usize, gj)] {
                 let (body, v0) = (&self.op.bodies[b], world.bodies.generalized_velocity(b));
                 for (d, &gd) in g.iter().enumerate() {
-                    if body.inv_mass[d] == 0.0 {
+                    if !body.is_free(d) {
                         imposed_work += gd * (v0[d] + body.velocity[d]) / 2.0;
                     }
                 }
@@ -203,7 +208,7 @@ impl MoreauJean {
         self.update(world)?;
         if self.active_is_subset {
             let impulses = &mut world.contacts.impulses;
-            impulses.fill([0.0, 0.0]);
+            impulses.fill([0.0; DIM]);
             for (&a, &r) in self.active.iter().zip(&self.impulses) {
                 impulses[a as usize] = r;
             }
@@ -232,7 +237,7 @@ impl MoreauJean {
             world.contacts.impulses = if self.impulses.len() == n {
                 std::mem::take(&mut self.impulses)
             } else {
-                vec![[0.0, 0.0]; n]
+                vec![[0.0; DIM]; n]
             };
         }
     }
@@ -445,7 +450,7 @@ impl MoreauJean {
         let warm: Vec<Real> = self.impulses.iter().flatten().copied().collect();
         let solved = solve(&problem, &params, Some(&warm)).map_err(StepError::Solver)?;
         for (a, r) in self.impulses.iter_mut().enumerate() {
-            *r = [solved.r[2 * a], solved.r[2 * a + 1]];
+            *r = std::array::from_fn(|k| solved.r[DIM * a + k]);
             self.op.apply_impulse(a, *r);
         }
         report.iterations = solved.iterations;
@@ -459,14 +464,11 @@ impl MoreauJean {
         let (h, theta, g) = (self.h, world.params.theta, world.params.gravity);
         for (b, body) in self.op.bodies.iter_mut().enumerate() {
             if world.bodies.is_dynamic(b) {
-                body.velocity[0] += h * g.x * (body.inv_mass[0] > 0.0) as u8 as Real;
-                body.velocity[1] += h * g.y * (body.inv_mass[1] > 0.0) as u8 as Real;
+                body.add_gravity(h, &g);
             }
         }
         for (body, force) in self.op.bodies.iter_mut().zip(&self.external_forces) {
-            for ((v, m), f) in body.velocity.iter_mut().zip(body.inv_mass).zip(force) {
-                *v += h * m * f;
-            }
+            body.add_force(h, force);
         }
         for (handle, drives) in &world.bodies.driven {
             let b = handle.index();
@@ -478,7 +480,7 @@ impl MoreauJean {
                     }
                     xper_bodies::Drive::Force(f) => {
                         let force = (1.0 - theta) * f.eval(t_begin) + theta * f.eval(t_end);
-                        self.op.bodies[b].velocity[d] += h * self.op.bodies[b].inv_mass[d] * force;
+                        self.op.bodies[b].add_dof_force(d, h, force);
                     }
                 }
             }
@@ -500,25 +502,17 @@ impl MoreauJean {
                 world.bodies.generalized_velocity(b),
                 self.op.bodies[b].velocity,
             );
-            let masses = [
-                world.bodies.mass[b],
-                world.bodies.mass[b],
-                world.bodies.inertia[b],
-            ];
             for (d, drive) in drives.iter().enumerate() {
-                let mean = (v0[d] + v1[d]) / 2.0;
                 match drive {
                     xper_bodies::Drive::Free => {}
                     xper_bodies::Drive::Force(f) => {
+                        let mean = (v0[d] + v1[d]) / 2.0;
                         work +=
                             h * ((1.0 - theta) * f.eval(t_begin) + theta * f.eval(t_end)) * mean;
                     }
-                    xper_bodies::Drive::Velocity(_) if masses[d].is_finite() => {
-                        let gravity = if d < 2 { g[d] } else { 0.0 };
-                        work += masses[d] * (v1[d] * v1[d] - v0[d] * v0[d]) / 2.0
-                            - h * masses[d] * gravity * mean;
+                    xper_bodies::Drive::Velocity(_) => {
+                        work += imposed_velocity_work(&world.bodies, b, d, [&v0, &v1], h, &g);
                     }
-                    xper_bodies::Drive::Velocity(_) => {}
                 }
             }
         }
@@ -531,7 +525,7 @@ impl MoreauJean {
                 self.op.bodies[b].velocity,
             );
             for d in 0..DOFS {
-                if self.op.bodies[b].inv_mass[d] > 0.0 {
+                if self.op.bodies[b].is_free(d) {
                     work += h * force[d] * (v0[d] + v1[d]) / 2.0;
                 }
             }
@@ -539,18 +533,14 @@ impl MoreauJean {
         work
     }
 
-    /// `q_i+1 = q_i + h ((1 - theta) v_i + theta v_i+1)`.
+    /// `q_i+1 = q_i + h ((1 - theta) v_i + theta v_i+1)` and `v_i+1` (in 3D with the
+    /// rotation update of the gyroscopic term, see `body3d.rs`).
     fn update(&mut self, world: &mut World) -> Result<(), StepError> {
         let (h, theta) = (self.h, world.params.theta);
         let bodies = &mut world.bodies;
         for b in 0..bodies.len() {
-            let (v0, v1) = (bodies.generalized_velocity(b), self.op.bodies[b].velocity);
-            let dq: [Real; DOFS] =
-                std::array::from_fn(|d| h * ((1.0 - theta) * v0[d] + theta * v1[d]));
-            bodies.position[b].x += dq[0];
-            bodies.position[b].y += dq[1];
-            bodies.rotation[b] += dq[2];
-            bodies.set_generalized_velocity(b, v1);
+            let v1 = self.op.bodies[b].velocity;
+            advance(bodies, b, v1, h, theta);
             if !(v1.iter().all(|x| x.is_finite())
                 && bodies.position[b].iter().all(|x| x.is_finite()))
             {

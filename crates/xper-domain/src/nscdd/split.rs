@@ -27,7 +27,7 @@ impl LocalProblem {
     /// Whether a body's velocity can change (some inverse mass is non-zero): only those are
     /// shared and exchanged.
     pub fn movable(body: &SolverBody) -> bool {
-        xper_nscd::is_movable(&body.inv_mass)
+        xper_nscd::is_movable(body)
     }
 
     /// The operator of this process: masses of shared bodies split by `interface`, blocks

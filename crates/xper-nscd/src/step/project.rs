@@ -4,12 +4,13 @@
 
 use super::MoreauJean;
 use crate::contact_solve::{reborrow, ContactSolve};
+use crate::dimension::{displace, gravity_power};
 use crate::operator::RigidContactOperator;
 use crate::report::StepError;
 use crate::world::{Detection, World};
 use xper_bodies::Ownership;
 use xper_math::buffer::refill;
-use xper_math::{Real, DOFS};
+use xper_math::{Real, DIM, DOFS};
 use xper_solver::{nlgs, ContactOperator, NlgsParams};
 
 impl MoreauJean {
@@ -64,7 +65,7 @@ impl MoreauJean {
             body.velocity = [0.0; DOFS];
         }
         refill(&mut self.mu, std::iter::repeat_n(0.0, n));
-        refill(&mut self.impulses, std::iter::repeat_n([0.0, 0.0], n));
+        refill(&mut self.impulses, std::iter::repeat_n([0.0; DIM], n));
         let params = NlgsParams {
             acceleration: xper_solver::Acceleration::None,
             ..world.params.nlgs
@@ -80,11 +81,9 @@ impl MoreauJean {
         for (b, body) in self.op.bodies.iter().enumerate() {
             if bodies.is_dynamic(b) && bodies.ownership[b] == Ownership::Owned {
                 world.energy.projection_work -=
-                    bodies.mass[b] * (gravity.x * body.velocity[0] + gravity.y * body.velocity[1]);
+                    bodies.mass[b] * gravity_power(&gravity, &body.velocity);
             }
-            bodies.position[b].x += body.velocity[0];
-            bodies.position[b].y += body.velocity[1];
-            bodies.rotation[b] += body.velocity[2];
+            displace(bodies, b, &body.velocity);
         }
         self.exchange_rows();
         Ok((info.iterations, deepest))
