@@ -1,5 +1,8 @@
 //! Worlds for the 3D tests: bodies, one law, tight NLGS.
 
+// Each test binary uses a part of these helpers.
+#![allow(dead_code)]
+
 use xper_bodies::{Body, BodySet};
 use xper_laws::{InteractionLaw, LawTable, SignoriniCoulomb};
 use xper_math::{Real, Vector};
