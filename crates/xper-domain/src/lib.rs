@@ -25,9 +25,7 @@ pub mod fixtures;
 pub mod fluid;
 pub mod fracture;
 pub mod halo;
-pub mod nscdd;
-pub mod partition;
-pub mod rigid;
+pub use xper_decomposition::{nscdd, partition, rigid};
 
 pub use fluid::DistributedFluid;
 pub use fracture::DistributedFracture;

@@ -192,7 +192,8 @@ fn assemble(decisions: &HashMap<(u32, usize), Decision>, first_part: u32, parts:
     }
 }
 
-#[cfg(test)]
+// Tests of the 2D build (their scenes are planar).
+#[cfg(all(test, feature = "dim2"))]
 mod tests {
     use super::*;
     use crate::run_on_threads;

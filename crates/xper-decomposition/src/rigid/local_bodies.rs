@@ -110,7 +110,8 @@ fn describe(all: &BodySet, held: &[(u32, Ownership)], driven_of: &[u32], local: 
     }
 }
 
-#[cfg(test)]
+// Tests of the 2D build (their scenes are planar).
+#[cfg(all(test, feature = "dim2"))]
 mod tests {
     use super::*;
     use xper_bodies::Body;

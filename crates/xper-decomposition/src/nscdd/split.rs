@@ -95,9 +95,7 @@ pub fn split_problem(whole: &RigidProblem, owners: &[u32], rank: u32) -> LocalPr
 fn split_masses(interface: &InterfaceMap, bodies: &mut [SolverBody]) {
     for (body, &m) in bodies.iter_mut().zip(&interface.multiplicity) {
         if m > 1 {
-            for w in &mut body.inv_mass {
-                *w *= m as f64;
-            }
+            body.scale_inverse_mass(m as f64);
         }
     }
 }

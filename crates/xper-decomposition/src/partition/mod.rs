@@ -202,7 +202,8 @@ fn collect_parts_near(node: &Node, x: &Vector, distance: Real, parts: &mut Vec<u
     }
 }
 
-#[cfg(test)]
+// Tests of the 2D build (their scenes are planar).
+#[cfg(all(test, feature = "dim2"))]
 mod tests {
     use super::*;
 

@@ -10,7 +10,7 @@ use crate::comm::Communicator;
 use crate::nscdd::interface::InterfaceMap;
 use crate::nscdd::solve_with_split_masses;
 use xper_math::Real;
-use xper_nscd::RigidContactOperator;
+use xper_nscd::{Local, RigidContactOperator};
 use xper_solver::{CohesiveTerm, ContactSolve, NlgsParams, SolveError, SolveInfo};
 
 /// [`ContactSolve`] by NSCDD over a communicator, for a process whose local bodies (those of
@@ -53,7 +53,7 @@ impl<C: Communicator + ?Sized> ContactSolve<RigidContactOperator> for SharedNlgs
         mu: &[Real],
         shift: &[Real],
         cohesion: &[CohesiveTerm],
-        impulses: &mut [[Real; 2]],
+        impulses: &mut [Local],
         params: &NlgsParams,
     ) -> Result<SolveInfo, SolveError> {
         let me = self.comm.rank() as u32;
