@@ -12,13 +12,8 @@ pub mod reading;
 pub mod solvers;
 mod stats;
 
-use stats::median;
-
-use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
-use xper_geometry::{ContactSet, Detector};
-use xper_nscd::MoreauJean;
-use xper_simulation::rigid::build::world_from_scene;
+pub use xper_simulation::rigid::bench::BenchResult;
 use xper_simulation::RunError;
 
 /// Arguments of `xper bench`.
@@ -67,51 +62,6 @@ pub struct BenchArgs {
     single: bool,
 }
 
-/// Figures of one benchmark run.
-#[derive(Serialize, Deserialize)]
-pub struct BenchResult {
-    scene: String,
-    bodies: usize,
-    steps: u64,
-    machine: String,
-    median_step_ms: f64,
-    median_settled_step_ms: f64,
-    median_sweeps: f64,
-    median_settled_sweeps: f64,
-    median_contacts: f64,
-    median_settled_contacts: f64,
-    median_ns_per_contact_update: f64,
-    median_detect_ms: f64,
-    median_detect_ns_per_body: f64,
-    /// Mean detection time per step and body (ns), builds of the candidate list included
-    /// (absent from results of versions before the candidate list).
-    #[serde(default)]
-    mean_detect_ns_per_body: Option<f64>,
-    /// Steps whose detection rebuilt the candidate list (ran the broad phase).
-    #[serde(default)]
-    candidate_list_builds: Option<u64>,
-    non_converged_steps: usize,
-    peak_memory_bytes: u64,
-    peak_memory_bytes_per_body: f64,
-    /// Largest heap held at once over the run, counted by the allocator (the run's data
-    /// without the executable, its libraries or memory the C allocator keeps); absent from
-    /// results of earlier versions.
-    #[serde(default)]
-    peak_heap_bytes: Option<u64>,
-    overlap_median_m: f64,
-    overlap_p99_m: f64,
-    overlap_max_m: f64,
-    overlapping_contacts: usize,
-    wall_time_s: f64,
-}
-
-fn percentile(sorted: &[f64], p: f64) -> f64 {
-    if sorted.is_empty() {
-        return 0.0;
-    }
-    sorted[((sorted.len() - 1) as f64 * p).round() as usize]
-}
-
 fn machine() -> String {
     let cpu = std::fs::read_to_string("/proc/cpuinfo")
         .ok()
@@ -123,84 +73,6 @@ fn machine() -> String {
         .unwrap_or_else(|| "unknown CPU".into());
     let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
     format!("{cpu}, {cores} cores, one thread used")
-}
-
-/// Runs one scene, loaded from `path`, in this process.
-fn bench_one(
-    mut scene: xper_scene::Scene,
-    path: &Path,
-    steps: Option<u64>,
-    settled: usize,
-) -> Result<BenchResult, RunError> {
-    let mut world = world_from_scene(&scene);
-    xper_simulation::rigid::build::release_body_descriptions(&mut scene);
-    let steps = steps.map_or(scene.steps, |s| s.min(scene.steps));
-    let mut stepper = MoreauJean::new();
-    // Sized for the run: grown by doubling, these figures would weigh on the heap peak.
-    let series = || Vec::with_capacity(steps as usize);
-    let (mut total, mut sweeps, mut contacts, mut ns_update, mut detect) =
-        (series(), series(), series(), series(), series());
-    let mut non_converged = 0;
-    let started = std::time::Instant::now();
-    for _ in 0..steps {
-        let r = stepper
-            .step(&mut world)
-            .map_err(|e| RunError::Runtime(format!("{}: {e}", path.display())))?;
-        total.push(r.times.total * 1e3);
-        sweeps.push(r.iterations as f64);
-        contacts.push(r.contacts as f64);
-        detect.push(r.times.detect * 1e3);
-        if r.iterations > 0 && r.active > 0 {
-            ns_update.push(r.times.solve * 1e9 / (r.active as f64 * r.iterations as f64));
-        }
-        non_converged += (!r.converged) as usize;
-    }
-    let wall_time_s = started.elapsed().as_secs_f64();
-    // Read before the overlap measurement below, whose detector is the benchmark's, not the run's.
-    let peak = xper_io::peak_memory_bytes().unwrap_or(0);
-    let peak_heap = xper_io::peak_heap_bytes();
-    let mut final_contacts = ContactSet::default();
-    Detector::new().detect(
-        &world.bodies,
-        world.params.alert_distance,
-        |a, b| world.laws.between(a, b),
-        &mut final_contacts,
-    );
-    let mut overlaps: Vec<f64> = (final_contacts.gaps.iter())
-        .filter(|&&gap| gap < 0.0)
-        .map(|&gap| -gap)
-        .collect();
-    overlaps.sort_by(f64::total_cmp);
-    let tail = |v: &[f64]| v[v.len().saturating_sub(settled)..].to_vec();
-    let bodies = world.bodies.len();
-    Ok(BenchResult {
-        scene: scene.name.clone(),
-        bodies,
-        steps,
-        machine: machine(),
-        median_step_ms: median(total.clone()),
-        median_settled_step_ms: median(tail(&total)),
-        median_sweeps: median(sweeps.clone()),
-        median_settled_sweeps: median(tail(&sweeps)),
-        median_contacts: median(contacts.clone()),
-        median_settled_contacts: median(tail(&contacts)),
-        median_ns_per_contact_update: median(ns_update),
-        median_detect_ms: median(detect.clone()),
-        mean_detect_ns_per_body: Some(
-            detect.iter().sum::<f64>() / detect.len().max(1) as f64 * 1e6 / bodies as f64,
-        ),
-        median_detect_ns_per_body: median(detect) * 1e6 / bodies as f64,
-        candidate_list_builds: Some(stepper.detector_stats().builds),
-        non_converged_steps: non_converged,
-        peak_memory_bytes: peak,
-        peak_memory_bytes_per_body: peak as f64 / bodies as f64,
-        peak_heap_bytes: peak_heap,
-        overlap_median_m: percentile(&overlaps, 0.5),
-        overlap_p99_m: percentile(&overlaps, 0.99),
-        overlap_max_m: overlaps.last().copied().unwrap_or(0.0),
-        overlapping_contacts: overlaps.len(),
-        wall_time_s,
-    })
 }
 
 /// `xper bench`.
@@ -259,8 +131,17 @@ pub fn bench(args: &BenchArgs) -> Result<(), RunError> {
     if args.single {
         let any = xper_scene::load_any_scene(&scenes[0])
             .map_err(|e| RunError::BadInput(e.to_string()))?;
-        let scene = match any {
-            xper_scene::AnyScene::Rigid(scene) => scene,
+        let (rigid, path, steps, settled) = (
+            &xper_simulation::rigid::bench::bench_one,
+            &scenes[0],
+            args.steps,
+            args.settled,
+        );
+        let result = match any {
+            xper_scene::AnyScene::Rigid(scene) => rigid(scene, path, steps, settled, machine())?,
+            xper_scene::AnyScene::Rigid3(scene) => {
+                xper_simulation::rigid3d::bench::bench_one(scene, path, steps, settled, machine())?
+            }
             xper_scene::AnyScene::Fracture(fracture) => {
                 // `bench_fracture::bench_one` builds its model from the file itself.
                 drop(fracture);
@@ -279,7 +160,6 @@ pub fn bench(args: &BenchArgs) -> Result<(), RunError> {
                 return Ok(());
             }
         };
-        let result = bench_one(scene, &scenes[0], args.steps, args.settled)?;
         let file = args.out.join(format!("{}.json", result.scene));
         xper_io::write_json_atomic(&file, &result).map_err(|e| RunError::Runtime(e.to_string()))?;
         println!(

@@ -21,7 +21,9 @@ fn scene_model(tolerance: f64) -> FractureModel {
         Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/nooru_mohamed_small/scene.toml");
     let scene = match xper_scene::load_any_scene(&path).unwrap() {
         xper_scene::AnyScene::Fracture(s) => s,
-        xper_scene::AnyScene::Rigid(_) => panic!("not a fracture scene"),
+        xper_scene::AnyScene::Rigid(_) | xper_scene::AnyScene::Rigid3(_) => {
+            panic!("not a fracture scene")
+        }
     };
     let setup = scene.build().unwrap();
     let mut model = FractureModel::new(setup.mesh, setup.spec).unwrap();
@@ -167,7 +169,9 @@ fn periodic_model(drives: [xper_fracture::MacroDrive; 2], tolerance: f64) -> Fra
         .join("../../scenes/periodic_bimaterial_small/scene.toml");
     let scene = match xper_scene::load_any_scene(&path).unwrap() {
         xper_scene::AnyScene::Fracture(s) => s,
-        xper_scene::AnyScene::Rigid(_) => panic!("not a fracture scene"),
+        xper_scene::AnyScene::Rigid(_) | xper_scene::AnyScene::Rigid3(_) => {
+            panic!("not a fracture scene")
+        }
     };
     let mut setup = scene.build().unwrap();
     let [yy, xy] = drives;

@@ -13,6 +13,7 @@
 //!
 //! Which scene becomes which simulation is `xper-simulation`'s; this crate knows no physics.
 
+pub mod bench;
 pub mod checkpoint;
 pub mod comparison;
 pub mod driver;

@@ -248,11 +248,20 @@ fn mass_inertia(
 /// Reads a `drive` table: per dof (`x`, `y`, `rotation`), `None` when not driven.
 /// On walls a force drive is an error.
 pub(crate) fn drives(ctx: &mut Ctx, d: &Tbl, wall: bool) -> Option<[Option<Drive>; 3]> {
-    const DOFS: [&str; 3] = ["x", "y", "rotation"];
-    d.check_keys(ctx, &DOFS);
-    let mut out: [Option<Drive>; 3] = [None, None, None];
+    drives_of(ctx, d, wall, ["x", "y", "rotation"])
+}
+
+/// Reads a `drive` table whose degrees of freedom are named `dofs`.
+pub(crate) fn drives_of<const N: usize>(
+    ctx: &mut Ctx,
+    d: &Tbl,
+    wall: bool,
+    dofs: [&str; N],
+) -> Option<[Option<Drive>; N]> {
+    d.check_keys(ctx, &dofs);
+    let mut out: [Option<Drive>; N] = std::array::from_fn(|_| None);
     let mut ok = true;
-    for (k, dof) in DOFS.iter().enumerate() {
+    for (k, dof) in dofs.iter().enumerate() {
         let e = match d.table(ctx, dof) {
             Got::Absent => continue,
             Got::Bad => {

@@ -16,6 +16,7 @@
 
 pub mod error;
 pub mod types;
+pub mod types3d;
 
 mod bodies;
 mod document;
@@ -25,6 +26,7 @@ mod generators;
 mod geometry;
 mod overlap;
 mod read;
+mod scene3d;
 mod sections;
 mod shared;
 mod tree;
@@ -43,6 +45,7 @@ pub use types::{
     Acceleration, BodyDesc, CheckPass, ConvergenceNorm, Detection, Drive, FluidDesc, FluidSideDesc,
     LawDesc, OutputSettings, Scene, ShapeDesc, SolverSettings, TimeFunction, VelocitySolverKind,
 };
+pub use types3d::{BodyDesc3, Scene3, ShapeDesc3};
 pub use xper_math::SplitMix64;
 
 use read::{Ctx, Tbl};
@@ -97,9 +100,13 @@ pub fn load_any_scene(path: &Path) -> Result<AnyScene, SceneErrors> {
 pub fn parse_any_scene(text: &str, file: &Path) -> Result<AnyScene, SceneErrors> {
     with_root(text, file, |ctx, root| {
         if root.get("mesh").is_some() {
-            fracture::fracture_scene(ctx, root, file).map(AnyScene::Fracture)
+            return fracture::fracture_scene(ctx, root, file).map(AnyScene::Fracture);
+        }
+        let header = sections::header(ctx, root);
+        if header.dimension == Some(3) {
+            scene3d::rigid_scene3(ctx, root, header).map(AnyScene::Rigid3)
         } else {
-            rigid_scene(ctx, root).map(AnyScene::Rigid)
+            rigid_scene_with(ctx, root, header).map(AnyScene::Rigid)
         }
     })
 }
@@ -202,8 +209,24 @@ fn rigid_scene(ctx: &mut Ctx, root: &Tbl) -> Option<Scene> {
         ctx.err(n.pos, "mesh", msg);
         return None;
     }
-    root.check_keys(ctx, TOP_KEYS);
     let header = sections::header(ctx, root);
+    if header.dimension == Some(3) {
+        let pos = (root
+            .get("scene")
+            .and_then(|n| Tbl::of(ctx, n, "scene".into())))
+        .and_then(|t| t.get("dimension").map(|n| n.pos))
+        .unwrap_or(Pos::START);
+        let msg = "a 3D scene: the 2D rigid-scene reader does not read it (use `parse_any_scene`; \
+                   `xper check` and `xper run` read every kind)";
+        ctx.err(pos, "scene.dimension", msg);
+        return None;
+    }
+    rigid_scene_with(ctx, root, header)
+}
+
+/// [`rigid_scene`] once the `[scene]` table is read.
+fn rigid_scene_with(ctx: &mut Ctx, root: &Tbl, header: sections::Header) -> Option<Scene> {
+    root.check_keys(ctx, TOP_KEYS);
     let solver = sections::solver(ctx, root);
     let output = sections::output(ctx, root, header.steps);
     let materials = sections::materials(ctx, root);

@@ -214,6 +214,12 @@ impl<'a> Tbl<'a> {
         self.typed(key, |n| as_vec2(ctx, n, &field))
     }
 
+    /// A triple of finite numbers `[a, b, c]`.
+    pub fn vec3(&self, ctx: &mut Ctx, key: &str) -> Got<[f64; 3]> {
+        let field = self.field(key);
+        self.typed(key, |n| as_vec3(ctx, n, &field))
+    }
+
     /// A sub-table.
     pub fn table(&self, ctx: &mut Ctx, key: &str) -> Got<Tbl<'a>> {
         let field = self.field(key);
@@ -267,6 +273,22 @@ pub(crate) fn as_vec2(ctx: &mut Ctx, n: &Node, field: &str) -> Option<[f64; 2]> 
         }
         _ => {
             ctx.expected(n, field, "a pair of numbers [x, y]");
+            None
+        }
+    }
+}
+
+/// A triple of finite numbers `[x, y, z]`.
+pub(crate) fn as_vec3(ctx: &mut Ctx, n: &Node, field: &str) -> Option<[f64; 3]> {
+    match &n.kind {
+        Kind::Array(a) if a.len() == 3 => {
+            let x = as_num(ctx, &a[0], &format!("{field}[0]"));
+            let y = as_num(ctx, &a[1], &format!("{field}[1]"));
+            let z = as_num(ctx, &a[2], &format!("{field}[2]"));
+            Some([x?, y?, z?])
+        }
+        _ => {
+            ctx.expected(n, field, "a triple of numbers [x, y, z]");
             None
         }
     }

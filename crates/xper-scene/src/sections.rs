@@ -15,6 +15,10 @@ pub(crate) struct Header {
     pub steps: Option<u64>,
     pub theta: Option<f64>,
     pub gravity: Option<[f64; 2]>,
+    /// `dimension`: 2 (the default) or 3; `None` when invalid.
+    pub dimension: Option<u8>,
+    /// Gravity of a 3D scene (`[0, 0, -9.81]` unless given).
+    pub gravity3: Option<[f64; 3]>,
     /// `Some(None)`: not given (default computed later).
     pub alert_distance: Option<Option<f64>>,
     pub detection: Option<Detection>,
@@ -22,6 +26,7 @@ pub(crate) struct Header {
 
 const SCENE_KEYS: &[&str] = &[
     "name",
+    "dimension",
     "dt",
     "duration",
     "steps",
@@ -107,7 +112,20 @@ pub(crate) fn header(ctx: &mut Ctx, root: &Tbl) -> Header {
             "in [0.5, 1]",
         ),
     };
-    let gravity = t.vec2(ctx, "gravity").or([0.0, -9.81]);
+    let dimension = match t.int(ctx, "dimension") {
+        Got::Absent => Some(2),
+        g => int_in(ctx, g.ok(), &t.field("dimension"), 2, 3).map(|d| d as u8),
+    };
+    let (gravity, gravity3) = match dimension {
+        Some(3) => (
+            Some([0.0, -9.81]),
+            t.vec3(ctx, "gravity").or([0.0, 0.0, -9.81]),
+        ),
+        _ => (
+            t.vec2(ctx, "gravity").or([0.0, -9.81]),
+            Some([0.0, 0.0, -9.81]),
+        ),
+    };
     let alert_distance = match t.num(ctx, "alert_distance") {
         Got::Absent => Some(None),
         g => ensure(
@@ -139,6 +157,8 @@ pub(crate) fn header(ctx: &mut Ctx, root: &Tbl) -> Header {
         steps,
         theta,
         gravity,
+        dimension,
+        gravity3,
         alert_distance,
         detection,
     }
@@ -151,6 +171,8 @@ fn bad_header() -> Header {
         steps: None,
         theta: None,
         gravity: None,
+        dimension: Some(2),
+        gravity3: None,
         detection: None,
         alert_distance: None,
     }

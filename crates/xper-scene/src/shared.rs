@@ -4,6 +4,7 @@
 use crate::read::Ctx;
 use crate::tree::Pos;
 use crate::types::BodyDesc;
+use crate::types3d::BodyDesc3;
 
 /// The materials declared in `[[materials]]`: name and density (None when invalid).
 #[derive(Default)]
@@ -64,6 +65,10 @@ pub(crate) enum Part {
     Whole,
     Disk(usize),
     Wall(usize),
+    /// A sphere of a 3D generator.
+    Sphere(usize),
+    /// A face of a 3D generator's box (floor, lid, x min, x max, y min, y max).
+    Face(usize),
 }
 
 /// Where a body was declared.
@@ -84,22 +89,36 @@ impl Origin {
     /// A human description, e.g. `generators[0] (disk 17)`.
     pub fn describe(&self) -> String {
         const SIDES: [&str; 4] = ["bottom", "right", "top", "left"];
+        const FACES: [&str; 6] = ["floor", "lid", "x min", "x max", "y min", "y max"];
         match self.part {
             Part::Whole => self.field(),
             Part::Disk(k) => format!("{} (disk {k})", self.field()),
             Part::Wall(w) => format!("{} ({} wall)", self.field(), SIDES.get(w).unwrap_or(&"?")),
+            Part::Sphere(k) => format!("{} (sphere {k})", self.field()),
+            Part::Face(w) => format!("{} ({} wall)", self.field(), FACES.get(w).unwrap_or(&"?")),
         }
     }
 }
 
-/// The bodies built so far and their origins (same length).
-#[derive(Default)]
-pub(crate) struct Built {
-    pub bodies: Vec<BodyDesc>,
+/// The bodies built so far and their origins (same length); 2D bodies unless told.
+pub(crate) struct Built<B = BodyDesc> {
+    pub bodies: Vec<B>,
     pub origins: Vec<Origin>,
 }
 
-impl Built {
+impl<B> Default for Built<B> {
+    fn default() -> Self {
+        Built {
+            bodies: Vec::new(),
+            origins: Vec::new(),
+        }
+    }
+}
+
+/// The bodies of a 3D scene built so far.
+pub(crate) type Built3 = Built<BodyDesc3>;
+
+impl<B> Built<B> {
     /// Room for `n` more bodies, so that a generator of a million disks does not hold two
     /// copies of the list while it grows.
     pub fn reserve(&mut self, n: usize) {
@@ -107,7 +126,7 @@ impl Built {
         self.origins.reserve(n);
     }
 
-    pub fn push(&mut self, body: BodyDesc, origin: Origin) {
+    pub fn push(&mut self, body: B, origin: Origin) {
         self.bodies.push(body);
         self.origins.push(origin);
     }

@@ -385,7 +385,7 @@ fn mesh_errors_name_the_file_or_the_parameter() {
     let t = NOTCHED.replace(gen, "file = \"bad.msh\"");
     let s = match parse_any_scene(&t, &dir.join("scene.toml")).unwrap() {
         AnyScene::Fracture(s) => s,
-        AnyScene::Rigid(_) => panic!("rigid"),
+        AnyScene::Rigid(_) | AnyScene::Rigid3(_) => panic!("rigid"),
     };
     let e = s.build().unwrap_err();
     assert_eq!(e.0[0].field, "mesh.file");
@@ -458,7 +458,9 @@ fn shipped_fracture_scenes_parse_and_the_small_ones_build() {
     ] {
         let s = match load_any_scene(&scenes.join(name).join("scene.toml")) {
             Ok(AnyScene::Fracture(s)) => s,
-            Ok(AnyScene::Rigid(_)) => panic!("{name}: parsed as a rigid scene"),
+            Ok(AnyScene::Rigid(_) | AnyScene::Rigid3(_)) => {
+                panic!("{name}: parsed as a rigid scene")
+            }
             Err(e) => panic!("{name}: {e}"),
         };
         assert_eq!(s.name, name);

@@ -3,7 +3,7 @@
 use crate::scene::LoadedScene;
 use crate::RunError;
 use std::path::Path;
-use xper_scene::Scene;
+use xper_scene::{Scene, Scene3};
 
 /// Validates the scene at `path`; prints a line of what it holds (and notes), or returns
 /// every error (file:line:column: field: reason) as a bad-input error.
@@ -15,6 +15,11 @@ pub fn check(path: &Path) -> Result<(), RunError> {
         LoadedScene::Rigid { scene, .. } | LoadedScene::Fluid { scene, .. } => {
             crate::rigid::dumps_supported(&scene, path)?;
             check_rigid(&scene, path);
+            Ok(())
+        }
+        LoadedScene::Rigid3 { scene, .. } => {
+            crate::rigid3d::dumps_supported(&scene, path)?;
+            check_rigid3(&scene, path);
             Ok(())
         }
     };
@@ -31,6 +36,26 @@ pub fn check(path: &Path) -> Result<(), RunError> {
         }
     }
     result
+}
+
+fn check_rigid3(scene: &Scene3, path: &Path) {
+    let count = |f: fn(&xper_scene::ShapeDesc3) -> bool| {
+        scene.bodies.iter().filter(|b| f(&b.shape)).count()
+    };
+    println!(
+        "{}: 3D scene `{}` is valid: {} bodies ({} spheres, {} polyhedra, {} walls), {} groups, \
+         {} laws, {} steps of {} s",
+        path.display(),
+        scene.name,
+        scene.bodies.len(),
+        count(|s| matches!(s, xper_scene::ShapeDesc3::Sphere { .. })),
+        count(|s| matches!(s, xper_scene::ShapeDesc3::Polyhedron { .. })),
+        count(|s| matches!(s, xper_scene::ShapeDesc3::Plane { .. })),
+        scene.groups.len(),
+        scene.laws.len(),
+        scene.steps,
+        scene.dt
+    );
 }
 
 fn check_rigid(scene: &Scene, path: &Path) {

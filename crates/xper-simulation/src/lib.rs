@@ -16,11 +16,12 @@ pub mod fluid;
 pub mod fracture;
 pub mod homogenize;
 pub mod resources;
-pub mod rigid;
 pub mod scene;
 
 pub use driver::{run, run_on};
 pub use scene::LoadedScene;
+pub use xper_rigid as rigid;
+pub use xper_rigid3d as rigid3d;
 pub use xper_run::{checkpoint, comparison, lock, outputs, ranks, resume, simulation};
 pub use xper_run::{
     drive, OutputSchedule, RunError, RunFacts, RunOptions, SceneFile, Simulation, StepFailure,

@@ -18,6 +18,11 @@ const BASE_BYTES: f64 = 30e6;
 /// peaked at 74 MB on rank 0 and 31 MB on rank 1: [`ensure_fits`] counts twice the serial
 /// estimate for a distributed run.
 const BYTES_PER_BODY: f64 = 3000.0;
+/// Peak bytes per 3D rigid body, provisional: the 3D engine alone peaked at 1.1 kB per
+/// sphere over the first 300 steps of box3d10k (`cargo run --release -p xper-nscd3d --example
+/// box3d`), frames not included; the 2D ratio of `xper run` to the engine (about 3.8) gives
+/// the rest.
+const BYTES_PER_BODY_3D: f64 = 4000.0;
 /// Peak bytes per fluid cell: 252 B measured between grids of 256^2 and 1024^2 cells
 /// (274 MB at 1024^2).
 const BYTES_PER_CELL: f64 = 260.0;
@@ -70,6 +75,13 @@ pub fn estimate(scene: &LoadedScene) -> Needs {
             Needs {
                 counts,
                 memory_bytes: memory,
+            }
+        }
+        LoadedScene::Rigid3 { scene, .. } => {
+            let bodies = scene.bodies.len() as f64;
+            Needs {
+                counts: vec![("bodies", bodies)],
+                memory_bytes: BASE_BYTES + BYTES_PER_BODY_3D * bodies,
             }
         }
         LoadedScene::Fracture { scene, .. } => {

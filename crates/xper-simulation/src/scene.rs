@@ -6,7 +6,7 @@ use crate::simulation::{OutputSchedule, RunOptions};
 use crate::RunError;
 use std::path::Path;
 use xper_domain::Communicator;
-use xper_scene::{AnyScene, FractureScene, MeshSource, Scene};
+use xper_scene::{AnyScene, FractureScene, MeshSource, Scene, Scene3};
 
 /// A parsed scene of any kind, with the hash of its files (a checkpoint resumes only the
 /// scene it was written for).
@@ -22,6 +22,13 @@ pub enum LoadedScene {
     Fluid {
         /// The scene.
         scene: Scene,
+        /// FNV-1a of the scene file.
+        hash: u64,
+    },
+    /// Rigid bodies in contact in 3D (`[scene] dimension = 3`).
+    Rigid3 {
+        /// The scene.
+        scene: Scene3,
         /// FNV-1a of the scene file.
         hash: u64,
     },
@@ -49,6 +56,7 @@ impl LoadedScene {
     pub fn hash(&self) -> u64 {
         match self {
             LoadedScene::Rigid { hash, .. }
+            | LoadedScene::Rigid3 { hash, .. }
             | LoadedScene::Fluid { hash, .. }
             | LoadedScene::Fracture { hash, .. } => *hash,
         }
@@ -87,6 +95,10 @@ impl LoadedScene {
                 scene,
                 hash: fnv1a(&hash_bytes),
             },
+            AnyScene::Rigid3(scene) => LoadedScene::Rigid3 {
+                scene,
+                hash: fnv1a(&hash_bytes),
+            },
         };
         Ok((scene, text))
     }
@@ -95,6 +107,9 @@ impl LoadedScene {
     pub fn output_schedule(&self) -> OutputSchedule {
         let (frame_every, checkpoint_every) = match self {
             LoadedScene::Rigid { scene, .. } | LoadedScene::Fluid { scene, .. } => {
+                (scene.output.frame_every, scene.output.checkpoint_every)
+            }
+            LoadedScene::Rigid3 { scene, .. } => {
                 (scene.output.frame_every, scene.output.checkpoint_every)
             }
             LoadedScene::Fracture { scene, .. } => {
@@ -118,6 +133,9 @@ impl LoadedScene {
         Ok(match self {
             LoadedScene::Rigid { scene, hash } => {
                 Box::new(crate::rigid::RigidSimulation::new(scene, hash, opts, comm)?)
+            }
+            LoadedScene::Rigid3 { scene, hash } => {
+                Box::new(xper_rigid3d::RigidSimulation::new(scene, hash, opts, comm)?)
             }
             LoadedScene::Fluid { scene, hash } => {
                 Box::new(crate::fluid::FluidSimulation::new(scene, hash, opts, comm)?)

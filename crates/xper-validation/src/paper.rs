@@ -201,5 +201,6 @@ fn scene_steps(name: &str) -> Result<u64, RunError> {
     match xper_scene::load_any_scene(&path).map_err(|e| RunError::BadInput(e.to_string()))? {
         xper_scene::AnyScene::Fracture(s) => Ok(s.steps),
         xper_scene::AnyScene::Rigid(s) => Ok(s.steps),
+        xper_scene::AnyScene::Rigid3(s) => Ok(s.steps),
     }
 }

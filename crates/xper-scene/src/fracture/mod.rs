@@ -105,6 +105,10 @@ pub(crate) fn fracture_scene(ctx: &mut Ctx, root: &Tbl, file: &Path) -> Option<F
     root.check_keys(ctx, TOP_KEYS);
     let header = sections::header(ctx, root);
     if let Some(s) = quiet_table(root, "scene") {
+        if header.dimension == Some(3) {
+            let why = "fracture scenes are 2D only so far (3D fracture is planned)";
+            s.forbid(ctx, "dimension", why);
+        }
         s.forbid(
             ctx,
             "alert_distance",

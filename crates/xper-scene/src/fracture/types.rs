@@ -21,6 +21,8 @@ pub enum AnyScene {
     Rigid(Scene),
     /// A meshed specimen that can fracture (a `[mesh]` section).
     Fracture(FractureScene),
+    /// Rigid bodies in contact in 3D (`[scene] dimension = 3`).
+    Rigid3(crate::Scene3),
 }
 
 /// Where a value was written in the scene file.

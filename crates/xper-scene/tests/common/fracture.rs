@@ -14,7 +14,7 @@ pub fn file() -> &'static Path {
 pub fn parse(text: &str) -> Result<FractureScene, SceneErrors> {
     match parse_any_scene(text, file())? {
         AnyScene::Fracture(s) => Ok(s),
-        AnyScene::Rigid(_) => panic!("parsed as a rigid scene"),
+        AnyScene::Rigid(_) | AnyScene::Rigid3(_) => panic!("parsed as a rigid scene"),
     }
 }
 

@@ -14,7 +14,7 @@ fn bad(e: impl std::fmt::Display) -> RunError {
 pub fn load_model(path: &Path) -> Result<(FractureScene, FractureModel), RunError> {
     let scene = match xper_scene::load_any_scene(path).map_err(bad)? {
         xper_scene::AnyScene::Fracture(s) => s,
-        xper_scene::AnyScene::Rigid(_) => {
+        xper_scene::AnyScene::Rigid(_) | xper_scene::AnyScene::Rigid3(_) => {
             return Err(RunError::BadInput(format!(
                 "{}: not a fracture scene (it has no [mesh] section)",
                 path.display()

@@ -6,8 +6,9 @@ use crate::comparison::SerialComparison;
 use crate::ranks::{rank_summaries, RankSummary};
 use crate::RunError;
 use std::path::{Path, PathBuf};
-use xper_domain::{CommStats, Communicator, DistributedParams, DistributedStepper};
+use xper_decomposition::rigid::stepper::{DistributedParams, DistributedStepper};
 use xper_nscd::{MoreauJean, StepError, StepReport, World};
+use xper_parallel::{CommStats, Communicator};
 
 /// A rigid run advanced step by step.
 pub trait RigidRun {
@@ -34,7 +35,7 @@ pub trait RigidRun {
 
 /// Refuses, before anything runs, what a distributed run cannot do.
 pub fn check_distributable(
-    scene: &xper_scene::Scene,
+    scene: &crate::build::RigidScene,
     file: &Path,
     distributed: bool,
 ) -> Result<(), RunError> {

@@ -1,12 +1,21 @@
 //! VTU frames: bodies as cells, contacts as points, force chains as lines.
 
-use crate::outputs::{f64_array, i32_array};
+use crate::run_outputs::{f64_array, i32_array};
 use xper_bodies::Shape;
 use xper_io::vtu::{VTK_LINE, VTK_POLYGON, VTK_VERTEX};
 use xper_io::UnstructuredGrid;
 use xper_laws::InteractionLaw;
 use xper_math::{rotate, Vector};
 use xper_nscd::World;
+
+/// The parts of a frame: `bodies`, `contacts` and `force_chains`.
+pub fn frame_parts(world: &World) -> Vec<(&'static str, UnstructuredGrid)> {
+    vec![
+        ("bodies", bodies_grid(world)),
+        ("contacts", contacts_grid(world, false)),
+        ("force_chains", contacts_grid(world, true)),
+    ]
+}
 
 /// Sides of the polygon drawn for a disk.
 const DISK_SIDES: usize = 16;

@@ -1,28 +1,39 @@
 //! Rigid bodies in frictional contact (NSCD, Moreau-Jean): the [`Simulation`] of a scene
 //! without `[mesh]` or `[fluid]`, stepped on this process ([`stepping::SerialRun`]) or over a
 //! communicator ([`stepping::DistributedRun`], NSCDD).
+//!
+//! One source, two builds: `xper-rigid` (2D scenes) and `xper-rigid3d` (feature `dim3`,
+//! `[scene] dimension = 3`); what differs is the scene's conversion to a world
+//! (`bodies2d.rs`/`bodies3d.rs` of [`build`]) and the frames (`frames2d.rs`/`frames3d.rs`). `xper-simulation`
+//! chooses between them by the scene's dimension.
 
+pub mod bench;
 pub mod build;
+#[cfg(feature = "dim2")]
+#[path = "frames2d.rs"]
+pub mod frames;
+#[cfg(feature = "dim3")]
+#[path = "frames3d.rs"]
 pub mod frames;
 pub mod outputs;
 pub mod stepping;
 
-use crate::checkpoint::{checkpoint_bytes, read_checkpoint};
-use crate::comparison::SerialComparison;
-use crate::outputs::{create_output_dir, io_err, write_vtu_parts};
-use crate::ranks::RankSummary;
-use crate::simulation::RunOptions;
-use crate::simulation::{RunFacts, Simulation, StepFailure};
-use crate::RunError;
-use build::{release_body_descriptions, world_from_scene};
-use frames::{bodies_grid, contacts_grid};
+use xper_run::{checkpoint, comparison, outputs as run_outputs, ranks, simulation, RunError};
+
+use build::{release_body_descriptions, world_from_scene, RigidScene};
+use checkpoint::{checkpoint_bytes, read_checkpoint};
+use comparison::SerialComparison;
+use frames::frame_parts;
 use outputs::{series_row, solver_name, SeriesFigures, Summary, SERIES_COLUMNS};
+use ranks::RankSummary;
+use run_outputs::{create_output_dir, io_err, write_vtu_parts};
+use simulation::RunOptions;
+use simulation::{RunFacts, Simulation, StepFailure};
 use std::path::Path;
 use stepping::{check_distributable, DistributedRun, RigidRun, SerialRun};
-use xper_domain::Communicator;
 use xper_io::{write_json_atomic, PvdCollection, SeriesTable};
 use xper_nscd::World;
-use xper_scene::Scene;
+use xper_parallel::Communicator;
 
 /// A rigid scene being run.
 pub struct RigidSimulation<'c> {
@@ -32,7 +43,7 @@ pub struct RigidSimulation<'c> {
     root: bool,
     processes: usize,
     /// The scene, its body descriptions released once the world is built.
-    scene: Scene,
+    scene: RigidScene,
     scene_hash: u64,
     series: SeriesTable,
     /// The start of a distributed run kept for `--compare-serial`.
@@ -45,7 +56,7 @@ impl<'c> RigidSimulation<'c> {
     /// The run of `scene` (whose files hash to `scene_hash`) at time 0 or, with
     /// `opts.resume`, from the checkpoint in `opts.out`; over `comm` when given.
     pub fn new(
-        mut scene: Scene,
+        mut scene: RigidScene,
         scene_hash: u64,
         opts: &RunOptions,
         comm: Option<&'c dyn Communicator>,
@@ -158,11 +169,7 @@ impl Simulation for RigidSimulation<'_> {
     }
     fn write_frame(&mut self, dir: &Path, pvd: &mut PvdCollection) -> Result<(), RunError> {
         let world = self.whole()?;
-        let parts = [
-            ("bodies", bodies_grid(world)),
-            ("contacts", contacts_grid(world, false)),
-            ("force_chains", contacts_grid(world, true)),
-        ];
+        let parts = frame_parts(world);
         pvd.truncate_after(world.time - 0.5 * world.params.dt);
         write_vtu_parts(dir, pvd, world.step, world.time, 0, &parts)?;
         pvd.write(&dir.join("result.pvd")).map_err(io_err)
@@ -226,7 +233,7 @@ impl Simulation for RigidSimulation<'_> {
 
 /// `[output] dump_problems` needs the `hdf5` feature: without it the scene is refused (by
 /// `xper check` too), never accepted and then failed at the first dump.
-pub fn dumps_supported(scene: &Scene, path: &Path) -> Result<(), RunError> {
+pub fn dumps_supported(scene: &RigidScene, path: &Path) -> Result<(), RunError> {
     if !scene.output.dump_problems.is_empty() && !cfg!(feature = "hdf5") {
         return Err(RunError::BadInput(format!(
             "{}: [output] dump_problems: built without HDF5 support: rebuild with --features hdf5",

@@ -2,8 +2,8 @@
 //! `series.png` and the contact problems of the steps listed in `[output] dump_problems`.
 
 use crate::comparison::SerialComparison;
-use crate::outputs::{self, io_err, mean, series_curve};
 use crate::ranks::RankSummary;
+use crate::run_outputs::{self as outputs, io_err, mean, series_curve};
 use crate::RunError;
 use serde::Serialize;
 use std::path::{Path, PathBuf};

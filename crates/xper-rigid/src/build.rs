@@ -1,20 +1,55 @@
-//! Conversion of a validated scene description into an engine [`World`].
+//! Conversion of a validated scene description into an engine [`World`]: the bodies per
+//! dimension (`bodies2d.rs`, `bodies3d.rs`), the laws and time-stepping parameters here.
 
-use xper_bodies::{Body, BodySet, ConvexPolygon, Drive, Shape};
+#[cfg(feature = "dim2")]
+#[path = "bodies2d.rs"]
+mod dimension;
+#[cfg(feature = "dim3")]
+#[path = "bodies3d.rs"]
+mod dimension;
+
+pub use dimension::RigidScene;
+use xper_bodies::{Drive, TimeFunction};
 use xper_laws::{InteractionLaw, LawTable, SignoriniCoulomb};
 use xper_math::{Real, Vector};
-use xper_nscd::{StepParams, VelocitySolver, World};
-use xper_scene::{Scene, ShapeDesc};
+use xper_nscd::{Detection, StepParams, VelocitySolver, World};
 use xper_solver::{ConvergenceNorm, ErrorScaling, NlgsParams, SolverKind, SolverParams};
 
 /// Overlap allowed before the position projection runs, relative to the smallest body size.
 pub const PROJECTION_TOLERANCE_RELATIVE: Real = 1e-4;
 
-fn drive(d: &xper_scene::Drive) -> Drive {
+/// A drive of the scene as the engine's (the scene names the 2D build's types, which the 3D
+/// build of the engine does not share).
+pub(crate) fn drive(d: &xper_scene::Drive) -> Drive {
     match d {
         xper_scene::Drive::Free => Drive::Free,
-        xper_scene::Drive::Velocity(f) => Drive::Velocity(f.clone()),
-        xper_scene::Drive::Force(f) => Drive::Force(f.clone()),
+        xper_scene::Drive::Velocity(f) => Drive::Velocity(time_function(f)),
+        xper_scene::Drive::Force(f) => Drive::Force(time_function(f)),
+    }
+}
+
+fn time_function(f: &xper_scene::TimeFunction) -> TimeFunction {
+    match f {
+        xper_scene::TimeFunction::Constant(v) => TimeFunction::Constant(*v),
+        xper_scene::TimeFunction::Table(points) => TimeFunction::Table(points.clone()),
+        &xper_scene::TimeFunction::Sine {
+            amplitude,
+            frequency,
+            phase,
+            offset,
+        } => TimeFunction::Sine {
+            amplitude,
+            frequency,
+            phase,
+            offset,
+        },
+    }
+}
+
+fn detection(d: xper_scene::Detection) -> Detection {
+    match d {
+        xper_scene::Detection::Begin => Detection::Begin,
+        xper_scene::Detection::Predicted => Detection::Predicted,
     }
 }
 
@@ -35,38 +70,8 @@ pub fn velocity_solver(settings: &xper_scene::SolverSettings) -> VelocitySolver 
 }
 
 /// Builds the world of a scene at time 0.
-pub fn world_from_scene(scene: &Scene) -> World {
-    let mut bodies = BodySet::new();
-    let mut smallest = Real::INFINITY;
-    for b in &scene.bodies {
-        let shape = match &b.shape {
-            ShapeDesc::Disk { radius } => Shape::Disk { radius: *radius },
-            ShapeDesc::Polygon { vertices } => Shape::Polygon(Box::new(ConvexPolygon::new(
-                vertices.iter().map(|v| Vector::new(v[0], v[1])).collect(),
-            ))),
-            ShapeDesc::Segment { half_length } => Shape::Segment {
-                half_length: *half_length,
-            },
-        };
-        if !matches!(shape, Shape::Segment { .. }) {
-            smallest = smallest.min(shape.size());
-        }
-        bodies.insert(Body {
-            shape,
-            position: Vector::new(b.position[0], b.position[1]),
-            rotation: b.angle,
-            velocity: Vector::new(b.velocity[0], b.velocity[1]),
-            angular_velocity: b.angular_velocity,
-            mass: b.mass,
-            inertia: b.inertia,
-            group: b.group as u16,
-            drives: [
-                drive(&b.drives[0]),
-                drive(&b.drives[1]),
-                drive(&b.drives[2]),
-            ],
-        });
-    }
+pub fn world_from_scene(scene: &RigidScene) -> World {
+    let (bodies, smallest) = dimension::bodies(scene);
     let mut laws = LawTable::new(scene.groups.len());
     for law in &scene.laws {
         laws.set(
@@ -82,9 +87,9 @@ pub fn world_from_scene(scene: &Scene) -> World {
     let params = StepParams {
         dt: scene.dt,
         theta: scene.theta,
-        gravity: Vector::new(scene.gravity[0], scene.gravity[1]),
+        gravity: Vector::from(scene.gravity),
         alert_distance: scene.alert_distance,
-        detection: scene.detection,
+        detection: detection(scene.detection),
         nlgs: NlgsParams {
             tolerance: s.tolerance,
             max_iterations: s.max_iterations,
@@ -107,8 +112,8 @@ pub fn world_from_scene(scene: &Scene) -> World {
 
 /// Gives a world restored from a checkpoint the solver limits of its (possibly edited) scene:
 /// tolerance, iteration limit and check interval are among the edits a resume may take
-/// ([`crate::resume::COMPATIBLE`]).
-pub fn take_solver_limits(world: &mut World, scene: &Scene) {
+/// ([`xper_run::resume::COMPATIBLE`]).
+pub fn take_solver_limits(world: &mut World, scene: &RigidScene) {
     let s = &scene.solver;
     world.params.nlgs.tolerance = s.tolerance;
     world.params.nlgs.max_iterations = s.max_iterations;
@@ -118,6 +123,6 @@ pub fn take_solver_limits(world: &mut World, scene: &Scene) {
 
 /// Frees the scene's list of body descriptions once the world is built from it (nothing after
 /// needs it): for a generated scene of a million disks it is as large as the world.
-pub fn release_body_descriptions(scene: &mut Scene) {
+pub fn release_body_descriptions(scene: &mut RigidScene) {
     scene.bodies = Vec::new();
 }

@@ -1,0 +1,45 @@
+//! The bodies of a 2D scene: disks, convex polygons and wall segments.
+
+use super::drive;
+use xper_bodies::{Body, BodySet, ConvexPolygon, Shape};
+use xper_math::{Real, Vector};
+use xper_scene::{Scene, ShapeDesc};
+
+/// The scenes this build runs: 2D rigid scenes.
+pub type RigidScene = Scene;
+
+/// The body set of `scene` and the size of its smallest body that is not a wall (m).
+pub(super) fn bodies(scene: &Scene) -> (BodySet, Real) {
+    let mut bodies = BodySet::new();
+    let mut smallest = Real::INFINITY;
+    for b in &scene.bodies {
+        let shape = match &b.shape {
+            ShapeDesc::Disk { radius } => Shape::Disk { radius: *radius },
+            ShapeDesc::Polygon { vertices } => Shape::Polygon(Box::new(ConvexPolygon::new(
+                vertices.iter().map(|v| Vector::new(v[0], v[1])).collect(),
+            ))),
+            ShapeDesc::Segment { half_length } => Shape::Segment {
+                half_length: *half_length,
+            },
+        };
+        if !matches!(shape, Shape::Segment { .. }) {
+            smallest = smallest.min(shape.size());
+        }
+        bodies.insert(Body {
+            shape,
+            position: Vector::new(b.position[0], b.position[1]),
+            rotation: b.angle,
+            velocity: Vector::new(b.velocity[0], b.velocity[1]),
+            angular_velocity: b.angular_velocity,
+            mass: b.mass,
+            inertia: b.inertia,
+            group: b.group as u16,
+            drives: [
+                drive(&b.drives[0]),
+                drive(&b.drives[1]),
+                drive(&b.drives[2]),
+            ],
+        });
+    }
+    (bodies, smallest)
+}
