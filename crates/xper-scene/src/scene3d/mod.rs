@@ -118,6 +118,17 @@ fn overlaps(ctx: &mut Ctx, built: &Built3) {
     };
     let cell = 2.0 * rmax;
     let key = |x: &Vector| -> [i64; 3] { std::array::from_fn(|k| (x[k] / cell).floor() as i64) };
+    let walls: Vec<(usize, Rotation, Vector, [f64; 2])> = (built.bodies.iter().enumerate())
+        .filter_map(|(w, b)| match b.shape {
+            ShapeDesc3::Plane { half_extents } => Some((
+                w,
+                Rotation::from_scaled_axis(Vector::from(b.orientation)),
+                Vector::from(b.position),
+                half_extents,
+            )),
+            _ => None,
+        })
+        .collect();
     let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
     for (s, (_, x, _)) in spheres.iter().enumerate() {
         grid.entry(key(x)).or_default().push(s);
@@ -142,12 +153,8 @@ fn overlaps(ctx: &mut Ctx, built: &Built3) {
                 report(a, b, r + q - (x - y).norm(), 2.0 * r.min(q));
             }
         }
-        for (w, wall) in built.bodies.iter().enumerate() {
-            let ShapeDesc3::Plane { half_extents } = wall.shape else {
-                continue;
-            };
-            let rotation = Rotation::from_scaled_axis(Vector::from(wall.orientation));
-            let local = rotation.inverse_transform_vector(&(x - Vector::from(wall.position)));
+        for &(w, rotation, point, half_extents) in &walls {
+            let local = rotation.inverse_transform_vector(&(x - point));
             let within = local.x.abs() <= half_extents[0] && local.y.abs() <= half_extents[1];
             if within && local.z > -r {
                 report(w, b, r - local.z, 2.0 * r);

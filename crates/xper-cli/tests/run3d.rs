@@ -1,0 +1,196 @@
+//! `xper run` on 3D scenes (`[scene] dimension = 3`): the outputs, a resume that is bit-exact,
+//! and, with the `mpi` feature, `mpirun -np 2` against the serial run.
+
+mod common;
+
+use common::{assert_success, temp_dir, xper};
+use std::path::Path;
+use xper_nscd3d::World;
+
+/// 64 spheres on a 4 x 4 x 4 lattice falling onto a box and a tetrahedron in a box of
+/// half-spaces, NLGS at `tolerance`.
+fn scene(steps: u64, tolerance: f64) -> String {
+    format!(
+        r#"[scene]
+name = "small3d"
+dimension = 3
+dt = 1e-3
+steps = {steps}
+
+[solver]
+tolerance = {tolerance:e}
+
+[output]
+frame_every = 50
+checkpoint_every = 40
+
+[[materials]]
+name = "glass"
+density = 2500.0
+
+[[laws]]
+between = ["grains", "grains"]
+kind = "signorini_coulomb"
+friction = 0.3
+
+[[laws]]
+between = ["grains", "walls"]
+kind = "signorini_coulomb"
+friction = 0.5
+
+[[bodies]]
+shape = "box"
+center = [0.02, 0.02, 0.0051]
+size = [0.02, 0.02, 0.01]
+orientation = [0.0, 0.0, 0.2]
+material = "glass"
+group = "grains"
+
+[[bodies]]
+shape = "tetrahedron"
+center = [0.045, 0.04, 0.012]
+radius = 0.008
+material = "glass"
+group = "grains"
+
+[[generators]]
+kind = "lattice3d"
+columns = 4
+rows = 4
+layers = 4
+pitch = 0.0145
+radius = 0.0025
+seed = 5
+box = [0.065, 0.065, 0.1]
+material = "glass"
+group = "grains"
+velocity = [0.0, 0.0, 0.0]
+
+[[walls]]
+point = [0.0, 0.0, -0.03]
+normal = [0.0, 0.0, 1.0]
+group = "walls"
+
+[[walls]]
+point = [-0.001, 0.0, 0.0]
+normal = [1.0, 0.0, 0.0]
+group = "walls"
+
+[[walls]]
+point = [0.066, 0.0, 0.0]
+normal = [-1.0, 0.0, 0.0]
+group = "walls"
+
+[[walls]]
+point = [0.0, -0.001, 0.0]
+normal = [0.0, 1.0, 0.0]
+group = "walls"
+
+[[walls]]
+point = [0.0, 0.066, 0.0]
+normal = [0.0, -1.0, 0.0]
+group = "walls"
+"#
+    )
+    .replace("center = [0.02, 0.02, 0.0051]", "center = [0.02, 0.02, -0.0249]")
+    .replace("center = [0.045, 0.04, 0.012]", "center = [0.045, 0.04, -0.018]")
+}
+
+fn write_scene(dir: &Path, steps: u64, tolerance: f64) -> std::path::PathBuf {
+    std::fs::create_dir_all(dir).unwrap();
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, scene(steps, tolerance)).unwrap();
+    path
+}
+
+fn checkpoint(dir: &Path) -> World {
+    let payload = xper_simulation::checkpoint::open(dir, "test")
+        .unwrap()
+        .payload;
+    let (_, _, world): (u32, u64, Vec<u8>) = bincode::deserialize(&payload).unwrap();
+    World::from_bytes(&world).unwrap()
+}
+
+fn distance(a: &World, b: &World) -> f64 {
+    assert_eq!(a.step, b.step);
+    (0..a.bodies.len())
+        .map(|k| (a.bodies.position[k] - b.bodies.position[k]).norm())
+        .fold(0.0, f64::max)
+}
+
+/// A run writes every part of every frame (spheres, polyhedra, walls, contacts, force
+/// chains), its series and summary; the bodies stay in the box; a run stopped at step 70 and
+/// resumed ends with the same checkpoint, bit for bit, as the uninterrupted one.
+#[test]
+fn a_3d_scene_runs_writes_its_frames_and_resumes_bit_for_bit() {
+    let dir = temp_dir("run3d");
+    let path = write_scene(&dir, 150, 1e-6);
+    let scene = path.to_str().unwrap();
+    let (whole, stopped) = (dir.join("whole"), dir.join("stopped"));
+    assert_success(&xper(&["check", scene]));
+    assert_success(&xper(&["run", scene, "--out", whole.to_str().unwrap(), "--quiet"]));
+    let summary: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(whole.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["status"], "completed");
+    assert_eq!(summary["bodies"], 71);
+    for part in ["spheres", "polyhedra", "walls", "contacts", "force_chains"] {
+        for step in [0, 50, 100, 150] {
+            let file = whole.join(format!("frames/{part}_{step:08}.vtu"));
+            assert!(file.is_file(), "{} missing", file.display());
+        }
+    }
+    let pvd = std::fs::read_to_string(whole.join("result.pvd")).unwrap();
+    assert_eq!(pvd.matches("<DataSet").count(), 5 * 4);
+    let end = checkpoint(&whole);
+    for k in 0..end.bodies.len() {
+        let x = end.bodies.position[k];
+        if end.bodies.is_dynamic(k) {
+            assert!(x.z > -0.03 && (-0.001..0.066).contains(&x.x), "body {k} at {x:?}");
+        }
+    }
+    assert!(end.contacts.len() > 64, "{} contacts", end.contacts.len());
+    let stopped_s = stopped.to_str().unwrap();
+    assert_success(&xper(&["run", scene, "--out", stopped_s, "--quiet", "--stop-at-step", "70"]));
+    assert_success(&xper(&["run", scene, "--out", stopped_s, "--quiet", "--resume"]));
+    assert_eq!(
+        std::fs::read(stopped.join("checkpoint.bin")).unwrap(),
+        std::fs::read(whole.join("checkpoint.bin")).unwrap()
+    );
+}
+
+/// `mpirun -np 2` against the serial run: within ten times the serial run's own error (its
+/// distance to the run at a tolerance a hundred times smaller), as in 2D.
+#[cfg(feature = "mpi")]
+#[test]
+fn mpirun_agrees_with_the_serial_run_in_3d() {
+    let dir = temp_dir("run3d_mpi");
+    let run = |name: &str, tolerance: f64, ranks: usize| {
+        let path = write_scene(&dir.join(name), 150, tolerance);
+        let out = dir.join(name).join("out");
+        let args = ["run", path.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"];
+        let output = if ranks == 1 {
+            xper(&args)
+        } else {
+            std::process::Command::new("timeout")
+                .args(["300", "mpirun", "-np", &ranks.to_string()])
+                .arg(env!("CARGO_BIN_EXE_xper"))
+                .args(args)
+                .env("OMPI_ALLOW_RUN_AS_ROOT", "1")
+                .env("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+                .env("OMPI_MCA_rmaps_base_oversubscribe", "1")
+                .env("OMPI_MCA_mpi_yield_when_idle", "1")
+                .output()
+                .expect("mpirun could not be started")
+        };
+        assert_success(&output);
+        checkpoint(&out)
+    };
+    let serial = run("serial", 1e-6, 1);
+    let tighter = run("tighter", 1e-8, 1);
+    let spread = distance(&serial, &tighter);
+    assert!(spread > 0.0);
+    let two = run("two", 1e-6, 2);
+    let d = distance(&two, &serial);
+    eprintln!("3d mpi: {d:.3e} m from serial, serial error {spread:.3e} m");
+    assert!(d <= 10.0 * spread, "{d:.3e} m vs serial error {spread:.3e} m");
+}

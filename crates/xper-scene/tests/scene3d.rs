@@ -1,0 +1,300 @@
+//! 3D scenes (`[scene] dimension = 3`): the box3d10k lattice rules, mass properties, wall
+//! frames, and errors with their file, line, field and reason.
+
+mod common;
+
+use common::find_error;
+use std::f64::consts::PI;
+use std::path::Path;
+use xper_math3d::{Rotation, Vector};
+use xper_scene::{parse_any_scene, AnyScene, Scene3, SceneErrors, ShapeDesc3};
+
+const HEADER3: &str = r#"[scene]
+name = "t"
+dimension = 3
+dt = 1e-3
+steps = 10
+
+[[materials]]
+name = "glass"
+density = 2500.0
+"#;
+
+fn parse3(text: &str) -> Result<Scene3, SceneErrors> {
+    match parse_any_scene(text, Path::new("test.toml"))? {
+        AnyScene::Rigid3(s) => Ok(s),
+        _ => panic!("not read as a 3D scene"),
+    }
+}
+
+fn ok3(rest: &str) -> Scene3 {
+    let text = format!("{HEADER3}\n{rest}");
+    parse3(&text).unwrap_or_else(|e| panic!("unexpected errors:\n{e}\n--- in:\n{text}"))
+}
+
+/// Asserts an error on `field` at the line holding `marker` whose message has `needle`.
+fn error3(rest: &str, field: &str, marker: &str, needle: &str) {
+    let text = format!("{HEADER3}\n{rest}");
+    let errors = match parse_any_scene(&text, Path::new("test.toml")) {
+        Ok(_) => panic!("expected errors in:\n{text}"),
+        Err(e) => e,
+    };
+    find_error(&errors, &text, field, marker, needle);
+}
+
+/// The shipped box3d10k scene follows ../shared/bench/box3d10k.md: sphere `n = 400 k + 20 j +
+/// i` at its lattice site, radii `1e-3 (1 + u_n)` from SplitMix64 seed 12345 (the first two
+/// printed in the spec), six walls on the box's faces, gravity along -z.
+#[test]
+fn box3d10k_follows_the_benchmark_rules() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/box3d10k/scene.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let scene = parse3(&text).unwrap();
+    assert_eq!(scene.bodies.len(), 10_006);
+    assert_eq!(scene.gravity, [0.0, 0.0, -9.81]);
+    let p = 4.1e-3;
+    let mut rng = xper_math::SplitMix64::new(12345);
+    for (n, b) in scene.bodies[..10_000].iter().enumerate() {
+        let (i, j, k) = (n % 20, n / 20 % 20, n / 400);
+        let s = if k % 2 == 1 { p / 2.0 } else { 0.0 };
+        let site = [
+            p / 2.0 + i as f64 * p + s,
+            p / 2.0 + j as f64 * p + s,
+            p / 2.0 + k as f64 * p,
+        ];
+        assert_eq!(b.position, site, "sphere {n}");
+        let r = 1e-3 * (1.0 + rng.next_f64());
+        assert_eq!(b.shape, ShapeDesc3::Sphere { radius: r });
+        let m = 2600.0 * 4.0 / 3.0 * PI * r.powi(3);
+        assert!((b.mass - m).abs() <= 1e-15 * m);
+        assert!((b.inertia[0][0] - 0.4 * m * r * r).abs() <= 1e-15 * m * r * r);
+    }
+    let radius = |n: usize| match scene.bodies[n].shape {
+        ShapeDesc3::Sphere { radius } => radius,
+        _ => unreachable!(),
+    };
+    assert!((radius(0) - 1.133080e-3).abs() < 5e-10 && (radius(1) - 1.204817e-3).abs() < 5e-10);
+    // Walls: a point and the normal pointing into the box.
+    let w = 20.5 * p;
+    let expected = [
+        ([0.0, 0.0, 0.0], Vector::z()),
+        ([w, w, 0.12], -Vector::z()),
+        ([0.0, 0.0, 0.0], Vector::x()),
+        ([w, w, 0.12], -Vector::x()),
+        ([0.0, 0.0, 0.0], Vector::y()),
+        ([w, w, 0.12], -Vector::y()),
+    ];
+    for (b, (point, n)) in scene.bodies[10_000..].iter().zip(expected) {
+        assert!(
+            matches!(b.shape, ShapeDesc3::Plane { half_extents } if half_extents[0].is_infinite())
+        );
+        assert!((0..3).all(|k| (b.position[k] - point[k]).abs() < 1e-15));
+        let q = Rotation::from_scaled_axis(Vector::from(b.orientation));
+        assert!((q * Vector::z() - n).norm() < 1e-15, "{n:?}");
+        assert!(b.mass.is_infinite());
+    }
+}
+
+/// Mass properties against closed forms: a sphere `(4/3 pi r^3 rho, 2/5 m r^2)`, a box
+/// `(abc rho, m (b^2 + c^2) / 12, ...)` turned by its orientation (the tensor stays in the
+/// body frame), regular solids with every vertex on the circumsphere and an isotropic tensor.
+#[test]
+fn shapes_and_mass_properties() {
+    let s = ok3(r#"
+[[bodies]]
+shape = "sphere"
+center = [0.0, 0.0, 1.0]
+radius = 0.1
+material = "glass"
+group = "g"
+
+[[bodies]]
+shape = "box"
+center = [1.0, 0.0, 1.0]
+size = [0.3, 0.2, 0.1]
+orientation = [0.0, 0.0, 0.5]
+material = "glass"
+group = "g"
+
+[[bodies]]
+shape = "icosahedron"
+center = [2.0, 0.0, 1.0]
+radius = 0.1
+material = "glass"
+group = "g"
+
+[[bodies]]
+shape = "dodecahedron"
+center = [3.0, 0.0, 1.0]
+radius = 0.1
+material = "glass"
+group = "g"
+
+[[bodies]]
+shape = "tetrahedron"
+center = [4.0, 0.0, 1.0]
+radius = 0.1
+mass = 2.0
+inertia = [0.1, 0.2, 0.3]
+group = "g"
+"#);
+    let m = 2500.0 * 4.0 / 3.0 * PI * 1e-3;
+    assert!((s.bodies[0].mass - m).abs() < 1e-12 * m);
+    assert!((s.bodies[0].inertia[1][1] - 0.4 * m * 0.01).abs() < 1e-12 * m);
+    let boxed = &s.bodies[1];
+    let m = 2500.0 * 0.3 * 0.2 * 0.1;
+    assert!((boxed.mass - m).abs() < 1e-12 * m);
+    let expected = [
+        m * (0.04 + 0.01) / 12.0,
+        m * (0.09 + 0.01) / 12.0,
+        m * (0.09 + 0.04) / 12.0,
+    ];
+    for k in 0..3 {
+        assert!((boxed.inertia[k][k] - expected[k]).abs() < 1e-12 * m, "{k}");
+    }
+    assert!((0..3).all(|k| (boxed.position[k] - [1.0, 0.0, 1.0][k]).abs() < 1e-15));
+    assert_eq!(boxed.orientation, [0.0, 0.0, 0.5]);
+    for (b, count) in [(&s.bodies[2], 12), (&s.bodies[3], 20), (&s.bodies[4], 4)] {
+        let ShapeDesc3::Polyhedron { vertices } = &b.shape else {
+            panic!("a polyhedron")
+        };
+        assert_eq!(vertices.len(), count);
+        for v in vertices {
+            assert!((Vector::from(*v).norm() - 0.1).abs() < 1e-12, "{v:?}");
+        }
+    }
+    for b in &s.bodies[2..4] {
+        let i = b.inertia;
+        assert!((i[0][0] - i[1][1]).abs() < 1e-12 * i[0][0] && i[0][1].abs() < 1e-12 * i[0][0]);
+    }
+    assert_eq!(s.bodies[4].mass, 2.0);
+    assert_eq!(s.bodies[4].inertia[2][2], 0.3);
+}
+
+/// A wall's frame: its z axis is the normal, its x axis the given edge (projected on the
+/// plane); a finite wall keeps its half-extents.
+#[test]
+fn wall_frames() {
+    let s = ok3(r#"
+[[walls]]
+point = [0.0, 0.0, 0.0]
+normal = [0.0, 0.0, 2.0]
+group = "w"
+
+[[walls]]
+point = [1.0, 2.0, 3.0]
+normal = [1.0, 1.0, 0.0]
+edge = [0.0, 0.3, 1.0]
+size = [0.4, 0.2]
+group = "w"
+"#);
+    let q = Rotation::from_scaled_axis(Vector::from(s.bodies[1].orientation));
+    let n = Vector::new(1.0, 1.0, 0.0).normalize();
+    assert!((q * Vector::z() - n).norm() < 1e-15);
+    let edge = Vector::new(0.0, 0.3, 1.0);
+    let along = (edge - n * n.dot(&edge)).normalize();
+    assert!((q * Vector::x() - along).norm() < 1e-15);
+    assert_eq!(
+        s.bodies[1].shape,
+        ShapeDesc3::Plane {
+            half_extents: [0.2, 0.1]
+        }
+    );
+    assert!(s.bodies[0].orientation.iter().all(|&x| x == 0.0));
+}
+
+#[test]
+fn errors_name_the_place_and_the_reason() {
+    let sphere = |extra: &str| {
+        format!(
+            "[[bodies]]\nshape = \"sphere\"\ncenter = [0.0, 0.0, 0.0]\nradius = 0.1\nmaterial = \"glass\"\ngroup = \"g\"\n{extra}"
+        )
+    };
+    error3(
+        "[[bodies]]\nshape = \"cylinder\"\ngroup = \"g\"\nmaterial = \"glass\"",
+        "bodies[0].shape",
+        "cylinder",
+        "cylinder",
+    );
+    error3(
+        &sphere("orientation = [0.0, 0.0, 1.0]"),
+        "bodies[0].orientation",
+        "orientation",
+        "not used",
+    );
+    error3(
+        "[[bodies]]\nshape = \"polyhedron\"\nvertices = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [1.0, 1.0, 0.0]]\nmaterial = \"glass\"\ngroup = \"g\"",
+        "bodies[0].vertices",
+        "vertices",
+        "plane",
+    );
+    error3(
+        "[[bodies]]\nshape = \"box\"\ncenter = [0.0, 0.0, 0.0]\nsize = [1.0, -1.0, 1.0]\nmaterial = \"glass\"\ngroup = \"g\"",
+        "bodies[0].size",
+        "size",
+        "> 0",
+    );
+    error3(
+        "[[walls]]\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 0.0]\ngroup = \"w\"",
+        "walls[0].normal",
+        "normal",
+        "non-zero",
+    );
+    error3(
+        "[[walls]]\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\nedge = [0.0, 0.0, -3.0]\ngroup = \"w\"",
+        "walls[0].edge",
+        "edge",
+        "parallel",
+    );
+    error3(
+        "[[walls]]\npoint = [0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\ngroup = \"w\"",
+        "walls[0].point",
+        "point",
+        "[x, y, z]",
+    );
+    error3(
+        "[[generators]]\nkind = \"lattice3d\"\ncolumns = 3\nrows = 3\nlayers = 3\npitch = 1.0\nradius = 0.3\nbox = [3.0, 3.0, 2.0]\nmaterial = \"glass\"\ngroup = \"g\"",
+        "generators[0].box",
+        "box =",
+        "does not fit",
+    );
+    // Two spheres overlapping by 0.05 m, and one crossing the floor.
+    let overlapping = format!(
+        "{}\n{}\n[[walls]]\npoint = [0.0, 0.0, -0.05]\nnormal = [0.0, 0.0, 1.0]\ngroup = \"w\"",
+        sphere(""),
+        sphere("").replace("[0.0, 0.0, 0.0]", "[0.15, 0.0, 0.0]")
+    );
+    let text = format!("{HEADER3}\n{overlapping}");
+    let e = parse3(&text).unwrap_err();
+    assert!(
+        e.0.iter()
+            .any(|x| x.field == "bodies[1]" && x.message.contains("by 5.000e-2 m")),
+        "{e}"
+    );
+    assert!(
+        e.0.iter()
+            .any(|x| x.field == "walls[0]" && x.message.contains("overlaps body 0")),
+        "{e}"
+    );
+}
+
+/// The header's own checks, and 3D scenes refused where they do not apply.
+#[test]
+fn dimension_and_header() {
+    let text = HEADER3.replace("dimension = 3", "dimension = 4");
+    let e = parse_any_scene(&text, Path::new("test.toml")).unwrap_err();
+    find_error(&e, &text, "scene.dimension", "dimension", "4");
+    let text = HEADER3.replace("dimension = 3", "dimension = 3\ngravity = [0.0, -9.81]");
+    let e = parse_any_scene(&text, Path::new("test.toml")).unwrap_err();
+    find_error(&e, &text, "scene.gravity", "gravity", "[x, y, z]");
+    let text = format!("{HEADER3}\n[fluid]\ndensity = 1000.0");
+    let e = parse_any_scene(&text, Path::new("test.toml")).unwrap_err();
+    find_error(&e, &text, "fluid", "[fluid]", "not available in 3D");
+    let e = xper_scene::parse_scene(HEADER3, Path::new("test.toml")).unwrap_err();
+    find_error(&e, HEADER3, "scene.dimension", "dimension", "3D scene");
+    let text = format!("{HEADER3}\n[mesh]\nfile = \"m.msh\"");
+    let e = parse_any_scene(&text, Path::new("test.toml")).unwrap_err();
+    find_error(&e, &text, "scene.dimension", "dimension", "2D only");
+    // Gravity defaults to -z in 3D.
+    assert_eq!(ok3("").gravity, [0.0, 0.0, -9.81]);
+}
