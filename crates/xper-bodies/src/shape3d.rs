@@ -235,9 +235,17 @@ impl Shape {
                 half_extents: [a, b],
             } => {
                 // Per world axis k, |R_k0| a + |R_k1| b, with an axis the rectangle does not
-                // span contributing 0 even for an infinite half-extent (a half-space).
+                // span contributing 0 even for an infinite half-extent (a half-space). An
+                // orientation that went through a rotation vector leaves ~1e-16 where the
+                // matrix has zeros: below 1e-12 an entry counts as 0 for an infinite extent.
                 let r = rotation.to_rotation_matrix();
-                let spread = |c: Real, e: Real| if c == 0.0 { 0.0 } else { c.abs() * e };
+                let spread = |c: Real, e: Real| {
+                    if c == 0.0 || (e.is_infinite() && c.abs() <= 1e-12) {
+                        0.0
+                    } else {
+                        c.abs() * e
+                    }
+                };
                 let half = Vector::from_fn(|k, _| spread(r[(k, 0)], *a) + spread(r[(k, 1)], *b));
                 Aabb {
                     min: position - half,
@@ -381,6 +389,35 @@ mod tests {
         assert!(ConvexPolyhedron::hull(&many)
             .unwrap_err()
             .contains("at most"));
+    }
+
+    /// A half-space's box is finite along its normal when the normal is an axis, also for an
+    /// orientation that went through a rotation vector (entries of ~1e-16 off the axes).
+    #[test]
+    fn half_spaces_aligned_with_an_axis_have_finite_boxes_along_it() {
+        let plane = Shape::Plane {
+            half_extents: [Real::INFINITY; 2],
+        };
+        for normal in [
+            Vector::x(),
+            -Vector::x(),
+            Vector::y(),
+            -Vector::y(),
+            -Vector::z(),
+        ] {
+            let exact = Rotation::rotation_between(&Vector::z(), &normal)
+                .unwrap_or_else(|| Rotation::from_scaled_axis(Vector::x() * std::f64::consts::PI));
+            let rounded = Rotation::from_scaled_axis(exact.scaled_axis());
+            for q in [exact, rounded] {
+                let b = plane.aabb(&Vector::new(1.0, 2.0, 3.0), q);
+                let k = normal.iamax();
+                assert_eq!(
+                    (b.min[k], b.max[k]),
+                    ([1.0, 2.0, 3.0][k], [1.0, 2.0, 3.0][k])
+                );
+                assert!((0..3).filter(|&a| a != k).all(|a| b.min[a].is_infinite()));
+            }
+        }
     }
 
     #[test]

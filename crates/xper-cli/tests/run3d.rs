@@ -92,8 +92,14 @@ normal = [0.0, -1.0, 0.0]
 group = "walls"
 "#
     )
-    .replace("center = [0.02, 0.02, 0.0051]", "center = [0.02, 0.02, -0.0249]")
-    .replace("center = [0.045, 0.04, 0.012]", "center = [0.045, 0.04, -0.018]")
+    .replace(
+        "center = [0.02, 0.02, 0.0051]",
+        "center = [0.02, 0.02, -0.0249]",
+    )
+    .replace(
+        "center = [0.045, 0.04, 0.012]",
+        "center = [0.045, 0.04, -0.018]",
+    )
 }
 
 fn write_scene(dir: &Path, steps: u64, tolerance: f64) -> std::path::PathBuf {
@@ -128,7 +134,13 @@ fn a_3d_scene_runs_writes_its_frames_and_resumes_bit_for_bit() {
     let scene = path.to_str().unwrap();
     let (whole, stopped) = (dir.join("whole"), dir.join("stopped"));
     assert_success(&xper(&["check", scene]));
-    assert_success(&xper(&["run", scene, "--out", whole.to_str().unwrap(), "--quiet"]));
+    assert_success(&xper(&[
+        "run",
+        scene,
+        "--out",
+        whole.to_str().unwrap(),
+        "--quiet",
+    ]));
     let summary: serde_json::Value =
         serde_json::from_slice(&std::fs::read(whole.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["status"], "completed");
@@ -145,13 +157,26 @@ fn a_3d_scene_runs_writes_its_frames_and_resumes_bit_for_bit() {
     for k in 0..end.bodies.len() {
         let x = end.bodies.position[k];
         if end.bodies.is_dynamic(k) {
-            assert!(x.z > -0.03 && (-0.001..0.066).contains(&x.x), "body {k} at {x:?}");
+            assert!(
+                x.z > -0.03 && (-0.001..0.066).contains(&x.x),
+                "body {k} at {x:?}"
+            );
         }
     }
     assert!(end.contacts.len() > 64, "{} contacts", end.contacts.len());
     let stopped_s = stopped.to_str().unwrap();
-    assert_success(&xper(&["run", scene, "--out", stopped_s, "--quiet", "--stop-at-step", "70"]));
-    assert_success(&xper(&["run", scene, "--out", stopped_s, "--quiet", "--resume"]));
+    assert_success(&xper(&[
+        "run",
+        scene,
+        "--out",
+        stopped_s,
+        "--quiet",
+        "--stop-at-step",
+        "70",
+    ]));
+    assert_success(&xper(&[
+        "run", scene, "--out", stopped_s, "--quiet", "--resume",
+    ]));
     assert_eq!(
         std::fs::read(stopped.join("checkpoint.bin")).unwrap(),
         std::fs::read(whole.join("checkpoint.bin")).unwrap()
@@ -167,7 +192,13 @@ fn mpirun_agrees_with_the_serial_run_in_3d() {
     let run = |name: &str, tolerance: f64, ranks: usize| {
         let path = write_scene(&dir.join(name), 150, tolerance);
         let out = dir.join(name).join("out");
-        let args = ["run", path.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"];
+        let args = [
+            "run",
+            path.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ];
         let output = if ranks == 1 {
             xper(&args)
         } else {
@@ -192,5 +223,8 @@ fn mpirun_agrees_with_the_serial_run_in_3d() {
     let two = run("two", 1e-6, 2);
     let d = distance(&two, &serial);
     eprintln!("3d mpi: {d:.3e} m from serial, serial error {spread:.3e} m");
-    assert!(d <= 10.0 * spread, "{d:.3e} m vs serial error {spread:.3e} m");
+    assert!(
+        d <= 10.0 * spread,
+        "{d:.3e} m vs serial error {spread:.3e} m"
+    );
 }

@@ -75,6 +75,7 @@ pub fn bench_one(
     let bodies = world.bodies.len();
     Ok(BenchResult {
         scene: scene.name.clone(),
+        dimension: Some(xper_math::DIM as u8),
         bodies,
         steps,
         machine,

@@ -7,6 +7,9 @@ use serde::{Deserialize, Serialize};
 #[derive(Serialize, Deserialize)]
 pub struct BenchResult {
     pub scene: String,
+    /// Space dimension of the scene (absent from results written before 3D scenes: 2).
+    #[serde(default)]
+    pub dimension: Option<u8>,
     pub bodies: usize,
     pub steps: u64,
     pub machine: String,

@@ -149,8 +149,8 @@ group = "g"
         m * (0.09 + 0.01) / 12.0,
         m * (0.09 + 0.04) / 12.0,
     ];
-    for k in 0..3 {
-        assert!((boxed.inertia[k][k] - expected[k]).abs() < 1e-12 * m, "{k}");
+    for (k, e) in expected.iter().enumerate() {
+        assert!((boxed.inertia[k][k] - e).abs() < 1e-12 * m, "{k}");
     }
     assert!((0..3).all(|k| (boxed.position[k] - [1.0, 0.0, 1.0][k]).abs() < 1e-15));
     assert_eq!(boxed.orientation, [0.0, 0.0, 0.5]);
