@@ -228,3 +228,60 @@ fn mpirun_agrees_with_the_serial_run_in_3d() {
         "{d:.3e} m vs serial error {spread:.3e} m"
     );
 }
+
+/// VTK itself (the Python module, when installed) reads every part of a 3D frame: the
+/// spheres' radii as point data within the scene's range, one polygon per face of the box
+/// and the tetrahedron (6 + 4), the five walls, and contacts with their impulse vectors.
+#[test]
+fn python_vtk_reads_the_3d_frames() {
+    // The first interpreter that has VTK (a pyenv `python3` may hide the system's).
+    let python = ["python3", "/usr/bin/python3"].into_iter().find(|p| {
+        std::process::Command::new(p)
+            .args(["-c", "import vtk"])
+            .output()
+            .is_ok_and(|o| o.status.success())
+    });
+    let Some(python) = python else {
+        println!("skipped: python vtk module not installed");
+        return;
+    };
+    let dir = temp_dir("run3d_vtk");
+    let path = write_scene(&dir, 100, 1e-4);
+    let out = dir.join("out");
+    assert_success(&xper(&[
+        "run",
+        path.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]));
+    let script = r#"
+import sys, vtk
+def read(part):
+    r = vtk.vtkXMLUnstructuredGridReader()
+    r.SetFileName(sys.argv[1] + "/frames/" + part + "_00000100.vtu")
+    r.Update()
+    assert r.GetErrorCode() == 0, part
+    return r.GetOutput()
+s = read("spheres")
+assert s.GetNumberOfPoints() == 64 and s.GetNumberOfCells() == 64
+radius = s.GetPointData().GetArray("radius")
+assert all(0.0025 <= radius.GetValue(i) <= 0.005 for i in range(64))
+assert s.GetPointData().GetArray("velocity").GetNumberOfComponents() == 3
+p = read("polyhedra")
+assert p.GetNumberOfCells() == 10, p.GetNumberOfCells()
+assert read("walls").GetNumberOfCells() == 5
+c = read("contacts")
+assert c.GetNumberOfCells() > 0
+assert c.GetCellData().GetArray("impulse").GetNumberOfTuples() == c.GetNumberOfCells()
+"#;
+    let run = std::process::Command::new(python)
+        .args(["-c", script, out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+}

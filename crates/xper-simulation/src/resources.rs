@@ -18,11 +18,10 @@ const BASE_BYTES: f64 = 30e6;
 /// peaked at 74 MB on rank 0 and 31 MB on rank 1: [`ensure_fits`] counts twice the serial
 /// estimate for a distributed run.
 const BYTES_PER_BODY: f64 = 3000.0;
-/// Peak bytes per 3D rigid body, provisional: the 3D engine alone peaked at 1.1 kB per
-/// sphere over the first 300 steps of box3d10k (`cargo run --release -p xper-nscd3d --example
-/// box3d`), frames not included; the 2D ratio of `xper run` to the engine (about 3.8) gives
-/// the rest.
-const BYTES_PER_BODY_3D: f64 = 4000.0;
+/// Peak bytes per 3D rigid body: `xper bench` (no outputs) peaked at 1.23 kB of heap per
+/// sphere on box3d10k over its 1500 steps (BENCHMARKS.md); frames and the scene's description
+/// come on top, as in 2D (3000 B per disk against 790 B for `xper bench`).
+const BYTES_PER_BODY_3D: f64 = 4500.0;
 /// Peak bytes per fluid cell: 252 B measured between grids of 256^2 and 1024^2 cells
 /// (274 MB at 1024^2).
 const BYTES_PER_CELL: f64 = 260.0;
