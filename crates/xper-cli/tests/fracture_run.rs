@@ -394,14 +394,7 @@ fn run_writes_frames_series_summary_and_plots() {
 
 #[test]
 fn python_vtk_reads_the_fracture_frames() {
-    // The first interpreter that has VTK (a pyenv `python3` may hide the system's).
-    let python = ["python3", "/usr/bin/python3"].into_iter().find(|p| {
-        std::process::Command::new(p)
-            .args(["-c", "import vtk"])
-            .output()
-            .is_ok_and(|o| o.status.success())
-    });
-    let Some(python) = python else {
+    let Some(python) = common::python_with_vtk() else {
         println!("skipped: python vtk module not installed");
         return;
     };

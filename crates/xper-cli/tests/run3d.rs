@@ -234,14 +234,7 @@ fn mpirun_agrees_with_the_serial_run_in_3d() {
 /// and the tetrahedron (6 + 4), the five walls, and contacts with their impulse vectors.
 #[test]
 fn python_vtk_reads_the_3d_frames() {
-    // The first interpreter that has VTK (a pyenv `python3` may hide the system's).
-    let python = ["python3", "/usr/bin/python3"].into_iter().find(|p| {
-        std::process::Command::new(p)
-            .args(["-c", "import vtk"])
-            .output()
-            .is_ok_and(|o| o.status.success())
-    });
-    let Some(python) = python else {
+    let Some(python) = common::python_with_vtk() else {
         println!("skipped: python vtk module not installed");
         return;
     };
@@ -283,5 +276,97 @@ assert c.GetCellData().GetArray("impulse").GetNumberOfTuples() == c.GetNumberOfC
         run.status.success(),
         "{}",
         String::from_utf8_lossy(&run.stderr)
+    );
+}
+
+/// `[output] dump_problems` in 3D: the FCLib file of a step holds that step's problem
+/// (`dim = 3`), and `xper solve` on it gives the impulses the time stepping found, on a heap of
+/// spheres whose contact frames are independent (a unique solution).
+#[cfg(feature = "hdf5")]
+#[test]
+fn a_dumped_3d_problem_solved_by_xper_solve_gives_the_stepping_impulses() {
+    let dir = temp_dir("run3d_dump");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("scene.toml");
+    let spheres = [
+        [0.0, 0.0, 0.01002],
+        [0.021, 0.0, 0.01002],
+        [0.0105, 0.019, 0.01002],
+        [0.0105, 0.0063, 0.027],
+    ];
+    let bodies: String = spheres
+        .iter()
+        .map(|c| {
+            format!(
+                "[[bodies]]\nshape = \"sphere\"\ncenter = {c:?}\nradius = 0.01\nmaterial = \"glass\"\ngroup = \"grains\"\n\n"
+            )
+        })
+        .collect();
+    let text = format!(
+        "[scene]\nname = \"dump3d\"\ndimension = 3\ndt = 1e-3\nsteps = 40\nalert_distance = 1e-3\n\n\
+         [solver]\ntolerance = 1e-12\nnorm = \"natural_map\"\nmax_iterations = 100000\ncheck_every = 1\n\n\
+         [output]\ndump_problems = [30]\n\n\
+         [[materials]]\nname = \"glass\"\ndensity = 1000.0\n\n\
+         [[laws]]\nbetween = [\"grains\", \"grains\"]\nkind = \"signorini_coulomb\"\nfriction = 0.3\n\n\
+         [[laws]]\nbetween = [\"grains\", \"walls\"]\nkind = \"signorini_coulomb\"\nfriction = 0.3\n\n\
+         {bodies}[[walls]]\npoint = [0.0, 0.0, 0.0]\nnormal = [0.0, 0.0, 1.0]\ngroup = \"walls\"\n"
+    );
+    std::fs::write(&path, text).unwrap();
+    let out = dir.join("out");
+    assert_success(&xper(&[
+        "run",
+        path.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]));
+    let file = xper_simulation::rigid3d::outputs::problem_path(&out, 30);
+    let got = xper_fclib::read_fclib_local(&file).unwrap();
+    assert_eq!(got.dim, 3);
+
+    // Independent path: the scene stepped here to step 29, its next problem, then step 30.
+    let xper_scene::AnyScene::Rigid3(scene) = xper_scene::load_any_scene(&path).unwrap() else {
+        panic!("a 3D scene")
+    };
+    let mut world = xper_simulation::rigid3d::build::world_from_scene(&scene);
+    let mut stepper = xper_nscd3d::MoreauJean::new();
+    while world.step < 29 {
+        stepper.step(&mut world).unwrap();
+    }
+    assert!(
+        stepper.next_problem(&world).unwrap() == got,
+        "the file is the step's problem"
+    );
+    stepper.step(&mut world).unwrap();
+    let stepping: Vec<f64> = world.contacts.impulses.iter().flatten().copied().collect();
+    assert!(
+        world.contacts.len() >= 6,
+        "{} contacts",
+        world.contacts.len()
+    );
+
+    let solution = dir.join("solution.json");
+    assert_success(&xper(&[
+        "solve",
+        file.to_str().unwrap(),
+        "--solver",
+        "newton",
+        "--tol",
+        "1e-12",
+        "--solution",
+        solution.to_str().unwrap(),
+    ]));
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&solution).unwrap()).unwrap();
+    let r: Vec<f64> = (json["r"].as_array().unwrap().iter())
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert_eq!(r.len(), stepping.len());
+    let scale = r.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let worst = (r.iter().zip(&stepping)).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    // Both solve to 1e-12 of the natural-map error; W is positive definite here.
+    assert!(
+        worst <= 1e-8 * scale,
+        "impulses differ by {worst:e} (largest {scale:e})"
     );
 }

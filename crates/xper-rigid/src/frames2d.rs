@@ -1,10 +1,10 @@
-//! VTU frames: bodies as cells, contacts as points, force chains as lines.
+//! VTU frames of a 2D world: disks and polygons as polygons, walls as lines.
 
+use super::contacts_grid;
 use crate::run_outputs::{f64_array, i32_array};
 use xper_bodies::Shape;
-use xper_io::vtu::{VTK_LINE, VTK_POLYGON, VTK_VERTEX};
+use xper_io::vtu::{VTK_LINE, VTK_POLYGON};
 use xper_io::UnstructuredGrid;
-use xper_laws::InteractionLaw;
 use xper_math::{rotate, Vector};
 use xper_nscd::World;
 
@@ -75,75 +75,22 @@ pub fn bodies_grid(world: &World) -> UnstructuredGrid {
     g
 }
 
-/// Contact status for output: 0 open (no impulse), 1 sticking, 2 sliding.
-fn status(world: &World, c: &xper_geometry::Contact) -> i32 {
-    let friction = match world.contact_law(c.row.bodies) {
-        Some(InteractionLaw::SignoriniCoulomb(law)) => law.friction,
-        None => 0.0,
-    };
-    let [rn, rt] = c.impulse;
-    if rn <= 0.0 {
-        0
-    } else if rt.abs() < friction * rn * (1.0 - 1e-9) {
-        1
-    } else {
-        2
-    }
+/// A point of the plane in VTK's three coordinates.
+pub(super) fn xyz(v: &Vector) -> [f64; 3] {
+    [v.x, v.y, 0.0]
 }
 
-/// Contacts as points (`normal`, `normal_impulse`, `tangential_impulse` in N s/m, `status`,
-/// `gap`: the linearised gap at the end of the step, m) and, when `chains` is set, as lines between the two body centres (walls: the contact
-/// point) with the same cell data, to draw force chains. A contact point is the one detected
-/// at the beginning of the step, carried with its first body to that body's current position
-/// (its lever arm is what a contact keeps).
-pub fn contacts_grid(world: &World, chains: bool) -> UnstructuredGrid {
-    let mut g = UnstructuredGrid::default();
-    let contacts = &world.contacts;
-    for c in contacts.iter() {
-        let first = g.points.len() as i64;
-        let point = c
-            .row
-            .point(&world.bodies.position[c.row.bodies[0] as usize]);
-        if chains {
-            for &body in &c.row.bodies {
-                let b = body as usize;
-                let end = if world.bodies.is_dynamic(b) {
-                    world.bodies.position[b]
-                } else {
-                    point
-                };
-                g.points.push([end.x, end.y, 0.0]);
-            }
-            g.add_cell(VTK_LINE, &[first, first + 1]);
-        } else {
-            g.points.push([point.x, point.y, 0.0]);
-            g.add_cell(VTK_VERTEX, &[first]);
-        }
-    }
-    g.cell_data = vec![
-        f64_array(
-            "normal",
-            3,
-            contacts
-                .iter()
-                .flat_map(|c| [c.row.normal[0], c.row.normal[1], 0.0])
-                .collect(),
-        ),
-        f64_array(
-            "normal_impulse",
-            1,
-            contacts.iter().map(|c| c.impulse[0]).collect(),
-        ),
-        f64_array(
-            "tangential_impulse",
-            1,
-            contacts.iter().map(|c| c.impulse[1]).collect(),
-        ),
-        i32_array(
-            "status",
-            contacts.iter().map(|c| status(world, &c)).collect(),
-        ),
-        f64_array("gap", 1, contacts.iter().map(|c| c.gap).collect()),
-    ];
-    g
+/// A contact's unit normal in three coordinates.
+pub(super) fn normal3(c: &xper_geometry::Contact) -> [f64; 3] {
+    [c.row.normal[0], c.row.normal[1], 0.0]
+}
+
+/// A contact's tangential impulse (signed: along the tangent, the normal turned by +90 degrees).
+pub(super) fn tangential(c: &xper_geometry::Contact) -> f64 {
+    c.impulse[1]
+}
+
+/// The arrays of contacts only this dimension has: none in 2D.
+pub(super) fn more_contact_arrays(_world: &World) -> Vec<xper_io::vtu::DataArray> {
+    Vec::new()
 }

@@ -2,11 +2,11 @@
 //! polyhedra as closed surfaces (one polygon per face), walls as rectangles (half-spaces drawn
 //! over the extent of the bodies), contacts as points and force chains as lines.
 
+use super::contacts_grid;
 use crate::run_outputs::{f64_array, i32_array};
 use xper_bodies::Shape;
-use xper_io::vtu::{VTK_LINE, VTK_POLYGON, VTK_VERTEX};
+use xper_io::vtu::{VTK_POLYGON, VTK_VERTEX};
 use xper_io::UnstructuredGrid;
-use xper_laws::InteractionLaw;
 use xper_math::{Real, Vector};
 use xper_nscd::World;
 
@@ -21,7 +21,8 @@ pub fn frame_parts(world: &World) -> Vec<(&'static str, UnstructuredGrid)> {
     ]
 }
 
-fn xyz(v: &Vector) -> [f64; 3] {
+/// A point in VTK's coordinates.
+pub(super) fn xyz(v: &Vector) -> [f64; 3] {
     [v.x, v.y, v.z]
 }
 
@@ -145,82 +146,25 @@ pub fn walls_grid(world: &World) -> UnstructuredGrid {
     g
 }
 
-/// Contact status for output: 0 open (no impulse), 1 sticking, 2 sliding.
-fn status(world: &World, c: &xper_geometry::Contact) -> i32 {
-    let friction = match world.contact_law(c.row.bodies) {
-        Some(InteractionLaw::SignoriniCoulomb(law)) => law.friction,
-        None => 0.0,
-    };
-    let [rn, rt1, rt2] = c.impulse;
-    if rn <= 0.0 {
-        0
-    } else if rt1.hypot(rt2) < friction * rn * (1.0 - 1e-9) {
-        1
-    } else {
-        2
-    }
+/// A contact's unit normal.
+pub(super) fn normal3(c: &xper_geometry::Contact) -> [f64; 3] {
+    c.row.normal
 }
 
-/// Contacts as points (`normal`; `normal_impulse`, `tangential_impulse` (its magnitude) and
-/// `impulse` (the world vector), N s; `status`; `gap`, the linearised gap at the end of the
-/// step, m) and, when `chains` is set, as lines between the two body centres (walls: the
-/// contact point) with the same cell data, to draw force chains.
-pub fn contacts_grid(world: &World, chains: bool) -> UnstructuredGrid {
-    let mut g = UnstructuredGrid::default();
+/// The magnitude of a contact's tangential impulse.
+pub(super) fn tangential(c: &xper_geometry::Contact) -> f64 {
+    c.impulse[1].hypot(c.impulse[2])
+}
+
+/// The arrays of contacts only 3D has: `impulse`, the world vector (N s).
+pub(super) fn more_contact_arrays(world: &World) -> Vec<xper_io::vtu::DataArray> {
     let contacts = &world.contacts;
-    for c in contacts.iter() {
-        let first = g.points.len() as i64;
-        let point = c
-            .row
-            .point(&world.bodies.position[c.row.bodies[0] as usize]);
-        if chains {
-            for &body in &c.row.bodies {
-                let b = body as usize;
-                let end = if world.bodies.is_dynamic(b) {
-                    world.bodies.position[b]
-                } else {
-                    point
-                };
-                g.points.push(xyz(&end));
-            }
-            g.add_cell(VTK_LINE, &[first, first + 1]);
-        } else {
-            g.points.push(xyz(&point));
-            g.add_cell(VTK_VERTEX, &[first]);
-        }
-    }
-    g.cell_data = vec![
-        f64_array(
-            "normal",
-            3,
-            contacts.iter().flat_map(|c| c.row.normal).collect(),
-        ),
-        f64_array(
-            "normal_impulse",
-            1,
-            contacts.iter().map(|c| c.impulse[0]).collect(),
-        ),
-        f64_array(
-            "tangential_impulse",
-            1,
-            contacts
-                .iter()
-                .map(|c| c.impulse[1].hypot(c.impulse[2]))
-                .collect(),
-        ),
-        f64_array(
-            "impulse",
-            3,
-            contacts
-                .iter()
-                .flat_map(|c| c.row.carry_out(c.impulse))
-                .collect(),
-        ),
-        i32_array(
-            "status",
-            contacts.iter().map(|c| status(world, &c)).collect(),
-        ),
-        f64_array("gap", 1, contacts.iter().map(|c| c.gap).collect()),
-    ];
-    g
+    vec![f64_array(
+        "impulse",
+        3,
+        contacts
+            .iter()
+            .flat_map(|c| c.row.carry_out(c.impulse))
+            .collect(),
+    )]
 }

@@ -9,11 +9,6 @@
 
 pub mod bench;
 pub mod build;
-#[cfg(feature = "dim2")]
-#[path = "frames2d.rs"]
-pub mod frames;
-#[cfg(feature = "dim3")]
-#[path = "frames3d.rs"]
 pub mod frames;
 pub mod outputs;
 pub mod stepping;

@@ -102,6 +102,25 @@ pub(crate) fn generators(
 type Made = (Vec<([f64; 2], f64)>, Common, ([f64; 2], [f64; 2]));
 
 fn common(ctx: &mut Ctx, t: &Tbl, mats: &Materials, groups: &mut Groups) -> Option<Common> {
+    let shared = material_and_groups(ctx, t, mats, groups);
+    let velocity = t.vec2(ctx, "velocity").or([0.0, 0.0]);
+    let (density, group, walls) = shared?;
+    Some(Common {
+        density,
+        group,
+        walls,
+        velocity: velocity?,
+    })
+}
+
+/// What generators of both dimensions read alike: the material's density, the group of the
+/// bodies and the group of the walls (if any).
+pub(crate) fn material_and_groups(
+    ctx: &mut Ctx,
+    t: &Tbl,
+    mats: &Materials,
+    groups: &mut Groups,
+) -> Option<(f64, usize, Option<usize>)> {
     t.forbid(ctx, "mass", "generators take a `material`, not `mass`");
     t.forbid(
         ctx,
@@ -119,16 +138,11 @@ fn common(ctx: &mut Ctx, t: &Tbl, mats: &Materials, groups: &mut Groups) -> Opti
         Got::Bad => None,
         Got::Val(g, _) => Some(Some(groups.index(g))),
     };
-    let velocity = t.vec2(ctx, "velocity").or([0.0, 0.0]);
-    Some(Common {
-        density: density?,
-        group: group?,
-        walls: walls?,
-        velocity: velocity?,
-    })
+    Some((density?, group?, walls?))
 }
 
-fn seed(ctx: &mut Ctx, t: &Tbl) -> Option<u64> {
+/// The generator's `seed` (0 unless given).
+pub(crate) fn seed(ctx: &mut Ctx, t: &Tbl) -> Option<u64> {
     match t.int(ctx, "seed") {
         Got::Absent => Some(0),
         g => int_in(ctx, g.ok(), &t.field("seed"), 0, i64::MAX).map(|s| s as u64),

@@ -3,7 +3,7 @@
 
 use crate::geometry::{add, cross, dot, norm, point_segment_distance, rotate, sub, V2};
 use crate::read::Ctx;
-use crate::shared::Built;
+use crate::shared::{Built, Origin};
 use crate::types::ShapeDesc;
 
 /// At most this many overlap errors are listed; the rest are counted in one more error.
@@ -335,9 +335,20 @@ pub(crate) fn check(ctx: &mut Ctx, built: &Built) {
             }
         }
     }
+    report(ctx, &built.origins, found, total);
+}
+
+/// Reports the overlapping pairs `found` (bodies `a < b` and depth, m), sorted by the later
+/// body, at the later body's entry, and how many more of the `total` were not listed.
+pub(crate) fn report(
+    ctx: &mut Ctx,
+    origins: &[Origin],
+    mut found: Vec<(usize, usize, f64)>,
+    total: usize,
+) {
     found.sort_by_key(|&(a, b, _)| (b, a));
     for &(a, b, d) in &found {
-        let (oa, ob) = (&built.origins[a], &built.origins[b]);
+        let (oa, ob) = (&origins[a], &origins[b]);
         let msg = format!(
             "body {b} ({}) overlaps body {a} ({}, at {}:{}:{}) by {d:.3e} m",
             ob.describe(),
@@ -350,7 +361,7 @@ pub(crate) fn check(ctx: &mut Ctx, built: &Built) {
     }
     if total > found.len() {
         if let Some(&(_, b, _)) = found.first() {
-            let ob = &built.origins[b];
+            let ob = &origins[b];
             let msg = format!("... and {} more overlapping pairs", total - found.len());
             ctx.err(ob.pos, &ob.field(), msg);
         }

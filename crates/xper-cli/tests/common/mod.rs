@@ -117,3 +117,14 @@ density = 1000.0
 "#
     )
 }
+
+/// The first Python interpreter that has the `vtk` module (a pyenv `python3` may hide the
+/// system's), if any.
+pub fn python_with_vtk() -> Option<&'static str> {
+    ["python3", "/usr/bin/python3"].into_iter().find(|p| {
+        std::process::Command::new(p)
+            .args(["-c", "import vtk"])
+            .output()
+            .is_ok_and(|o| o.status.success())
+    })
+}

@@ -5,6 +5,7 @@ use std::collections::HashMap;
 use std::f64::consts::PI;
 
 use super::bodies::wall_body;
+use crate::generators::{material_and_groups, seed};
 use crate::read::{as_vec3, choose, ensure, int_in, Ctx, Got, Tbl};
 use crate::shared::{Built3, Groups, Materials, Origin, Part};
 use crate::tree::{Kind, Pos};
@@ -90,31 +91,15 @@ pub(crate) fn generators(
 }
 
 fn common(ctx: &mut Ctx, t: &Tbl, mats: &Materials, groups: &mut Groups) -> Option<Common> {
-    let name = t.string(ctx, "material").req(ctx, t, "material");
-    let density = mats.density(ctx, name, &t.field("material"));
-    let group = t
-        .string(ctx, "group")
-        .req(ctx, t, "group")
-        .map(|(g, _)| groups.index(g));
-    let walls = match t.string(ctx, "walls") {
-        Got::Absent => Some(None),
-        Got::Bad => None,
-        Got::Val(g, _) => Some(Some(groups.index(g))),
-    };
+    let shared = material_and_groups(ctx, t, mats, groups);
     let velocity = t.vec3(ctx, "velocity").or([0.0; 3]);
+    let (density, group, walls) = shared?;
     Some(Common {
-        density: density?,
-        group: group?,
-        walls: walls?,
+        density,
+        group,
+        walls,
         velocity: velocity?,
     })
-}
-
-fn seed(ctx: &mut Ctx, t: &Tbl) -> Option<u64> {
-    match t.int(ctx, "seed") {
-        Got::Absent => Some(0),
-        g => int_in(ctx, g.ok(), &t.field("seed"), 0, i64::MAX).map(|s| s as u64),
-    }
 }
 
 /// `box = [[xmin, ymin, zmin], [xmax, ymax, zmax]]`.

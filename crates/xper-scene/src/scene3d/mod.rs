@@ -135,7 +135,7 @@ fn overlaps(ctx: &mut Ctx, built: &Built3) {
     }
     let mut found: Vec<(usize, usize, f64)> = Vec::new();
     let mut total = 0usize;
-    let mut report = |a: usize, b: usize, depth: f64, size: f64| {
+    let mut record = |a: usize, b: usize, depth: f64, size: f64| {
         if depth > 1e-9 + 1e-6 * size {
             total += 1;
             if found.len() < MAX_OVERLAP_REPORTS {
@@ -150,35 +150,16 @@ fn overlaps(ctx: &mut Ctx, built: &Built3) {
             let at = std::array::from_fn(|k| c[k].saturating_add(offset[k]));
             for &o in grid.get(&at).into_iter().flatten().filter(|&&o| o > s) {
                 let (a, y, q) = spheres[o];
-                report(a, b, r + q - (x - y).norm(), 2.0 * r.min(q));
+                record(a, b, r + q - (x - y).norm(), 2.0 * r.min(q));
             }
         }
         for &(w, rotation, point, half_extents) in &walls {
             let local = rotation.inverse_transform_vector(&(x - point));
             let within = local.x.abs() <= half_extents[0] && local.y.abs() <= half_extents[1];
             if within && local.z > -r {
-                report(w, b, r - local.z, 2.0 * r);
+                record(w, b, r - local.z, 2.0 * r);
             }
         }
     }
-    found.sort_by_key(|&(a, b, _)| (b, a));
-    for &(a, b, d) in &found {
-        let (oa, ob) = (&built.origins[a], &built.origins[b]);
-        let msg = format!(
-            "body {b} ({}) overlaps body {a} ({}, at {}:{}:{}) by {d:.3e} m",
-            ob.describe(),
-            oa.describe(),
-            ctx.file.display(),
-            oa.pos.line,
-            oa.pos.column
-        );
-        ctx.err(ob.pos, &ob.field(), msg);
-    }
-    if total > found.len() {
-        if let Some(&(_, b, _)) = found.first() {
-            let ob = &built.origins[b];
-            let msg = format!("... and {} more overlapping pairs", total - found.len());
-            ctx.err(ob.pos, &ob.field(), msg);
-        }
-    }
+    crate::overlap::report(ctx, &built.origins, found, total);
 }
