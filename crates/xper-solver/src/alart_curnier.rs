@@ -194,6 +194,54 @@ pub(crate) fn solve_contact_3d(
     r: &mut [f64; 3],
     p: &LocalParams,
 ) -> LocalPath {
+    solve_contact_3d_sticking(w, q, mu, r, p, |q| solve3(w, [-q[0], -q[1], -q[2]]))
+}
+
+/// The inverse of `m` (`None` where [`solve3`] finds it singular), column by column.
+pub(crate) fn inverse3(m: &[f64; 9]) -> Option<[f64; 9]> {
+    let mut inv = [0.0; 9];
+    for c in 0..3 {
+        let mut e = [0.0; 3];
+        e[c] = 1.0;
+        let x = solve3(m, e)?;
+        for k in 0..3 {
+            inv[3 * k + c] = x[k];
+        }
+    }
+    Some(inv)
+}
+
+/// [`solve_contact_3d`] with the inverse of `w` computed beforehand ([`inverse3`]), for a
+/// block solved many times (an NLGS sweep): the sticking candidate is `-w^-1 q`.
+pub(crate) fn solve_contact_3d_inverse(
+    w: &[f64; 9],
+    inverse: &Option<[f64; 9]>,
+    q: [f64; 3],
+    mu: f64,
+    r: &mut [f64; 3],
+    p: &LocalParams,
+) -> LocalPath {
+    solve_contact_3d_sticking(w, q, mu, r, p, |q| {
+        inverse.map(|m| {
+            [
+                -(m[0] * q[0] + m[1] * q[1] + m[2] * q[2]),
+                -(m[3] * q[0] + m[4] * q[1] + m[5] * q[2]),
+                -(m[6] * q[0] + m[7] * q[1] + m[8] * q[2]),
+            ]
+        })
+    })
+}
+
+/// [`solve_contact_3d`] with the sticking candidate `w^-1 (-q)` given by `sticking`.
+#[inline(always)]
+fn solve_contact_3d_sticking(
+    w: &[f64; 9],
+    q: [f64; 3],
+    mu: f64,
+    r: &mut [f64; 3],
+    p: &LocalParams,
+    sticking: impl FnOnce(&[f64; 3]) -> Option<[f64; 3]>,
+) -> LocalPath {
     if q[0] >= 0.0 {
         *r = [0.0; 3];
         return LocalPath::Closed;
@@ -202,7 +250,7 @@ pub(crate) fn solve_contact_3d(
         *r = [-q[0] / w[0], 0.0, 0.0];
         return LocalPath::Closed;
     }
-    if let Some(s) = solve3(w, [-q[0], -q[1], -q[2]]) {
+    if let Some(s) = sticking(&q) {
         if s[0] >= 0.0 && (s[1] * s[1] + s[2] * s[2]).sqrt() <= mu * s[0] {
             *r = s;
             return LocalPath::Closed;

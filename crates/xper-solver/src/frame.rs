@@ -17,7 +17,7 @@
 use std::fmt::Debug;
 use std::ops::{Index, IndexMut};
 
-use crate::alart_curnier::{local_residual3, solve_contact_3d, LocalParams};
+use crate::alart_curnier::{inverse3, local_residual3, solve_contact_3d_inverse, LocalParams};
 use crate::cohesive::{CohesiveTerm, PreparedCohesiveContact};
 use crate::local::{solve_one_contact_factored, LocalFactors};
 use crate::operator::{block_mul, Block2};
@@ -195,7 +195,8 @@ impl ContactFrame for Frame3 {
     const SIZE: usize = 3;
     type Vector = [f64; 3];
     type Block = [f64; 9];
-    type Factors = ();
+    /// The inverse of the block (`None` when singular), for the sticking test.
+    type Factors = Option<[f64; 9]>;
     type Cohesive = ();
     type Stored = [f32; 3];
 
@@ -232,14 +233,23 @@ impl ContactFrame for Frame3 {
         m[8] += eps;
         m
     }
-    #[inline(always)]
-    fn factors(_w: &[f64; 9]) {}
-    /// Take-off and stick in closed form, else Alart-Curnier's Newton from `warm`, with the
-    /// slip-angle search and the projection as fallbacks ([`crate::alart_curnier`]).
     #[inline]
-    fn solve(w: &[f64; 9], _factors: &(), u_free: [f64; 3], mu: f64, warm: [f64; 3]) -> [f64; 3] {
+    fn factors(w: &[f64; 9]) -> Option<[f64; 9]> {
+        inverse3(w)
+    }
+    /// Take-off and stick in closed form (the stick from the block's inverse), else
+    /// Alart-Curnier's Newton from `warm`, with the slip-angle search and the projection as
+    /// fallbacks ([`crate::alart_curnier`]).
+    #[inline]
+    fn solve(
+        w: &[f64; 9],
+        inverse: &Option<[f64; 9]>,
+        u_free: [f64; 3],
+        mu: f64,
+        warm: [f64; 3],
+    ) -> [f64; 3] {
         let mut r = warm;
-        solve_contact_3d(w, u_free, mu, &mut r, &LocalParams::default());
+        solve_contact_3d_inverse(w, inverse, u_free, mu, &mut r, &LocalParams::default());
         r
     }
     #[inline]
