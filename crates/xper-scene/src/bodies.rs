@@ -40,8 +40,18 @@ pub(crate) fn bodies(
     groups: &mut Groups,
     built: &mut Built,
 ) {
+    read_bodies(ctx, root, built, |ctx, t| body(ctx, t, mats, groups));
+}
+
+/// Reads every `[[bodies]]` entry with `body` (2D or 3D) into `built`.
+pub(crate) fn read_bodies<B>(
+    ctx: &mut Ctx,
+    root: &Tbl,
+    built: &mut crate::shared::Built<B>,
+    mut body: impl FnMut(&mut Ctx, &Tbl) -> Option<B>,
+) {
     for (i, t) in root.tables(ctx, "bodies") {
-        if let Some(b) = body(ctx, &t, mats, groups) {
+        if let Some(b) = body(ctx, &t) {
             let origin = Origin {
                 section: "bodies",
                 index: i,

@@ -141,6 +141,24 @@ pub(crate) fn material_and_groups(
     Some((density?, group?, walls?))
 }
 
+/// The `radius = [min, max]` (m) of a box generator, `0 < min <= max`.
+pub(crate) fn radius_range(ctx: &mut Ctx, t: &Tbl) -> Option<(f64, f64)> {
+    t.vec2(ctx, "radius")
+        .req(ctx, t, "radius")
+        .and_then(|([lo, hi], pos)| {
+            if lo > 0.0 && lo <= hi {
+                Some((lo, hi))
+            } else {
+                ctx.err(
+                    pos,
+                    &t.field("radius"),
+                    format!("must be [min, max] m with 0 < min <= max, got [{lo}, {hi}]"),
+                );
+                None
+            }
+        })
+}
+
 /// The generator's `seed` (0 unless given).
 pub(crate) fn seed(ctx: &mut Ctx, t: &Tbl) -> Option<u64> {
     match t.int(ctx, "seed") {
@@ -186,7 +204,8 @@ fn box_corners(ctx: &mut Ctx, t: &Tbl) -> Option<([f64; 2], [f64; 2])> {
     Some((lo, hi))
 }
 
-const BOX_KEYS: &[&str] = &[
+/// The keys of the box generators (`box_of_disks`, `box_of_spheres`).
+pub(crate) const BOX_KEYS: &[&str] = &[
     "kind",
     "count",
     "radius",
@@ -203,21 +222,7 @@ fn box_of_disks(ctx: &mut Ctx, t: &Tbl, mats: &Materials, groups: &mut Groups) -
     t.check_keys(ctx, BOX_KEYS);
     let count_got = t.int(ctx, "count").req(ctx, t, "count");
     let count = int_in(ctx, count_got, &t.field("count"), 1, MAX_GENERATED);
-    let radius = t
-        .vec2(ctx, "radius")
-        .req(ctx, t, "radius")
-        .and_then(|([lo, hi], pos)| {
-            if lo > 0.0 && lo <= hi {
-                Some((lo, hi))
-            } else {
-                ctx.err(
-                    pos,
-                    &t.field("radius"),
-                    format!("must be [min, max] m with 0 < min <= max, got [{lo}, {hi}]"),
-                );
-                None
-            }
-        });
+    let radius = radius_range(ctx, t);
     let corners = box_corners(ctx, t);
     let placements = [("lattice", false), ("random", true)];
     let random = match t.string(ctx, "placement") {

@@ -258,17 +258,7 @@ fn rigid_scene_with(ctx: &mut Ctx, root: &Tbl, header: sections::Header) -> Opti
         alert_distance,
         detection: header.detection.unwrap_or_default(),
         solver,
-        output: OutputSettings {
-            frame_every: output
-                .frame_every
-                .flatten()
-                .unwrap_or(steps.div_ceil(100).max(1)),
-            checkpoint_every: output
-                .checkpoint_every
-                .flatten()
-                .unwrap_or(steps.div_ceil(10).max(1)),
-            dump_problems: output.dump_problems,
-        },
+        output: output.settings(steps),
         groups: groups.names,
         laws,
         bodies: built.bodies,

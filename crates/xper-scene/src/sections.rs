@@ -325,6 +325,19 @@ pub(crate) struct Output {
     pub dump_problems: Vec<u64>,
 }
 
+impl Output {
+    /// The settings of a scene of `steps` steps: a cadence not given is a hundredth of the run
+    /// for frames and a tenth for checkpoints (at least 1).
+    pub fn settings(self, steps: u64) -> crate::types::OutputSettings {
+        crate::types::OutputSettings {
+            frame_every: (self.frame_every.flatten()).unwrap_or(steps.div_ceil(100).max(1)),
+            checkpoint_every: (self.checkpoint_every.flatten())
+                .unwrap_or(steps.div_ceil(10).max(1)),
+            dump_problems: self.dump_problems,
+        }
+    }
+}
+
 /// The `[output]` table; `steps` (if known) bounds the steps of `dump_problems`.
 pub(crate) fn output(ctx: &mut Ctx, root: &Tbl, steps: Option<u64>) -> Output {
     let Got::Val(t, _) = root.table(ctx, "output") else {

@@ -4,7 +4,7 @@
 //! vertices, with the mass properties of `xper_bodies3d` (divergence theorem over the faces);
 //! a sphere of radius `r` and density `rho` has `m = rho 4/3 pi r^3`, `I = 2/5 m r^2`.
 
-use crate::bodies::drives_of;
+use crate::bodies::{drives_of, read_bodies};
 use crate::read::{as_vec3, choose, ensure, Ctx, Got, Tbl};
 use crate::shared::{Built3, Groups, Materials, Origin, Part};
 use crate::tree::Kind;
@@ -98,17 +98,7 @@ pub(crate) fn bodies(
     groups: &mut Groups,
     built: &mut Built3,
 ) {
-    for (i, t) in root.tables(ctx, "bodies") {
-        if let Some(b) = body(ctx, &t, mats, groups) {
-            let origin = Origin {
-                section: "bodies",
-                index: i,
-                part: Part::Whole,
-                pos: t.pos,
-            };
-            built.push(b, origin);
-        }
-    }
+    read_bodies(ctx, root, built, |ctx, t| body(ctx, t, mats, groups));
 }
 
 fn body(ctx: &mut Ctx, t: &Tbl, mats: &Materials, groups: &mut Groups) -> Option<BodyDesc3> {

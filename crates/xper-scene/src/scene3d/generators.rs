@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use std::f64::consts::PI;
 
 use super::bodies::wall_body;
-use crate::generators::{material_and_groups, seed};
+use crate::generators::{material_and_groups, radius_range, seed, BOX_KEYS};
 use crate::read::{as_vec3, choose, ensure, int_in, Ctx, Got, Tbl};
 use crate::shared::{Built3, Groups, Materials, Origin, Part};
 use crate::tree::{Kind, Pos};
@@ -131,35 +131,11 @@ fn box_corners(ctx: &mut Ctx, t: &Tbl) -> Option<([f64; 3], [f64; 3])> {
     Some((lo, hi))
 }
 
-const BOX_KEYS: &[&str] = &[
-    "kind",
-    "count",
-    "radius",
-    "box",
-    "placement",
-    "seed",
-    "material",
-    "group",
-    "walls",
-    "velocity",
-];
-
 fn box_of_spheres(ctx: &mut Ctx, t: &Tbl, mats: &Materials, groups: &mut Groups) -> Option<Made> {
     t.check_keys(ctx, BOX_KEYS);
     let count_got = t.int(ctx, "count").req(ctx, t, "count");
     let count = int_in(ctx, count_got, &t.field("count"), 1, MAX_GENERATED);
-    let radius = t
-        .vec2(ctx, "radius")
-        .req(ctx, t, "radius")
-        .and_then(|([lo, hi], pos)| {
-            if lo > 0.0 && lo <= hi && hi.is_finite() {
-                Some((lo, hi))
-            } else {
-                let msg = format!("must be [min, max] m with 0 < min <= max, got [{lo}, {hi}]");
-                ctx.err(pos, &t.field("radius"), msg);
-                None
-            }
-        });
+    let radius = radius_range(ctx, t);
     let corners = box_corners(ctx, t);
     let placements = [("lattice", false), ("random", true)];
     let random = match t.string(ctx, "placement") {

@@ -10,7 +10,6 @@ use std::collections::HashMap;
 use crate::read::{Ctx, Tbl};
 use crate::sections::{self, Header};
 use crate::shared::{Built3, Groups};
-use crate::types::OutputSettings;
 use crate::types3d::{Scene3, ShapeDesc3};
 use crate::MAX_OVERLAP_REPORTS;
 use xper_math3d::{Rotation, Vector};
@@ -61,12 +60,7 @@ pub(crate) fn rigid_scene3(ctx: &mut Ctx, root: &Tbl, header: Header) -> Option<
         alert_distance,
         detection: header.detection.unwrap_or_default(),
         solver,
-        output: OutputSettings {
-            frame_every: (output.frame_every.flatten()).unwrap_or(steps.div_ceil(100).max(1)),
-            checkpoint_every: (output.checkpoint_every.flatten())
-                .unwrap_or(steps.div_ceil(10).max(1)),
-            dump_problems: output.dump_problems,
-        },
+        output: output.settings(steps),
         groups: groups.names,
         laws,
         bodies: built.bodies,
