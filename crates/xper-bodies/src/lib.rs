@@ -15,6 +15,8 @@ mod shape;
 mod shape;
 
 pub use drive::{Drive, TimeFunction};
+#[cfg(feature = "dim3")]
+pub use set::isotropic_inertia;
 pub use set::{Body, BodyHandle, BodySet, Configuration, InverseMass, Ownership};
 #[cfg(feature = "dim2")]
 pub use shape::{ConvexPolygon, Shape};

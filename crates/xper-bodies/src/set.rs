@@ -10,6 +10,8 @@ mod dimension;
 #[cfg(feature = "dim3")]
 #[path = "set3d.rs"]
 mod dimension;
+#[cfg(feature = "dim3")]
+pub use dimension::isotropic_inertia;
 pub use dimension::InverseMass;
 
 /// Index of a body in its [`BodySet`].

@@ -17,6 +17,27 @@ pub struct InverseMass {
     pub angular: AngMatrix,
 }
 
+/// The scalar `i` of an inertia tensor equal to `i Id` to round-off (`max|I - I_00 Id| <=
+/// 1e-12 I_00`: a cube's or a regular solid's tensor from the face integrals differs from a
+/// multiple of the identity by a few ulps), `None` for an anisotropic, infinite or zero one.
+/// Such a tensor is the same in every frame, so `R I R^T = I` needs no rotation.
+#[inline]
+pub fn isotropic_inertia(i: &AngMatrix) -> Option<Real> {
+    let d = i[(0, 0)];
+    if !(d.is_finite() && d > 0.0) {
+        return None;
+    }
+    let tolerance = 1e-12 * d;
+    let mut off = 0.0f64;
+    for k in 0..3 {
+        for l in 0..3 {
+            let x = if k == l { i[(k, l)] - d } else { i[(k, l)] };
+            off = off.max(x.abs());
+        }
+    }
+    (off <= tolerance).then_some(d)
+}
+
 impl BodySet {
     /// Inverse mass of body `b` (see [`InverseMass`]): with the rotations about the world
     /// axes in `F` free and the others imposed, the angular part is `(I_FF)^-1` on `F` (the
@@ -32,6 +53,12 @@ impl BodySet {
         };
         let linear = [0, 1, 2].map(|k| if free(k) { inv_m } else { 0.0 });
         let body = self.inertia[b];
+        if self.imposed[b] >> 3 == 0 {
+            if let Some(i) = isotropic_inertia(&body) {
+                let angular = AngMatrix::from_diagonal_element(1.0 / i);
+                return InverseMass { linear, angular };
+            }
+        }
         let finite = body.iter().all(|x| x.is_finite()) && body.trace() > 0.0;
         let mut angular = AngMatrix::zeros();
         if finite {

@@ -27,7 +27,7 @@
 //! miss the coupling `-(I_FF)^-1 I_Fk dw_k` when an imposed rate `w_k` changes in time and the
 //! world inertia couples the axes.
 
-use xper_bodies::{BodySet, InverseMass};
+use xper_bodies::{isotropic_inertia, BodySet, InverseMass};
 use xper_geometry::ContactRow;
 use xper_math::{integrate_rotation, AngMatrix, AngVector, Real, Rotation, Vector, DIM, DOFS};
 
@@ -262,10 +262,7 @@ fn has_gyroscopic_term(bodies: &BodySet, b: usize) -> bool {
     if rotation_imposed || !i.iter().all(|x| x.is_finite()) || i.trace() <= 0.0 {
         return false;
     }
-    // Isotropic to round-off (a cube's or a regular solid's tensor from the face integrals
-    // differs from a multiple of the identity by a few ulps).
-    let isotropic = (i - AngMatrix::from_diagonal_element(i[(0, 0)])).amax() <= 1e-12 * i[(0, 0)];
-    !isotropic
+    isotropic_inertia(i).is_none()
 }
 
 /// The end of a step for body `b` from the velocities `v0` (in the body set) and `v1` (the

@@ -106,40 +106,58 @@ pub(crate) fn ac_function(
     e
 }
 
-/// Solves the 3x3 system `m x = b` by Gaussian elimination with partial pivoting; `None` when
-/// a pivot is below `1e-14` times the largest entry.
-pub(crate) fn solve3(m: &[f64; 9], b: [f64; 3]) -> Option<[f64; 3]> {
-    let mut a = *m;
-    let mut x = b;
-    let scale = a.iter().fold(0.0f64, |s, v| s.max(v.abs()));
-    if !(scale > 0.0 && scale.is_finite()) {
+/// The adjugate of `m` (row-major) and its determinant, `m adj(m) = det(m) I`.
+#[inline]
+fn adjugate3(m: &[f64; 9]) -> ([f64; 9], f64) {
+    let adj = [
+        m[4] * m[8] - m[5] * m[7],
+        m[2] * m[7] - m[1] * m[8],
+        m[1] * m[5] - m[2] * m[4],
+        m[5] * m[6] - m[3] * m[8],
+        m[0] * m[8] - m[2] * m[6],
+        m[2] * m[3] - m[0] * m[5],
+        m[3] * m[7] - m[4] * m[6],
+        m[1] * m[6] - m[0] * m[7],
+        m[0] * m[4] - m[1] * m[3],
+    ];
+    let det = m[0] * adj[0] + m[1] * adj[3] + m[2] * adj[6];
+    (adj, det)
+}
+
+/// Whether `m` (with `adj`, `det` from [`adjugate3`]) is regular to working precision:
+/// `|det m| > 1e-14 max|m_ij| max|adj_ij|`. Since `max|m^-1_ij| = max|adj_ij| / |det m|`, the
+/// test reads `1 / (max|m_ij| max|m^-1_ij|) > 1e-14`, a reciprocal condition number in the
+/// max norm (within a factor 9 of the 1-norm's).
+#[inline]
+fn regular3(m: &[f64; 9], adj: &[f64; 9], det: f64) -> bool {
+    let largest = |x: &[f64; 9]| {
+        x.iter()
+            .fold(0.0f64, |s, v| if v.abs() > s { v.abs() } else { s })
+    };
+    let bound = 1e-14 * largest(m) * largest(adj);
+    det.abs() > bound && bound.is_finite()
+}
+
+/// The inverse of `m` by its adjugate, `m^-1 = adj(m) / det(m)`; `None` when `m` is singular
+/// to working precision ([`regular3`]).
+pub(crate) fn inverse3(m: &[f64; 9]) -> Option<[f64; 9]> {
+    let (adj, det) = adjugate3(m);
+    if !regular3(m, &adj, det) {
         return None;
     }
-    for c in 0..3 {
-        let p = (c..3)
-            .max_by(|&i, &j| a[i * 3 + c].abs().total_cmp(&a[j * 3 + c].abs()))
-            .unwrap_or(c);
-        if a[p * 3 + c].abs() <= 1e-14 * scale {
-            return None;
-        }
-        if p != c {
-            for k in 0..3 {
-                a.swap(p * 3 + k, c * 3 + k);
-            }
-            x.swap(p, c);
-        }
-        for i in c + 1..3 {
-            let f = a[i * 3 + c] / a[c * 3 + c];
-            for k in c..3 {
-                a[i * 3 + k] -= f * a[c * 3 + k];
-            }
-            x[i] -= f * x[c];
-        }
+    let inv = adj.map(|a| a / det);
+    inv.iter().all(|v| v.is_finite()).then_some(inv)
+}
+
+/// Solves the 3x3 system `m x = b` by Cramer's rule, `x = adj(m) b / det(m)`; `None` when `m`
+/// is singular to working precision ([`regular3`]).
+pub(crate) fn solve3(m: &[f64; 9], b: [f64; 3]) -> Option<[f64; 3]> {
+    let (adj, det) = adjugate3(m);
+    if !regular3(m, &adj, det) {
+        return None;
     }
-    for c in (0..3).rev() {
-        let s: f64 = (c + 1..3).map(|k| a[c * 3 + k] * x[k]).sum();
-        x[c] = (x[c] - s) / a[c * 3 + c];
-    }
+    let inv_det = 1.0 / det;
+    let x = mul3(&adj, &b, &[0.0; 3]).map(|v| v * inv_det);
     x.iter().all(|v| v.is_finite()).then_some(x)
 }
 
@@ -153,8 +171,13 @@ fn mul3(w: &[f64; 9], r: &[f64; 3], q: &[f64; 3]) -> [f64; 3] {
 }
 
 #[inline]
+fn dot3(x: &[f64; 3], y: &[f64; 3]) -> f64 {
+    x[0] * y[0] + x[1] * y[1] + x[2] * y[2]
+}
+
+#[inline]
 fn norm3(x: &[f64; 3]) -> f64 {
-    (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt()
+    dot3(x, x).sqrt()
 }
 
 /// Projection on the 3D Coulomb cone.
@@ -197,20 +220,6 @@ pub(crate) fn solve_contact_3d(
     solve_contact_3d_sticking(w, q, mu, r, p, |q| solve3(w, [-q[0], -q[1], -q[2]]))
 }
 
-/// The inverse of `m` (`None` where [`solve3`] finds it singular), column by column.
-pub(crate) fn inverse3(m: &[f64; 9]) -> Option<[f64; 9]> {
-    let mut inv = [0.0; 9];
-    for c in 0..3 {
-        let mut e = [0.0; 3];
-        e[c] = 1.0;
-        let x = solve3(m, e)?;
-        for k in 0..3 {
-            inv[3 * k + c] = x[k];
-        }
-    }
-    Some(inv)
-}
-
 /// [`solve_contact_3d`] with the inverse of `w` computed beforehand ([`inverse3`]), for a
 /// block solved many times (an NLGS sweep): the sticking candidate is `-w^-1 q`.
 pub(crate) fn solve_contact_3d_inverse(
@@ -251,7 +260,8 @@ fn solve_contact_3d_sticking(
         return LocalPath::Closed;
     }
     if let Some(s) = sticking(&q) {
-        if s[0] >= 0.0 && (s[1] * s[1] + s[2] * s[2]).sqrt() <= mu * s[0] {
+        // |s_T| <= mu s_N, squared (s_N >= 0).
+        if s[0] >= 0.0 && s[1] * s[1] + s[2] * s[2] <= mu * mu * (s[0] * s[0]) {
             *r = s;
             return LocalPath::Closed;
         }
@@ -259,24 +269,24 @@ fn solve_contact_3d_sticking(
     let rho_n = 1.0 / w[0];
     let wt = w[4] + w[8];
     let rho_t = if wt > 0.0 { 2.0 / wt } else { rho_n };
-    let scale_r = rho_n * norm3(&q);
+    let scale_r2 = rho_n * rho_n * dot3(&q, &q);
     let start = if r[0] > 0.0 && r.iter().all(|x| x.is_finite()) {
         *r
     } else {
         [-q[0] / w[0], 0.0, 0.0]
     };
-    if let Some(x) = local_newton(w, &q, mu, rho_n, rho_t, start, scale_r, p) {
+    if let Some(x) = local_newton(w, &q, mu, rho_n, rho_t, start, scale_r2, p) {
         *r = x;
         return LocalPath::Newton;
     }
     if let Some(x) = slide_by_angle(w, &q, mu) {
         let u = mul3(w, &x, &q);
-        if local_residual3(&x, &u, mu) <= 1e3 * p.tolerance * scale_r.max(norm3(&x)) {
+        if local_residual3(&x, &u, mu) <= 1e3 * p.tolerance * scale_r2.sqrt().max(norm3(&x)) {
             *r = x;
             return LocalPath::Angle;
         }
     }
-    *r = local_projection(w, &q, mu, start, scale_r, p);
+    *r = local_projection(w, &q, mu, start, scale_r2.sqrt(), p);
     LocalPath::Projection
 }
 
@@ -356,7 +366,98 @@ fn slide_by_angle(w: &[f64; 9], q: &[f64; 3], mu: f64) -> Option<[f64; 3]> {
     best.map(|(_, r)| r)
 }
 
-/// Damped Newton on Alart-Curnier's function of one contact; `None` without convergence.
+/// Where Alart-Curnier's function of one 3D contact was evaluated: which pieces are active,
+/// enough to assemble its Newton matrix ([`Branch3::jacobian`]).
+#[derive(Clone, Copy)]
+struct Branch3 {
+    /// `r_N - rho_N u_N > 0`: the normal part is `rho_N u_N`.
+    normal: bool,
+    /// The tangential part slides: the unit direction `s` of `r_T - rho_T u_T` and
+    /// `c = mu max(0, r_N - rho_N u_N) / |r_T - rho_T u_T|`.
+    slide: Option<([f64; 2], f64)>,
+}
+
+/// Alart-Curnier's function of one 3D contact with `u = w r + q` ([`ac_function`]'s `Phi`)
+/// and its branch.
+#[inline]
+fn ac_phi3(
+    w: &[f64; 9],
+    q: &[f64; 3],
+    r: &[f64; 3],
+    mu: f64,
+    rho_n: f64,
+    rho_t: f64,
+) -> ([f64; 3], Branch3) {
+    let u = mul3(w, r, q);
+    let xn = r[0] - rho_n * u[0];
+    let normal = xn > 0.0;
+    let phi0 = if normal { rho_n * u[0] } else { r[0] };
+    let radius = mu * xn.max(0.0);
+    let xt = [r[1] - rho_t * u[1], r[2] - rho_t * u[2]];
+    let nx = (xt[0] * xt[0] + xt[1] * xt[1]).sqrt();
+    if nx <= radius {
+        let phi = [phi0, rho_t * u[1], rho_t * u[2]];
+        return (
+            phi,
+            Branch3 {
+                normal,
+                slide: None,
+            },
+        );
+    }
+    let inv_nx = 1.0 / nx;
+    let s = [xt[0] * inv_nx, xt[1] * inv_nx];
+    let phi = [phi0, r[1] - radius * s[0], r[2] - radius * s[1]];
+    let slide = Some((s, radius * inv_nx));
+    (phi, Branch3 { normal, slide })
+}
+
+impl Branch3 {
+    /// The Newton matrix `J = A + B w` of [`ac_function`]'s blocks at this branch, assembled
+    /// row by row without the zero blocks.
+    #[inline]
+    fn jacobian(&self, w: &[f64; 9], mu: f64, rho_n: f64, rho_t: f64) -> [f64; 9] {
+        let mut j = [0.0; 9];
+        if self.normal {
+            for (jl, wl) in j[..3].iter_mut().zip(&w[..3]) {
+                *jl = rho_n * wl;
+            }
+        } else {
+            j[0] = 1.0;
+        }
+        let Some((s, c)) = self.slide else {
+            for (jk, wk) in j[3..].iter_mut().zip(&w[3..]) {
+                *jk = rho_t * wk;
+            }
+            return j;
+        };
+        for k in 1..3 {
+            let sk = s[k - 1];
+            // P = I - s s^T on the tangent plane; row k of J is A_k + B_k w.
+            let p = [
+                f64::from(u8::from(k == 1)) - sk * s[0],
+                f64::from(u8::from(k == 2)) - sk * s[1],
+            ];
+            let row = &mut j[3 * k..3 * k + 3];
+            for l in 0..3 {
+                row[l] = c * rho_t * (p[0] * w[3 + l] + p[1] * w[6 + l]);
+            }
+            row[1] += f64::from(u8::from(k == 1)) - c * p[0];
+            row[2] += f64::from(u8::from(k == 2)) - c * p[1];
+            if self.normal {
+                row[0] -= mu * sk;
+                for l in 0..3 {
+                    row[l] += mu * rho_n * sk * w[l];
+                }
+            }
+        }
+        j
+    }
+}
+
+/// Damped Newton on Alart-Curnier's function of one contact from `r`; `None` without
+/// convergence. Converged when `|Phi| <= tol max(scale_r, |r|)`, tested on squares
+/// (`scale_r2 = scale_r^2`).
 #[allow(clippy::too_many_arguments)]
 fn local_newton(
     w: &[f64; 9],
@@ -365,42 +466,37 @@ fn local_newton(
     rho_n: f64,
     rho_t: f64,
     mut r: [f64; 3],
-    scale_r: f64,
+    scale_r2: f64,
     p: &LocalParams,
 ) -> Option<[f64; 3]> {
-    let eval = |r: &[f64; 3]| ac_function(3, r, &mul3(w, r, q), mu, rho_n, rho_t);
-    let mut e = eval(&r);
-    let mut f = norm3(&e.phi);
+    let eval = |r: &[f64; 3]| ac_phi3(w, q, r, mu, rho_n, rho_t);
+    let tol2 = p.tolerance * p.tolerance;
+    let converged = |f2: f64, r: &[f64; 3]| f2 <= tol2 * scale_r2.max(dot3(r, r));
+    let (mut phi, mut branch) = eval(&r);
+    let mut f2 = dot3(&phi, &phi);
     for _ in 0..p.newton_iterations {
-        if f <= p.tolerance * scale_r.max(norm3(&r)) {
+        if converged(f2, &r) {
             return Some(r);
         }
-        let mut j = e.a;
-        for i in 0..3 {
-            for k in 0..3 {
-                j[i * 3 + k] += (0..3).map(|l| e.b[i * 3 + l] * w[l * 3 + k]).sum::<f64>();
-            }
-        }
-        let dr = solve3(&j, [-e.phi[0], -e.phi[1], -e.phi[2]])?;
+        let j = branch.jacobian(w, mu, rho_n, rho_t);
+        let dr = solve3(&j, [-phi[0], -phi[1], -phi[2]])?;
         let mut t = 1.0;
         loop {
             let rt = [r[0] + t * dr[0], r[1] + t * dr[1], r[2] + t * dr[2]];
-            let et = eval(&rt);
-            let ft = norm3(&et.phi);
+            let (phi_t, branch_t) = eval(&rt);
+            let ft2 = dot3(&phi_t, &phi_t);
             // Armijo on |Phi|^2 / 2: the Newton direction has slope -|Phi|^2.
-            if ft * ft <= (1.0 - 2e-4 * t) * f * f || t < 1e-3 {
-                r = rt;
-                e = et;
-                f = ft;
+            if ft2 <= (1.0 - 2e-4 * t) * f2 || t < 1e-3 {
+                (r, phi, branch, f2) = (rt, phi_t, branch_t, ft2);
                 break;
             }
             t *= 0.5;
         }
-        if !f.is_finite() {
+        if !f2.is_finite() {
             return None;
         }
     }
-    (f <= p.tolerance * scale_r.max(norm3(&r))).then_some(r)
+    converged(f2, &r).then_some(r)
 }
 
 /// Projection on the cone with local iterations and an adaptive `rho` (see the module docs);
@@ -465,6 +561,36 @@ mod tests {
         let y = mul3(&m, &x, &[0.0; 3]);
         assert!((y[0] - 1.0).abs() + (y[1] - 2.0).abs() + (y[2] - 3.0).abs() < 1e-14);
         assert!(solve3(&[1.0, 2.0, 3.0, 2.0, 4.0, 6.0, 0.0, 0.0, 1.0], [1.0; 3]).is_none());
+    }
+
+    /// The specialised 3D evaluation equals the generic one: `Phi` and `A + B W`, in the
+    /// three tangential cases (stick, slide with the normal active, take-off).
+    #[test]
+    fn newton_matrix_matches_the_generic_blocks() {
+        let w = [2.0, 0.1, 0.2, 0.1, 1.5, 0.05, 0.2, 0.05, 1.2];
+        let q = [-1.0, 0.4, -0.3];
+        for r in [
+            [0.5, 0.01, 0.02],
+            [0.5, 0.9, -0.7],
+            [-0.2, 0.3, 0.1],
+            [0.6, 0.0, 0.0],
+        ] {
+            let (phi, branch) = ac_phi3(&w, &q, &r, 0.4, 0.5, 0.7);
+            let j = branch.jacobian(&w, 0.4, 0.5, 0.7);
+            let e = ac_function(3, &r, &mul3(&w, &r, &q), 0.4, 0.5, 0.7);
+            for i in 0..3 {
+                assert!((phi[i] - e.phi[i]).abs() < 1e-15, "{r:?}: phi");
+                for k in 0..3 {
+                    let g =
+                        e.a[3 * i + k] + (0..3).map(|l| e.b[3 * i + l] * w[3 * l + k]).sum::<f64>();
+                    assert!(
+                        (j[3 * i + k] - g).abs() < 1e-14,
+                        "{r:?}: J[{i}][{k}] {} {g}",
+                        j[3 * i + k]
+                    );
+                }
+            }
+        }
     }
 
     #[test]

@@ -409,18 +409,18 @@ impl<F: ContactFrame> NlgsSweeper<'_, F> {
         } else {
             0.0
         };
-        let mut w_local = *w;
         if eps > 0.0 {
             // A singular block: proximal step, exact at convergence (see proximal_weight).
-            w_local = F::add_to_diagonal(w, eps);
             for (x, &r) in u_free.as_mut().iter_mut().zip(r.as_ref()) {
                 *x -= eps * r;
             }
         }
         if ADHESIVE && self.is_adhesive[a] {
             F::solve_cohesive(&self.prepared[a], u_free, mu)
+        } else if eps > 0.0 {
+            F::solve(&F::add_to_diagonal(w, eps), factors, u_free, mu, r)
         } else {
-            F::solve(&w_local, factors, u_free, mu, r)
+            F::solve(w, factors, u_free, mu, r)
         }
     }
 
