@@ -298,3 +298,55 @@ fn dimension_and_header() {
     // Gravity defaults to -z in 3D.
     assert_eq!(ok3("").gravity, [0.0, 0.0, -9.81]);
 }
+
+/// Polyhedra in the overlap check, with depths known exactly: two unit cubes whose centres are
+/// 0.9 m apart overlap by 0.1 m; touching face to face (1.0 m) they do not; a cube 0.2 m into
+/// the floor overlaps it by 0.2 m, and a sphere of radius 0.25 m whose centre is 0.7 m from a
+/// cube's centre along x (0.2 m from its face) overlaps it by 0.05 m; a turned octahedron is
+/// told from its bounding sphere.
+#[test]
+fn polyhedra_overlaps_are_errors_with_their_depth() {
+    let cube = |i: usize, x: f64, z: f64| {
+        format!("[[bodies]]\nshape = \"box\"\ncenter = [{x}, 0.0, {z}]\nsize = [1.0, 1.0, 1.0]\nmaterial = \"glass\"\ngroup = \"g{i}\"\n")
+    };
+    let floor = "[[walls]]\npoint = [0.0, 0.0, -10.0]\nnormal = [0.0, 0.0, 1.0]\ngroup = \"w\"\n";
+    // Touching face to face, and resting on the floor: no error.
+    ok3(&format!(
+        "{}{}{floor}",
+        cube(0, 0.0, -9.5),
+        cube(1, 1.0, -9.5)
+    ));
+    let depth_of = |e: &SceneErrors, field: &str| -> f64 {
+        let m = (e.0.iter())
+            .find(|x| x.field == field && x.message.contains("overlaps"))
+            .unwrap_or_else(|| panic!("no overlap reported on {field}:\n{e}"));
+        let tail = m.message.rsplit(" by ").next().unwrap();
+        tail.trim_end_matches(" m").parse().unwrap()
+    };
+    let text = format!(
+        "{HEADER3}\n{}{}{}{floor}[[bodies]]\nshape = \"sphere\"\ncenter = [20.7, 0.0, -9.7]\nradius = 0.25\nmaterial = \"glass\"\ngroup = \"s\"\n",
+        cube(0, 0.0, 0.0),
+        cube(1, 0.9, 0.0),
+        cube(2, 20.0, -9.7),
+    );
+    let e = parse3(&text).unwrap_err();
+    assert!((depth_of(&e, "bodies[1]") - 0.1).abs() < 1e-12, "{e}");
+    assert!((depth_of(&e, "walls[0]") - 0.2).abs() < 1e-12, "{e}");
+    assert!((depth_of(&e, "bodies[3]") - 0.05).abs() < 1e-12, "{e}");
+    assert_eq!(e.0.len(), 3, "only those three pairs:\n{e}");
+    // An octahedron of circumradius 1 m (|x| + |y| + |z| <= 1) turned by 45 degrees about z
+    // reaches x = 1/sqrt(2) = 0.7071 m: clear of a cube whose face is at x = 0.9 m (the
+    // bounding spheres meet, the narrow phase decides), into one whose face is at 0.7 m.
+    let turned = format!(
+        "[[bodies]]\nshape = \"octahedron\"\ncenter = [0.0, 0.0, 0.0]\nradius = 1.0\norientation = [0.0, 0.0, {}]\nmaterial = \"glass\"\ngroup = \"o\"\n{}",
+        std::f64::consts::FRAC_PI_4,
+        cube(1, 1.4, 0.0)
+    );
+    ok3(&turned);
+    let e = parse3(&format!(
+        "{HEADER3}\n{}",
+        turned.replace("[1.4,", "[1.2,")
+    ))
+    .unwrap_err();
+    assert!(depth_of(&e, "bodies[1]") > 0.0, "{e}");
+}
