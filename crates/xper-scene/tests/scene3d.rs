@@ -343,10 +343,6 @@ fn polyhedra_overlaps_are_errors_with_their_depth() {
         cube(1, 1.4, 0.0)
     );
     ok3(&turned);
-    let e = parse3(&format!(
-        "{HEADER3}\n{}",
-        turned.replace("[1.4,", "[1.2,")
-    ))
-    .unwrap_err();
+    let e = parse3(&format!("{HEADER3}\n{}", turned.replace("[1.4,", "[1.2,"))).unwrap_err();
     assert!(depth_of(&e, "bodies[1]") > 0.0, "{e}");
 }
