@@ -81,6 +81,7 @@ fn distributed(world: &World, ranks: usize) -> (World, Vec<RankLoad>) {
     let out = run_on_threads(ranks, |comm| {
         let params = DistributedParams {
             rebalance_every: 50,
+            ..Default::default()
         };
         let mut stepper = DistributedStepper::new(comm, world.clone(), params);
         for _ in 0..STEPS {

@@ -40,6 +40,7 @@ fn distributed(world: &World, ranks: usize, steps: u64, every: u64) -> (World, V
     let out = run_on_threads(ranks, |comm| {
         let params = DistributedParams {
             rebalance_every: every,
+            ..Default::default()
         };
         let mut stepper = DistributedStepper::new(comm, world.clone(), params);
         for _ in 0..steps {

@@ -126,6 +126,7 @@ impl<'c> DistributedRun<'c> {
     pub fn new(comm: &'c dyn Communicator, world: World, checkpoint_every: u64) -> Self {
         let params = DistributedParams {
             rebalance_every: gcd(checkpoint_every.max(1), 50),
+            ..Default::default()
         };
         let stepper = DistributedStepper::new(comm, world, params);
         DistributedRun {

@@ -5,6 +5,7 @@
 //! O(log parts).
 
 mod distributed;
+pub use distributed::{across_gravity, ACROSS_GRAVITY};
 
 use xper_math::{Real, Vector, DIM};
 
