@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{assert_success, temp_dir, xper};
+use common::{assert_success, run_scene, temp_dir, xper};
 use std::path::Path;
 use xper_nscd3d::World;
 
@@ -134,13 +134,7 @@ fn a_3d_scene_runs_writes_its_frames_and_resumes_bit_for_bit() {
     let scene = path.to_str().unwrap();
     let (whole, stopped) = (dir.join("whole"), dir.join("stopped"));
     assert_success(&xper(&["check", scene]));
-    assert_success(&xper(&[
-        "run",
-        scene,
-        "--out",
-        whole.to_str().unwrap(),
-        "--quiet",
-    ]));
+    assert_success(&run_scene(&path, &whole, &["--quiet"]));
     let summary: serde_json::Value =
         serde_json::from_slice(&std::fs::read(whole.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["status"], "completed");
@@ -164,19 +158,9 @@ fn a_3d_scene_runs_writes_its_frames_and_resumes_bit_for_bit() {
         }
     }
     assert!(end.contacts.len() > 64, "{} contacts", end.contacts.len());
-    let stopped_s = stopped.to_str().unwrap();
-    assert_success(&xper(&[
-        "run",
-        scene,
-        "--out",
-        stopped_s,
-        "--quiet",
-        "--stop-at-step",
-        "70",
-    ]));
-    assert_success(&xper(&[
-        "run", scene, "--out", stopped_s, "--quiet", "--resume",
-    ]));
+    let stop = ["--quiet", "--stop-at-step", "70"];
+    assert_success(&run_scene(&path, &stopped, &stop));
+    assert_success(&run_scene(&path, &stopped, &["--quiet", "--resume"]));
     assert_eq!(
         std::fs::read(stopped.join("checkpoint.bin")).unwrap(),
         std::fs::read(whole.join("checkpoint.bin")).unwrap()
@@ -241,13 +225,7 @@ fn python_vtk_reads_the_3d_frames() {
     let dir = temp_dir("run3d_vtk");
     let path = write_scene(&dir, 100, 1e-4);
     let out = dir.join("out");
-    assert_success(&xper(&[
-        "run",
-        path.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]));
+    assert_success(&run_scene(&path, &out, &["--quiet"]));
     let script = r#"
 import sys, vtk
 def read(part):
@@ -313,13 +291,7 @@ fn a_dumped_3d_problem_solved_by_xper_solve_gives_the_stepping_impulses() {
     );
     std::fs::write(&path, text).unwrap();
     let out = dir.join("out");
-    assert_success(&xper(&[
-        "run",
-        path.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-    ]));
+    assert_success(&run_scene(&path, &out, &["--quiet"]));
     let file = xper_simulation::rigid3d::outputs::problem_path(&out, 30);
     let got = xper_fclib::read_fclib_local(&file).unwrap();
     assert_eq!(got.dim, 3);

@@ -37,13 +37,14 @@ impl Found {
     }
 }
 
-/// A placed body of the scene: index, engine shape, position, orientation, size (m).
+/// A placed body of the scene: index, engine shape, position, orientation, reach (m).
 struct Placed {
     index: usize,
     shape: Shape,
     position: Vector,
     rotation: Rotation,
-    /// Radius of a ball about `position` holding the body (infinite for half-spaces).
+    /// Radius of a ball about `position` holding the body; walls, whose candidates are found
+    /// by bounding boxes, have none (infinite).
     reach: f64,
 }
 
@@ -64,7 +65,7 @@ fn walls(built: &Built3) -> Vec<Placed> {
                 shape: Shape::Plane { half_extents },
                 position: Vector::from(b.position),
                 rotation: Rotation::from_scaled_axis(Vector::from(b.orientation)),
-                reach: half_extents[0].hypot(half_extents[1]),
+                reach: f64::INFINITY,
             }),
             _ => None,
         })
