@@ -57,6 +57,24 @@ pub fn world_inverse_inertia(_angle: &Rotation, inv_body: &AngMatrix) -> AngMatr
     *inv_body
 }
 
+/// Numbers that give an orientation in [`rotation_coords`]: the angle.
+pub const ROTATION_COORDS: usize = 1;
+
+/// An orientation as numbers: `[angle]` (rad, counter-clockwise).
+pub fn rotation_coords(angle: &Rotation) -> [Real; ROTATION_COORDS] {
+    [*angle]
+}
+
+/// An angular quantity's components: `[w]`, about the axis out of the plane.
+pub fn angular_coords(w: &AngVector) -> [Real; ANGULAR_DIM] {
+    [*w]
+}
+
+/// The angular quantity of the components [`angular_coords`] gives.
+pub fn angular_from_coords(c: &[Real]) -> AngVector {
+    c[0]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

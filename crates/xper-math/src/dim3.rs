@@ -72,6 +72,24 @@ pub fn world_inverse_inertia(q: &Rotation, inv_body: &AngMatrix) -> AngMatrix {
     r.matrix() * inv_body * r.matrix().transpose()
 }
 
+/// Numbers that give an orientation in [`rotation_coords`]: a unit quaternion's.
+pub const ROTATION_COORDS: usize = 4;
+
+/// An orientation as numbers: the unit quaternion `[w, x, y, z]` (scalar first).
+pub fn rotation_coords(q: &Rotation) -> [Real; ROTATION_COORDS] {
+    [q.w, q.i, q.j, q.k]
+}
+
+/// An angular quantity's components `[x, y, z]`.
+pub fn angular_coords(w: &AngVector) -> [Real; ANGULAR_DIM] {
+    [w.x, w.y, w.z]
+}
+
+/// The angular quantity of the components [`angular_coords`] gives.
+pub fn angular_from_coords(c: &[Real]) -> AngVector {
+    AngVector::new(c[0], c[1], c[2])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -18,7 +18,7 @@ use xper_laws::InteractionLaw;
 use xper_nscd::World;
 
 /// Contact status for output: 0 open (no impulse), 1 sticking, 2 sliding.
-fn status(world: &World, c: &xper_geometry::Contact) -> i32 {
+pub(crate) fn status(world: &World, c: &xper_geometry::Contact) -> i32 {
     let friction = match world.contact_law(c.row.bodies) {
         Some(InteractionLaw::SignoriniCoulomb(law)) => law.friction,
         None => 0.0,

@@ -11,6 +11,7 @@ pub mod bench;
 pub mod build;
 pub mod frames;
 pub mod outputs;
+pub mod state;
 pub mod stepping;
 
 use xper_run::{checkpoint, comparison, outputs as run_outputs, ranks, simulation, RunError};
@@ -183,6 +184,16 @@ impl Simulation for RigidSimulation<'_> {
     }
     fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary> {
         self.run.rank_summaries(wall)
+    }
+    fn arrays(&self) -> Vec<xper_run::state::ArrayInfo> {
+        state::ARRAYS.to_vec()
+    }
+    fn array(&self, name: &str) -> Option<xper_run::state::StateArray> {
+        state::array(self.world()?, name)
+    }
+    fn set_array(&mut self, name: &str, values: &[f64]) -> Result<(), String> {
+        let world = (self.run.whole_mut()).ok_or("arrays are set only in a run on one process")?;
+        state::set_array(world, name, values)
     }
     fn compare_serial(&mut self, stepping: f64) -> Result<Option<SerialComparison>, RunError> {
         let Some(start) = self.compare_from.take() else {

@@ -17,6 +17,8 @@ pub trait RigidRun {
     fn step(&mut self) -> Result<Result<StepReport, StepError>, RunError>;
     /// The world, when this process holds it whole (a run on one process).
     fn whole(&self) -> Option<&World>;
+    /// [`RigidRun::whole`], to change between steps.
+    fn whole_mut(&mut self) -> Option<&mut World>;
     /// The whole world gathered on the process that writes outputs, `None` on the others and
     /// on one process (collective: every process calls it at the same steps).
     fn gather(&mut self) -> Option<World>;
@@ -94,6 +96,9 @@ impl RigidRun for SerialRun {
     fn whole(&self) -> Option<&World> {
         Some(&self.world)
     }
+    fn whole_mut(&mut self) -> Option<&mut World> {
+        Some(&mut self.world)
+    }
     fn gather(&mut self) -> Option<World> {
         None
     }
@@ -150,6 +155,9 @@ impl RigidRun for DistributedRun<'_> {
         Ok(self.stepper.step())
     }
     fn whole(&self) -> Option<&World> {
+        None
+    }
+    fn whole_mut(&mut self) -> Option<&mut World> {
         None
     }
     fn gather(&mut self) -> Option<World> {

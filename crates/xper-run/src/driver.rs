@@ -21,6 +21,7 @@ use crate::lock::OutputLock;
 use crate::outputs::{create_output_dir, io_err, progress_bar};
 use crate::simulation::{run_status, OutputSchedule, RunFacts, RunOptions, Simulation};
 use crate::RunError;
+use indicatif::ProgressBar;
 use std::io::IsTerminal;
 use std::path::Path;
 use std::time::Instant;
@@ -29,6 +30,7 @@ use xper_parallel::Communicator;
 
 /// What the driver keeps of the scene file: its text (each checkpoint holds it, so that a
 /// resume can tell a compatible edit, [`crate::resume`]) and the notes of its reading.
+#[derive(Clone)]
 pub struct SceneFile {
     /// The scene file's text.
     pub text: String,
@@ -124,7 +126,8 @@ fn read_back(
     Ok(())
 }
 
-/// The time loop of a built simulation with its outputs (see the module's documentation).
+/// The time loop of a built simulation with its outputs (see the module's documentation):
+/// [`Run::start`], [`Run::advance`] until [`Run::is_over`], [`Run::finish`].
 pub fn drive(
     sim: &mut dyn Simulation,
     schedule: OutputSchedule,
@@ -133,87 +136,161 @@ pub fn drive(
     comm: Option<&dyn Communicator>,
     scene: &SceneFile,
 ) -> Result<serde_json::Value, RunError> {
-    let root = sim.is_root();
-    let dir = opts.out.as_path();
-    let mut _lock = None;
-    if root {
-        let mut notes = scene.notes.clone();
-        notes.extend(sim.notes());
-        let locked =
-            create_output_dir(&dir.join("frames")).and_then(|()| OutputLock::take(dir, &mut notes));
-        match locked {
-            Ok(lock) => _lock = Some(lock),
-            Err(e) => {
-                if let Some(comm) = comm {
-                    comm.abort(&e.to_string(), 2);
-                }
-                return Err(e);
-            }
-        }
-        if !quiet {
-            for note in notes {
-                eprintln!("xper: note: {note}");
-            }
-        }
+    let mut run = Run::start(sim, schedule, opts.clone(), quiet, comm, scene.clone())?;
+    while !run.is_over(sim) {
+        run.advance(sim)?;
     }
-    let mut pvd = PvdCollection::default();
-    if opts.resume {
-        read_back(sim, dir, &mut pvd, scene.resumed.as_ref())?;
-    } else {
-        sim.sync();
+    run.finish(sim)
+}
+
+/// A run under way: the driver's state between the events of its loop. Each stage is a method
+/// taking the simulation, which the caller keeps (`xper run` loops in [`drive`]; the Python
+/// module steps when asked and reads the state in between).
+pub struct Run<'c> {
+    schedule: OutputSchedule,
+    opts: RunOptions,
+    quiet: bool,
+    comm: Option<&'c dyn Communicator>,
+    scene: SceneFile,
+    _lock: Option<OutputLock>,
+    pvd: PvdCollection,
+    bar: ProgressBar,
+    started: Instant,
+    first_step: u64,
+    stepping: f64,
+    failure: Option<String>,
+}
+
+impl<'c> Run<'c> {
+    /// Takes the output directory (`xper.lock`), writes the first frame (or, on `--resume`,
+    /// reads back the tables and `result.pvd` of the run resumed) and starts the clock.
+    pub fn start(
+        sim: &mut dyn Simulation,
+        schedule: OutputSchedule,
+        opts: RunOptions,
+        quiet: bool,
+        comm: Option<&'c dyn Communicator>,
+        scene: SceneFile,
+    ) -> Result<Self, RunError> {
+        let root = sim.is_root();
+        let dir = opts.out.as_path();
+        let mut lock = None;
         if root {
-            clear_earlier_run(dir)?;
-            sim.write_frame(dir, &mut pvd)?;
+            let mut notes = scene.notes.clone();
+            notes.extend(sim.notes());
+            let locked = create_output_dir(&dir.join("frames"))
+                .and_then(|()| OutputLock::take(dir, &mut notes));
+            match locked {
+                Ok(taken) => lock = Some(taken),
+                Err(e) => {
+                    if let Some(comm) = comm {
+                        comm.abort(&e.to_string(), 2);
+                    }
+                    return Err(e);
+                }
+            }
+            if !quiet {
+                for note in notes {
+                    eprintln!("xper: note: {note}");
+                }
+            }
         }
+        let mut pvd = PvdCollection::default();
+        if opts.resume {
+            read_back(sim, dir, &mut pvd, scene.resumed.as_ref())?;
+        } else {
+            sim.sync();
+            if root {
+                clear_earlier_run(dir)?;
+                sim.write_frame(dir, &mut pvd)?;
+            }
+        }
+        let (steps, position) = sim.progress();
+        if root && !quiet && !std::io::stderr().is_terminal() {
+            // Batch logs get a first line; the closing line ends them.
+            eprintln!(
+                "xper: {} {} from step {position} of {steps} on {} process(es), outputs in {}",
+                if opts.resume { "resuming" } else { "running" },
+                opts.scene.display(),
+                sim.processes(),
+                dir.display()
+            );
+        }
+        let bar = progress_bar(quiet || !root, steps, position);
+        sim.begin();
+        Ok(Run {
+            schedule,
+            quiet,
+            comm,
+            scene,
+            _lock: lock,
+            pvd,
+            bar,
+            started: Instant::now(),
+            first_step: sim.step_index(),
+            stepping: 0.0,
+            failure: None,
+            opts,
+        })
     }
-    let (steps, position) = sim.progress();
-    if root && !quiet && !std::io::stderr().is_terminal() {
-        // Batch logs get a first line; the closing line ends them.
-        eprintln!(
-            "xper: {} {} from step {position} of {steps} on {} process(es), outputs in {}",
-            if opts.resume { "resuming" } else { "running" },
-            opts.scene.display(),
-            sim.processes(),
-            dir.display()
-        );
+
+    /// Whether the loop is over: the scene at its end, `--stop-at-step` reached, or a step
+    /// failed.
+    pub fn is_over(&self, sim: &dyn Simulation) -> bool {
+        self.failure.is_some()
+            || sim.is_complete()
+            || self
+                .opts
+                .stop_at_step
+                .is_some_and(|s| sim.step_index() >= s)
     }
-    let bar = progress_bar(quiet || !root, steps, position);
-    sim.begin();
-    let started = Instant::now();
-    let first_step = sim.step_index();
-    let mut stepping = 0.0;
-    let mut failure = None;
-    while !sim.is_complete() && opts.stop_at_step.is_none_or(|s| sim.step_index() < s) {
+
+    /// Why a step failed, once one has (the run is then over).
+    pub fn failure(&self) -> Option<&str> {
+        self.failure.as_deref()
+    }
+
+    /// The output directory.
+    pub fn out(&self) -> &Path {
+        &self.opts.out
+    }
+
+    /// One step (collective) with the frame and checkpoint the schedule puts after it. A
+    /// failed step ends the loop ([`Run::failure`]) after showing its state when it asks to;
+    /// only an output that cannot be written is an error here.
+    pub fn advance(&mut self, sim: &mut dyn Simulation) -> Result<(), RunError> {
+        let root = sim.is_root();
+        let dir = self.opts.out.as_path();
         match sim.step() {
             Ok(wall) => {
-                stepping += wall;
+                self.stepping += wall;
                 let step = sim.step_index();
-                let frame = step % schedule.frame_every == 0 || sim.is_complete();
-                let checkpoint = step % schedule.checkpoint_every == 0;
+                let frame = step % self.schedule.frame_every == 0 || sim.is_complete();
+                let checkpoint = step % self.schedule.checkpoint_every == 0;
                 if frame || checkpoint {
                     sim.sync();
                 }
                 if frame && root {
-                    sim.write_frame(dir, &mut pvd)?;
+                    sim.write_frame(dir, &mut self.pvd)?;
                 }
                 if checkpoint && root {
-                    write_checkpoint(sim, dir, scene)?;
+                    write_checkpoint(sim, dir, &self.scene)?;
                 }
                 if step % 10 == 0 || sim.is_complete() {
                     let (steps, position) = sim.progress();
-                    bar.set_length(steps);
-                    bar.set_position(position);
-                    bar.set_message(sim.status_line());
+                    self.bar.set_length(steps);
+                    self.bar.set_position(position);
+                    self.bar.set_message(sim.status_line());
                 }
             }
             Err(f) => {
                 if f.show_state {
                     sim.sync();
                     if root {
-                        sim.write_frame(dir, &mut pvd)?;
+                        sim.write_frame(dir, &mut self.pvd)?;
                     }
                 }
-                if let Some(comm) = comm.filter(|_| !f.collective) {
+                if let Some(comm) = self.comm.filter(|_| !f.collective) {
                     // Other processes may be waiting in a collective this one will not reach.
                     comm.abort(&format!("step {}: {}", f.step, f.message), 1);
                 }
@@ -223,50 +300,88 @@ pub fn drive(
                 } else {
                     "no checkpoint was written".to_string()
                 };
-                failure = Some(format!(
+                self.failure = Some(format!(
                     "step {} (t = {:.6e} s): {}; {kept}",
                     f.step, f.time, f.message
                 ));
-                break;
             }
         }
+        Ok(())
     }
-    bar.finish_and_clear();
-    let wall = started.elapsed().as_secs_f64();
-    if failure.is_none() {
+
+    /// Writes a frame of the current state now (collective), outside the schedule.
+    pub fn write_frame(&mut self, sim: &mut dyn Simulation) -> Result<(), RunError> {
         sim.sync();
+        match sim.is_root() {
+            true => sim.write_frame(&self.opts.out, &mut self.pvd),
+            false => Ok(()),
+        }
     }
-    let ranks = sim.rank_summaries(wall);
-    let comparison = match failure {
-        None => sim.compare_serial(stepping)?,
-        Some(_) => None,
-    };
-    if !root {
-        return match failure {
-            Some(message) => Err(RunError::Runtime(message)),
-            None => Ok(serde_json::Value::Null),
+
+    /// Writes the tables and `checkpoint.bin` of the current state now (collective), outside
+    /// the schedule: a later `--resume` starts from here.
+    pub fn write_checkpoint(&mut self, sim: &mut dyn Simulation) -> Result<(), RunError> {
+        sim.sync();
+        match sim.is_root() {
+            true => write_checkpoint(sim, &self.opts.out, &self.scene),
+            false => Ok(()),
+        }
+    }
+
+    /// Ends the run: per-process summaries, `--compare-serial`, the last checkpoint (after a
+    /// failure, the tables alone), `summary.json`, plots and the closing line; returns the
+    /// summary (`null` on the processes that do not write), or the failure.
+    pub fn finish(self, sim: &mut dyn Simulation) -> Result<serde_json::Value, RunError> {
+        let Run {
+            opts,
+            quiet,
+            scene,
+            bar,
+            started,
+            first_step,
+            stepping,
+            failure,
+            ..
+        } = self;
+        let root = sim.is_root();
+        let dir = opts.out.as_path();
+        bar.finish_and_clear();
+        let wall = started.elapsed().as_secs_f64();
+        if failure.is_none() {
+            sim.sync();
+        }
+        let ranks = sim.rank_summaries(wall);
+        let comparison = match failure {
+            None => sim.compare_serial(stepping)?,
+            Some(_) => None,
         };
-    }
-    if failure.is_none() {
-        write_checkpoint(sim, dir, scene)?;
-    } else {
-        write_tables(sim, dir)?;
-    }
-    let facts = RunFacts {
-        scene_file: &opts.scene,
-        status: run_status(failure.is_some(), sim.is_complete()),
-        message: failure.clone().unwrap_or_default(),
-        first_step,
-        wall,
-        ranks,
-        comparison,
-    };
-    let summary = sim.write_summary(dir, &facts)?;
-    if !quiet {
-        eprintln!("{}", sim.closing_line(&facts, dir));
-    }
-    match failure {
-        Some(message) => Err(RunError::Runtime(message)),
-        None => Ok(summary),
+        if !root {
+            return match failure {
+                Some(message) => Err(RunError::Runtime(message)),
+                None => Ok(serde_json::Value::Null),
+            };
+        }
+        if failure.is_none() {
+            write_checkpoint(sim, dir, &scene)?;
+        } else {
+            write_tables(sim, dir)?;
+        }
+        let facts = RunFacts {
+            scene_file: &opts.scene,
+            status: run_status(failure.is_some(), sim.is_complete()),
+            message: failure.clone().unwrap_or_default(),
+            first_step,
+            wall,
+            ranks,
+            comparison,
+        };
+        let summary = sim.write_summary(dir, &facts)?;
+        if !quiet {
+            eprintln!("{}", sim.closing_line(&facts, dir));
+        }
+        match failure {
+            Some(message) => Err(RunError::Runtime(message)),
+            None => Ok(summary),
+        }
     }
 }

@@ -8,6 +8,7 @@
 //! * [`checkpoint`]: the sealed envelope of `checkpoint.bin` and its payload;
 //!   [`resume`]: which edits of a scene a resume takes;
 //! * [`outputs`], [`lock`]: the output directory, atomic tables, one run per directory;
+//! * [`state`]: the state as named arrays with units, for scripts;
 //! * [`comparison`], [`ranks`]: a distributed run against the serial one, each process's
 //!   share.
 //!
@@ -22,8 +23,9 @@ pub mod outputs;
 pub mod ranks;
 pub mod resume;
 pub mod simulation;
+pub mod state;
 
-pub use driver::{drive, SceneFile};
+pub use driver::{drive, Run, SceneFile};
 pub use simulation::{OutputSchedule, RunFacts, RunOptions, Simulation, StepFailure};
 
 /// A failure with the exit code it maps to.

@@ -9,6 +9,7 @@
 
 use crate::comparison::SerialComparison;
 use crate::ranks::RankSummary;
+use crate::state::{ArrayInfo, StateArray};
 use crate::RunError;
 use std::path::{Path, PathBuf};
 use xper_io::{PvdCollection, SeriesTable};
@@ -132,4 +133,18 @@ pub trait Simulation {
     fn write_summary(&self, dir: &Path, facts: &RunFacts) -> Result<serde_json::Value, RunError>;
     /// The line printed when the run ends (unless quiet).
     fn closing_line(&self, facts: &RunFacts, dir: &Path) -> String;
+    /// The arrays of the state this physics offers to scripts ([`crate::state`]).
+    fn arrays(&self) -> Vec<ArrayInfo> {
+        Vec::new()
+    }
+    /// The array `name` of the state on the writing process, as of the last
+    /// [`Simulation::sync`] (`None` when this physics has no such array).
+    fn array(&self, _name: &str) -> Option<StateArray> {
+        None
+    }
+    /// Writes `values` (row-major, the shape [`Simulation::array`] gives) into the writable
+    /// array `name` between steps (on one process); the error says why it was refused.
+    fn set_array(&mut self, name: &str, _values: &[f64]) -> Result<(), String> {
+        Err(format!("{name}: not an array this simulation can set"))
+    }
 }

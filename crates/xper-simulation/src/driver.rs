@@ -4,7 +4,18 @@
 use crate::resources;
 use crate::scene::LoadedScene;
 use xper_parallel::Communicator;
-use xper_run::{drive, resume, RunError, RunOptions, SceneFile};
+use xper_run::{drive, resume, OutputSchedule, RunError, RunOptions, SceneFile, Simulation};
+
+/// A scene made ready to run: its simulation (at time 0, or restored on `opts.resume`), the
+/// schedule of its outputs and what the driver keeps of its file.
+pub struct Prepared<'c> {
+    /// The simulation.
+    pub simulation: Box<dyn Simulation + 'c>,
+    /// Frames and checkpoints.
+    pub schedule: OutputSchedule,
+    /// The scene file's text and notes, and the checkpoint resumed.
+    pub file: SceneFile,
+}
 
 /// Runs a scene of any kind on this process; returns what `summary.json` holds.
 pub fn run(opts: &RunOptions, quiet: bool) -> Result<serde_json::Value, RunError> {
@@ -19,6 +30,25 @@ pub fn run_on(
     quiet: bool,
     comm: Option<&dyn Communicator>,
 ) -> Result<serde_json::Value, RunError> {
+    let distributed = comm.filter(|c| c.size() > 1);
+    let mut prepared = prepare(opts, distributed)?;
+    drive(
+        prepared.simulation.as_mut(),
+        prepared.schedule,
+        opts,
+        quiet,
+        distributed,
+        &prepared.file,
+    )
+}
+
+/// The scene of `opts` read once, its memory estimate checked (on `--resume`, the scene
+/// compared with the checkpoint's) and its simulation built, over `comm` when it has more
+/// than one process: everything [`drive`] (or a script stepping it) starts from.
+pub fn prepare<'c>(
+    opts: &RunOptions,
+    comm: Option<&'c dyn Communicator>,
+) -> Result<Prepared<'c>, RunError> {
     let (scene, text) = LoadedScene::read_with_text(&opts.scene)?;
     let distributed = comm.filter(|c| c.size() > 1);
     let processes = distributed.map_or(1, |c| c.size());
@@ -40,18 +70,15 @@ pub fn run_on(
         }
         false => (None, Vec::new()),
     };
-    let mut simulation = scene.into_simulation(opts, distributed)?;
+    let simulation = scene.into_simulation(opts, distributed)?;
     let file = SceneFile {
         text,
         notes,
         resumed,
     };
-    drive(
-        simulation.as_mut(),
+    Ok(Prepared {
+        simulation,
         schedule,
-        opts,
-        quiet,
-        distributed,
-        &file,
-    )
+        file,
+    })
 }

@@ -18,13 +18,13 @@ pub mod homogenize;
 pub mod resources;
 pub mod scene;
 
-pub use driver::{run, run_on};
+pub use driver::{prepare, run, run_on, Prepared};
 pub use scene::LoadedScene;
 pub use xper_rigid as rigid;
 pub use xper_rigid3d as rigid3d;
-pub use xper_run::{checkpoint, comparison, lock, outputs, ranks, resume, simulation};
+pub use xper_run::{checkpoint, comparison, lock, outputs, ranks, resume, simulation, state};
 pub use xper_run::{
-    drive, OutputSchedule, RunError, RunFacts, RunOptions, SceneFile, Simulation, StepFailure,
+    drive, OutputSchedule, Run, RunError, RunFacts, RunOptions, SceneFile, Simulation, StepFailure,
 };
 
 /// The scene file a path names: the path itself, or `DIR/scene.toml` when it is a directory

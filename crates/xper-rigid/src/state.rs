@@ -1,0 +1,293 @@
+//! A rigid world as named arrays ([`xper_run::state`]): bodies and contacts, read by scripts
+//! and, for velocities and gravity, written between steps. Spatial columns follow the
+//! dimension (`DIM`, `ANGULAR_DIM`, `ROTATION_COORDS` of `xper-math`).
+
+use crate::frames::status;
+use xper_math::{angular_coords, angular_from_coords, rotation_coords, Vector};
+use xper_math::{ANGULAR_DIM, DIM, ROTATION_COORDS};
+use xper_nscd::World;
+use xper_run::state::{check_size, ArrayInfo, StateArray};
+
+const fn info(
+    name: &'static str,
+    shape: &'static str,
+    dtype: &'static str,
+    unit: &'static str,
+    writable: bool,
+    about: &'static str,
+) -> ArrayInfo {
+    ArrayInfo {
+        name,
+        shape,
+        dtype,
+        unit,
+        writable,
+        about,
+    }
+}
+
+#[cfg(feature = "dim2")]
+mod shapes {
+    pub const VECTOR: &str = "(n, 2)";
+    pub const ANGULAR: &str = "(n, 1)";
+    pub const ROTATION: &str = "(n, 1)";
+    pub const ROTATION_ABOUT: &str = "orientation: the angle, counter-clockwise";
+    pub const ROTATION_UNIT: &str = "rad";
+    pub const TANGENTIAL: &str = "(n, 1)";
+    pub const GRAVITY: &str = "(2,)";
+}
+#[cfg(feature = "dim3")]
+mod shapes {
+    pub const VECTOR: &str = "(n, 3)";
+    pub const ANGULAR: &str = "(n, 3)";
+    pub const ROTATION: &str = "(n, 4)";
+    pub const ROTATION_ABOUT: &str = "orientation: the unit quaternion (w, x, y, z)";
+    pub const ROTATION_UNIT: &str = "1";
+    pub const TANGENTIAL: &str = "(n, 2)";
+    pub const GRAVITY: &str = "(3,)";
+}
+use shapes::*;
+
+/// The arrays of a rigid world.
+pub const ARRAYS: [ArrayInfo; 17] = [
+    info(
+        "bodies.id",
+        "(n,)",
+        "int64",
+        "1",
+        false,
+        "the body's identifier in the scene",
+    ),
+    info(
+        "bodies.group",
+        "(n,)",
+        "int64",
+        "1",
+        false,
+        "the body's group (index)",
+    ),
+    info(
+        "bodies.position",
+        VECTOR,
+        "float64",
+        "m",
+        false,
+        "centre of mass",
+    ),
+    info(
+        "bodies.orientation",
+        ROTATION,
+        "float64",
+        ROTATION_UNIT,
+        false,
+        ROTATION_ABOUT,
+    ),
+    info(
+        "bodies.velocity",
+        VECTOR,
+        "float64",
+        "m/s",
+        true,
+        "velocity of the centre of mass",
+    ),
+    info(
+        "bodies.angular_velocity",
+        ANGULAR,
+        "float64",
+        "rad/s",
+        true,
+        "angular velocity",
+    ),
+    info(
+        "bodies.radius",
+        "(n,)",
+        "float64",
+        "m",
+        false,
+        "bounding radius (a wall's half-length; inf for a half-space)",
+    ),
+    info(
+        "bodies.mass",
+        "(n,)",
+        "float64",
+        "kg",
+        false,
+        "mass (per m of thickness in 2D; inf for a fixed or driven body)",
+    ),
+    info(
+        "contacts.bodies",
+        "(n, 2)",
+        "int64",
+        "1",
+        false,
+        "the two bodies (indices into the bodies' arrays)",
+    ),
+    info(
+        "contacts.point",
+        VECTOR,
+        "float64",
+        "m",
+        false,
+        "contact point, carried with the first body",
+    ),
+    info(
+        "contacts.normal",
+        VECTOR,
+        "float64",
+        "1",
+        false,
+        "unit normal, from the first body to the second",
+    ),
+    info(
+        "contacts.normal_impulse",
+        "(n,)",
+        "float64",
+        "N s",
+        false,
+        "normal impulse of the last step (per m of thickness in 2D)",
+    ),
+    info(
+        "contacts.tangential_impulse",
+        TANGENTIAL,
+        "float64",
+        "N s",
+        false,
+        "tangential impulse of the last step, in the contact's frame",
+    ),
+    info(
+        "contacts.gap",
+        "(n,)",
+        "float64",
+        "m",
+        false,
+        "gap at the end of the last step (linearised)",
+    ),
+    info(
+        "contacts.status",
+        "(n,)",
+        "int64",
+        "1",
+        false,
+        "0 open, 1 sticking, 2 sliding",
+    ),
+    info(
+        "world.gravity",
+        GRAVITY,
+        "float64",
+        "m/s^2",
+        true,
+        "gravity",
+    ),
+    info(
+        "world.time",
+        "(1,)",
+        "float64",
+        "s",
+        false,
+        "simulated time",
+    ),
+];
+
+/// The array `name` of `world`.
+pub fn array(world: &World, name: &str) -> Option<StateArray> {
+    let b = &world.bodies;
+    let n = b.len();
+    let c = &world.contacts;
+    let m = c.len();
+    let vectors = |v: &[Vector]| v.iter().flat_map(|x| x.iter().copied()).collect();
+    Some(match name {
+        "bodies.id" => StateArray::integers(n, None, b.id.iter().map(|&i| i as i64).collect()),
+        "bodies.group" => {
+            StateArray::integers(n, None, b.group.iter().map(|&g| g as i64).collect())
+        }
+        "bodies.position" => StateArray::reals(n, Some(DIM), vectors(&b.position)),
+        "bodies.orientation" => StateArray::reals(
+            n,
+            Some(ROTATION_COORDS),
+            b.rotation.iter().flat_map(rotation_coords).collect(),
+        ),
+        "bodies.velocity" => StateArray::reals(n, Some(DIM), vectors(&b.velocity)),
+        "bodies.angular_velocity" => StateArray::reals(
+            n,
+            Some(ANGULAR_DIM),
+            b.angular_velocity.iter().flat_map(angular_coords).collect(),
+        ),
+        "bodies.radius" => StateArray::reals(n, None, b.shape.iter().map(|s| s.size()).collect()),
+        "bodies.mass" => StateArray::reals(n, None, b.mass.clone()),
+        "contacts.bodies" => StateArray::integers(
+            m,
+            Some(2),
+            c.rows
+                .iter()
+                .flat_map(|r| r.bodies.map(i64::from))
+                .collect(),
+        ),
+        "contacts.point" => StateArray::reals(
+            m,
+            Some(DIM),
+            (c.rows.iter())
+                .flat_map(|r| {
+                    let p = r.point(&b.position[r.bodies[0] as usize]);
+                    p.iter().copied().collect::<Vec<_>>()
+                })
+                .collect(),
+        ),
+        "contacts.normal" => {
+            StateArray::reals(m, Some(DIM), c.rows.iter().flat_map(|r| r.normal).collect())
+        }
+        "contacts.normal_impulse" => {
+            StateArray::reals(m, None, c.impulses.iter().map(|i| i[0]).collect())
+        }
+        "contacts.tangential_impulse" => StateArray::reals(
+            m,
+            Some(DIM - 1),
+            c.impulses.iter().flat_map(|i| i[1..].to_vec()).collect(),
+        ),
+        "contacts.gap" => StateArray::reals(m, None, c.gaps.clone()),
+        "contacts.status" => StateArray::integers(
+            m,
+            None,
+            c.iter().map(|k| status(world, &k) as i64).collect(),
+        ),
+        "world.gravity" => StateArray {
+            shape: vec![DIM],
+            data: xper_run::state::ArrayData::F64(world.params.gravity.iter().copied().collect()),
+        },
+        "world.time" => StateArray::reals(1, None, vec![world.time]),
+        _ => return None,
+    })
+}
+
+/// Writes `values` into the writable array `name` of `world`.
+pub fn set_array(world: &mut World, name: &str, values: &[f64]) -> Result<(), String> {
+    if values.iter().any(|v| !v.is_finite()) {
+        return Err(format!("{name}: values must be finite"));
+    }
+    let b = &mut world.bodies;
+    let n = b.len();
+    match name {
+        "bodies.velocity" => {
+            check_size(name, values, n, DIM)?;
+            for (v, new) in b.velocity.iter_mut().zip(values.chunks_exact(DIM)) {
+                *v = Vector::from_column_slice(new);
+            }
+        }
+        "bodies.angular_velocity" => {
+            check_size(name, values, n, ANGULAR_DIM)?;
+            for (w, new) in (b.angular_velocity.iter_mut()).zip(values.chunks_exact(ANGULAR_DIM)) {
+                *w = angular_from_coords(new);
+            }
+        }
+        "world.gravity" => {
+            check_size(name, values, 1, DIM)?;
+            world.params.gravity = Vector::from_column_slice(values);
+        }
+        _ => {
+            return Err(match ARRAYS.iter().any(|a| a.name == name) {
+                true => format!("{name}: read-only (the writable arrays: bodies.velocity, bodies.angular_velocity, world.gravity)"),
+                false => format!("{name}: no such array of a rigid simulation"),
+            })
+        }
+    }
+    Ok(())
+}

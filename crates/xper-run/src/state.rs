@@ -1,0 +1,77 @@
+//! A simulation's state as named arrays, for scripting (the Python module reads them into
+//! NumPy and writes some back between steps). Each physics lists its arrays with their units
+//! ([`ArrayInfo`]); an array is row-major with its shape ([`StateArray`]).
+
+/// What an array holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ArrayInfo {
+    /// `part.quantity`, e.g. `bodies.position`.
+    pub name: &'static str,
+    /// Shape with `n` for the count of the part (bodies, contacts, ...), e.g. `(n, 2)`.
+    pub shape: &'static str,
+    /// Element type: `float64` or `int64`.
+    pub dtype: &'static str,
+    /// SI unit, `1` for a number without one.
+    pub unit: &'static str,
+    /// Whether [`crate::Simulation::set_array`] takes it between steps.
+    pub writable: bool,
+    /// One line on what it is.
+    pub about: &'static str,
+}
+
+/// The values of an array.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ArrayData {
+    /// Real numbers.
+    F64(Vec<f64>),
+    /// Integers (indices, identifiers, groups, codes).
+    I64(Vec<i64>),
+}
+
+/// An array of the state, row-major.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StateArray {
+    /// Extent of each axis.
+    pub shape: Vec<usize>,
+    /// `shape`'s product values.
+    pub data: ArrayData,
+}
+
+impl StateArray {
+    /// Reals of shape `(rows, columns)`, or `(rows,)` when `columns` is `None`.
+    pub fn reals(rows: usize, columns: Option<usize>, data: Vec<f64>) -> Self {
+        StateArray {
+            shape: shape(rows, columns),
+            data: ArrayData::F64(data),
+        }
+    }
+
+    /// Integers of shape `(rows, columns)`, or `(rows,)` when `columns` is `None`.
+    pub fn integers(rows: usize, columns: Option<usize>, data: Vec<i64>) -> Self {
+        StateArray {
+            shape: shape(rows, columns),
+            data: ArrayData::I64(data),
+        }
+    }
+}
+
+fn shape(rows: usize, columns: Option<usize>) -> Vec<usize> {
+    match columns {
+        Some(c) => vec![rows, c],
+        None => vec![rows],
+    }
+}
+
+/// Checks that `values` fill an array of `rows` x `columns` before it is written into a
+/// state: the error names the array and both sizes.
+pub fn check_size(name: &str, values: &[f64], rows: usize, columns: usize) -> Result<(), String> {
+    if values.len() == rows * columns {
+        Ok(())
+    } else {
+        Err(format!(
+            "{name}: {} values given, the state has {rows} x {columns} = {}",
+            values.len(),
+            rows * columns
+        ))
+    }
+}
