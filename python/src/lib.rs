@@ -17,6 +17,8 @@ use std::path::PathBuf;
 use xper_simulation::state::{ArrayData, StateArray};
 use xper_simulation::{Run, RunOptions, Simulation};
 
+mod solve;
+
 create_exception!(xper, XperError, PyException, "Every error xper raises.");
 create_exception!(
     xper,
@@ -250,6 +252,12 @@ impl PySimulation {
         Ok(list)
     }
 
+    /// Names of the groups, in the order the `group` arrays index them.
+    #[getter]
+    fn group_names(&self) -> Vec<String> {
+        self.sim.group_names()
+    }
+
     /// The array `name` of the current state, a new read-only NumPy array (a copy: the state
     /// moves on with the next step).
     fn array<'py>(&self, py: Python<'py>, name: &str) -> PyResult<Bound<'py, PyAny>> {
@@ -314,6 +322,8 @@ fn json_to_py<'py>(py: Python<'py>, v: &serde_json::Value) -> PyResult<Bound<'py
 fn _xper(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_class::<PySimulation>()?;
+    m.add_function(wrap_pyfunction!(solve::solve_csr, m)?)?;
+    m.add_function(wrap_pyfunction!(solve::read_problem, m)?)?;
     m.add("XperError", py.get_type::<XperError>())?;
     m.add("SceneError", py.get_type::<SceneError>())?;
     m.add("RunError", py.get_type::<RunError>())?;

@@ -23,7 +23,8 @@ def drop(tmp_path, fresh, duration="1.0"):
 
 def check_documented(sim):
     """Every listed array has the listed shape (n: its part's count) and dtype."""
-    counts = {"bodies": len(sim.bodies.id), "contacts": len(sim.contacts.bodies), "world": 1}
+    counts = {"bodies": len(sim.bodies.id), "contacts": len(sim.contacts.bodies),
+              "laws": len(sim.laws.friction), "world": 1}
     for info in sim.array_info():
         a = sim.array(info["name"])
         n = counts[info["name"].split(".")[0]]

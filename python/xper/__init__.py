@@ -26,8 +26,10 @@ import numpy as np
 
 from . import _xper
 from ._xper import RunError, SceneError, XperError, __version__
+from .problems import CsrMatrix, Problem, SolveResult, read_problem, solve
 
-__all__ = ["Simulation", "XperError", "SceneError", "RunError", "__version__"]
+__all__ = ["Simulation", "XperError", "SceneError", "RunError", "__version__", "solve",
+           "read_problem", "Problem", "SolveResult", "CsrMatrix"]
 
 PathLike = Union[str, "os.PathLike[str]"]
 
@@ -201,7 +203,7 @@ class Simulation:
     @property
     def bodies(self) -> _Part:
         """Bodies' arrays: ``id``, ``group``, ``position``, ``orientation``, ``velocity``,
-        ``angular_velocity``, ``radius``, ``mass``."""
+        ``angular_velocity``, ``radius``, ``mass``, ``imposed_velocity``, ``force``."""
         return _Part(self, "bodies")
 
     @property
@@ -209,6 +211,16 @@ class Simulation:
         """Contacts' arrays: ``bodies``, ``point``, ``normal``, ``normal_impulse``,
         ``tangential_impulse``, ``gap``, ``status``."""
         return _Part(self, "contacts")
+
+    @property
+    def laws(self) -> _Part:
+        """Laws' arrays: ``groups``, ``friction``, ``restitution``."""
+        return _Part(self, "laws")
+
+    @property
+    def group_names(self) -> List[str]:
+        """Group names, in the order ``bodies.group`` and ``laws.groups`` index them."""
+        return self._sim.group_names
 
     @property
     def world(self) -> _Part:

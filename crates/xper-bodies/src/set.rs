@@ -139,6 +139,41 @@ impl BodySet {
         handle
     }
 
+    /// Sets what drives degree of freedom `d` (translations then rotations) of body `b`,
+    /// between steps: the imposed-velocity bits and the list of driven bodies (in body order)
+    /// follow.
+    pub fn set_drive(&mut self, b: usize, d: usize, drive: Drive) {
+        let handle = BodyHandle(b as u32);
+        let bit = 1u8 << d;
+        match drive.is_imposed_velocity() {
+            true => self.imposed[b] |= bit,
+            false => self.imposed[b] &= !bit,
+        }
+        match self.driven.iter().position(|(h, _)| *h == handle) {
+            Some(k) => {
+                self.driven[k].1[d] = drive;
+                if self.driven[k].1.iter().all(|x| *x == Drive::Free) {
+                    self.driven.remove(k);
+                }
+            }
+            None if drive != Drive::Free => {
+                let mut drives: [Drive; DOFS] = Default::default();
+                drives[d] = drive;
+                let at = self.driven.partition_point(|(h, _)| h.0 < handle.0);
+                self.driven.insert(at, (handle, drives));
+            }
+            None => {}
+        }
+    }
+
+    /// What drives each degree of freedom of body `b`.
+    pub fn drives(&self, b: usize) -> [Drive; DOFS] {
+        let handle = BodyHandle(b as u32);
+        (self.driven.iter())
+            .find(|(h, _)| *h == handle)
+            .map_or_else(Default::default, |(_, d)| d.clone())
+    }
+
     /// Moves every body by `dt` times its velocity (`q += dt v`) after saving the configuration
     /// it had in `saved` (whose buffers are reused), for [`BodySet::restore_configuration`]:
     /// Moreau-Jean's detection configuration `q_TT = q_i + h (1 - theta) v_i` is
@@ -224,5 +259,61 @@ impl Body {
     pub fn in_group(mut self, group: u16) -> Self {
         self.group = group;
         self
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::TimeFunction;
+
+    /// A round body of either dimension (a disk in 2D, a sphere in 3D).
+    fn ball(position: Vector) -> Body {
+        #[cfg(feature = "dim2")]
+        return Body::disk(0.1, 1000.0, position);
+        #[cfg(feature = "dim3")]
+        return Body::sphere(0.1, 1000.0, position);
+    }
+
+    fn set_of(n: usize) -> BodySet {
+        let mut set = BodySet::new();
+        for k in 0..n {
+            let mut body = ball(Vector::repeat(k as Real));
+            if k == 2 {
+                body.drives[0] = Drive::Velocity(TimeFunction::Constant(1.0));
+            }
+            set.insert(body);
+        }
+        set
+    }
+
+    #[test]
+    fn set_drive_keeps_the_driven_list_in_order_and_the_imposed_bits() {
+        let mut set = set_of(4);
+        let speed = |v| Drive::Velocity(TimeFunction::Constant(v));
+        set.set_drive(3, 1, Drive::Force(TimeFunction::Constant(2.0)));
+        set.set_drive(0, 0, speed(-1.0));
+        let order: Vec<u32> = set.driven.iter().map(|(h, _)| h.0).collect();
+        assert_eq!(order, [0, 2, 3]);
+        assert_eq!(set.imposed, [1, 0, 1, 0]);
+        assert_eq!(set.drives(3)[1], Drive::Force(TimeFunction::Constant(2.0)));
+        assert_eq!(set.drives(1), <[Drive; DOFS]>::default());
+        // Freeing every degree of freedom of a body drops it from the list.
+        set.set_drive(2, 0, Drive::Free);
+        set.set_drive(3, 1, Drive::Free);
+        let order: Vec<u32> = set.driven.iter().map(|(h, _)| h.0).collect();
+        assert_eq!(order, [0]);
+        assert_eq!(set.imposed, [1, 0, 0, 0]);
+        // The same as a set built with those drives from the start.
+        let mut fresh = BodySet::new();
+        for k in 0..4 {
+            let mut body = ball(Vector::repeat(k as Real));
+            if k == 0 {
+                body.drives[0] = speed(-1.0);
+            }
+            fresh.insert(body);
+        }
+        assert_eq!(set.driven, fresh.driven);
+        assert_eq!(set.imposed, fresh.imposed);
     }
 }

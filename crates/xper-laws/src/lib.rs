@@ -71,6 +71,29 @@ impl LawTable {
     pub fn group_count(&self) -> usize {
         self.groups
     }
+
+    /// Number of laws, in the order they were set.
+    pub fn len(&self) -> usize {
+        self.laws.len()
+    }
+
+    /// Whether no law is set.
+    pub fn is_empty(&self) -> bool {
+        self.laws.is_empty()
+    }
+
+    /// The law of index `k`, to change its coefficients between steps.
+    pub fn law_mut(&mut self, k: u16) -> &mut InteractionLaw {
+        &mut self.laws[k as usize]
+    }
+
+    /// The two groups law `k` was set between (smaller first).
+    pub fn groups_of(&self, k: u16) -> [usize; 2] {
+        let at = (self.entries.iter())
+            .position(|&e| e == Some(k))
+            .unwrap_or(0);
+        [at / self.groups.max(1), at % self.groups.max(1)]
+    }
 }
 
 #[cfg(test)]
@@ -89,5 +112,15 @@ mod tests {
         assert_eq!(t.between(0, 2), Some(k));
         assert_eq!(t.between(1, 1), None);
         assert_eq!(*t.law(k), law);
+        let k2 = t.set(1, 1, law);
+        assert_eq!(
+            (t.len(), t.groups_of(k), t.groups_of(k2)),
+            (2, [0, 2], [1, 1])
+        );
+        if let InteractionLaw::SignoriniCoulomb(l) = t.law_mut(k2) {
+            l.friction = 0.7;
+        }
+        let InteractionLaw::SignoriniCoulomb(l) = t.law(t.between(1, 1).unwrap());
+        assert_eq!(l.friction, 0.7);
     }
 }

@@ -188,6 +188,9 @@ impl Simulation for RigidSimulation<'_> {
     fn arrays(&self) -> Vec<xper_run::state::ArrayInfo> {
         state::ARRAYS.to_vec()
     }
+    fn group_names(&self) -> Vec<String> {
+        self.scene.groups.clone()
+    }
     fn array(&self, name: &str) -> Option<xper_run::state::StateArray> {
         state::array(self.world()?, name)
     }

@@ -3,8 +3,10 @@
 //! dimension (`DIM`, `ANGULAR_DIM`, `ROTATION_COORDS` of `xper-math`).
 
 use crate::frames::status;
+use xper_bodies::{Drive, TimeFunction};
+use xper_laws::InteractionLaw;
 use xper_math::{angular_coords, angular_from_coords, rotation_coords, Vector};
-use xper_math::{ANGULAR_DIM, DIM, ROTATION_COORDS};
+use xper_math::{ANGULAR_DIM, DIM, DOFS, ROTATION_COORDS};
 use xper_nscd::World;
 use xper_run::state::{check_size, ArrayInfo, StateArray};
 
@@ -35,6 +37,7 @@ mod shapes {
     pub const ROTATION_UNIT: &str = "rad";
     pub const TANGENTIAL: &str = "(n, 1)";
     pub const GRAVITY: &str = "(2,)";
+    pub const DOFS: &str = "(n, 3)";
 }
 #[cfg(feature = "dim3")]
 mod shapes {
@@ -45,11 +48,12 @@ mod shapes {
     pub const ROTATION_UNIT: &str = "1";
     pub const TANGENTIAL: &str = "(n, 2)";
     pub const GRAVITY: &str = "(3,)";
+    pub const DOFS: &str = "(n, 6)";
 }
 use shapes::*;
 
 /// The arrays of a rigid world.
-pub const ARRAYS: [ArrayInfo; 17] = [
+pub const ARRAYS: [ArrayInfo; 22] = [
     info(
         "bodies.id",
         "(n,)",
@@ -170,6 +174,11 @@ pub const ARRAYS: [ArrayInfo; 17] = [
         false,
         "0 open, 1 sticking, 2 sliding",
     ),
+    info("bodies.imposed_velocity", shapes::DOFS, "float64", "m/s, rad/s", true, "velocity imposed on each degree of freedom (translations, then rotations) at the current time; NaN where not imposed (writing NaN frees an imposed one)"),
+    info("bodies.force", shapes::DOFS, "float64", "N, N m", true, "external force or torque on each degree of freedom at the current time (per m of thickness in 2D), gravity aside; NaN where the velocity is imposed (writing NaN leaves it)"),
+    info("laws.groups", "(n, 2)", "int64", "1", false, "the two groups of each law (indices into the group names)"),
+    info("laws.friction", "(n,)", "float64", "1", true, "Coulomb friction coefficient (>= 0)"),
+    info("laws.restitution", "(n,)", "float64", "1", true, "Newton restitution coefficient (in [0, 1])"),
     info(
         "world.gravity",
         GRAVITY,
@@ -254,39 +263,136 @@ pub fn array(world: &World, name: &str) -> Option<StateArray> {
             data: xper_run::state::ArrayData::F64(world.params.gravity.iter().copied().collect()),
         },
         "world.time" => StateArray::reals(1, None, vec![world.time]),
+        "bodies.imposed_velocity" | "bodies.force" => {
+            let force = name == "bodies.force";
+            let values = (0..n).flat_map(|k| {
+                b.drives(k).map(|d| match (d, force) {
+                    (Drive::Velocity(f), false) => f.eval(world.time),
+                    (Drive::Force(f), true) => f.eval(world.time),
+                    (Drive::Velocity(_), true) | (_, false) => f64::NAN,
+                    (Drive::Free, true) => 0.0,
+                })
+            });
+            StateArray::reals(n, Some(DOFS), values.collect())
+        }
+        "laws.groups" => {
+            let laws = &world.laws;
+            let groups = (0..laws.len()).flat_map(|k| laws.groups_of(k as u16).map(|g| g as i64));
+            StateArray::integers(laws.len(), Some(2), groups.collect())
+        }
+        "laws.friction" | "laws.restitution" => {
+            let laws = &world.laws;
+            let values = (0..laws.len()).map(|k| match laws.law(k as u16) {
+                InteractionLaw::SignoriniCoulomb(l) if name == "laws.friction" => l.friction,
+                InteractionLaw::SignoriniCoulomb(l) => l.restitution,
+            });
+            StateArray::reals(laws.len(), None, values.collect())
+        }
         _ => return None,
     })
 }
 
 /// Writes `values` into the writable array `name` of `world`.
 pub fn set_array(world: &mut World, name: &str, values: &[f64]) -> Result<(), String> {
-    if values.iter().any(|v| !v.is_finite()) {
+    let nan_allowed = matches!(name, "bodies.imposed_velocity" | "bodies.force");
+    if values
+        .iter()
+        .any(|v| v.is_infinite() || v.is_nan() && !nan_allowed)
+    {
         return Err(format!("{name}: values must be finite"));
     }
-    let b = &mut world.bodies;
-    let n = b.len();
+    let n = world.bodies.len();
     match name {
         "bodies.velocity" => {
             check_size(name, values, n, DIM)?;
+            let b = &mut world.bodies;
             for (v, new) in b.velocity.iter_mut().zip(values.chunks_exact(DIM)) {
                 *v = Vector::from_column_slice(new);
             }
         }
         "bodies.angular_velocity" => {
             check_size(name, values, n, ANGULAR_DIM)?;
+            let b = &mut world.bodies;
             for (w, new) in (b.angular_velocity.iter_mut()).zip(values.chunks_exact(ANGULAR_DIM)) {
                 *w = angular_from_coords(new);
             }
+        }
+        "bodies.imposed_velocity" | "bodies.force" => {
+            check_size(name, values, n, DOFS)?;
+            set_drives(world, name == "bodies.force", values)?;
+        }
+        "laws.friction" | "laws.restitution" => {
+            check_size(name, values, world.laws.len(), 1)?;
+            set_laws(world, name == "laws.friction", values)?;
         }
         "world.gravity" => {
             check_size(name, values, 1, DIM)?;
             world.params.gravity = Vector::from_column_slice(values);
         }
         _ => {
-            return Err(match ARRAYS.iter().any(|a| a.name == name) {
-                true => format!("{name}: read-only (the writable arrays: bodies.velocity, bodies.angular_velocity, world.gravity)"),
-                false => format!("{name}: no such array of a rigid simulation"),
+            return Err(match ARRAYS.iter().find(|a| a.name == name) {
+                Some(_) => {
+                    let writable: Vec<&str> = (ARRAYS.iter().filter(|a| a.writable))
+                        .map(|a| a.name)
+                        .collect();
+                    format!("{name}: read-only (writable: {})", writable.join(", "))
+                }
+                None => format!("{name}: no such array of a rigid simulation"),
             })
+        }
+    }
+    Ok(())
+}
+
+/// Imposed velocities or forces: a value equal to the current one keeps its drive (and its
+/// function of time); another becomes a constant drive; NaN frees an imposed velocity
+/// (`force = false`) or leaves a degree of freedom as it is (`force = true`).
+fn set_drives(world: &mut World, force: bool, values: &[f64]) -> Result<(), String> {
+    let name = if force {
+        "bodies.force"
+    } else {
+        "bodies.imposed_velocity"
+    };
+    let t = world.time;
+    let b = &mut world.bodies;
+    for (k, row) in values.chunks_exact(DOFS).enumerate() {
+        let drives = b.drives(k);
+        for (d, (&v, now)) in row.iter().zip(drives).enumerate() {
+            let new = match (force, now, v.is_nan()) {
+                (false, Drive::Velocity(_), true) => Drive::Free,
+                (_, _, true) => continue,
+                (false, Drive::Velocity(f), false) | (true, Drive::Force(f), false)
+                    if f.eval(t) == v =>
+                {
+                    continue
+                }
+                (true, Drive::Free, false) if v == 0.0 => continue,
+                (false, _, false) => Drive::Velocity(TimeFunction::Constant(v)),
+                (true, _, false) if !b.is_dynamic(k) => {
+                    return Err(format!(
+                        "{name}: body {k} has an infinite mass (a wall or a fixed body): a force \
+                         cannot move it; impose its velocity instead"
+                    ))
+                }
+                (true, _, false) => Drive::Force(TimeFunction::Constant(v)),
+            };
+            b.set_drive(k, d, new);
+        }
+    }
+    Ok(())
+}
+
+/// Friction (`friction = true`) or restitution coefficients of the laws, checked as a scene's.
+fn set_laws(world: &mut World, friction: bool, values: &[f64]) -> Result<(), String> {
+    for (k, &v) in values.iter().enumerate() {
+        let InteractionLaw::SignoriniCoulomb(law) = world.laws.law_mut(k as u16);
+        match friction {
+            true if v < 0.0 => return Err(format!("laws.friction[{k}]: must be >= 0, got {v}")),
+            true => law.friction = v,
+            false if !(0.0..=1.0).contains(&v) => {
+                return Err(format!("laws.restitution[{k}]: must be in [0, 1], got {v}"))
+            }
+            false => law.restitution = v,
         }
     }
     Ok(())

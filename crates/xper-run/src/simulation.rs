@@ -137,6 +137,10 @@ pub trait Simulation {
     fn arrays(&self) -> Vec<ArrayInfo> {
         Vec::new()
     }
+    /// Names of the groups the `group` arrays index (empty when this physics has none).
+    fn group_names(&self) -> Vec<String> {
+        Vec::new()
+    }
     /// The array `name` of the state on the writing process, as of the last
     /// [`Simulation::sync`] (`None` when this physics has no such array).
     fn array(&self, _name: &str) -> Option<StateArray> {

@@ -1,0 +1,172 @@
+//! `xper.solve` and `xper.read_problem`: the contact problem of `xper solve`
+//! (`u = W r + q`, `K* ∋ û ⟂ r ∈ K` with the friction cones of `mu`; Acary, Bremond, Huber
+//! 2018) given as arrays or read from a Siconos or FCLib file, solved by the library's solvers.
+
+use crate::{guard, SceneError};
+use numpy::{PyArray1, PyReadonlyArray1};
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use std::path::PathBuf;
+use xper_fclib::{read_local, ReadAs};
+use xper_solver::{solve, CsrMatrix, ErrorScaling, FrictionProblem, SolverKind, SolverParams};
+
+fn kind(name: &str) -> PyResult<SolverKind> {
+    Ok(match name {
+        "nlgs" | "nsgs" => SolverKind::Nlgs,
+        "newton" => SolverKind::Newton,
+        "proximal_newton" => SolverKind::ProximalNewton,
+        "lemke" => SolverKind::Lemke,
+        _ => {
+            return Err(SceneError::new_err(format!(
+                "solver {name:?}: one of nlgs (or nsgs), newton, proximal_newton, lemke"
+            )))
+        }
+    })
+}
+
+fn scaling(name: &str) -> PyResult<ErrorScaling> {
+    match name {
+        "q" => Ok(ErrorScaling::RelativeQ),
+        "max" => Ok(ErrorScaling::RelativeMax),
+        _ => Err(SceneError::new_err(format!(
+            "scaling {name:?}: \"q\" (|e| / |q|) or \"max\" (|e| / max(|q|, |r|, |u|))"
+        ))),
+    }
+}
+
+/// Solves the problem whose `W` is the CSR matrix (`indptr`, `indices`, `data`, `shape`);
+/// returns a dict: `r`, `u`, `solver`, `iterations`, `inner_iterations`, `error` (`absolute`,
+/// `relative_q`, `relative_max`), `converged`, `wall_time_s`.
+#[pyfunction]
+#[pyo3(signature = (indptr, indices, data, shape, q, mu, solver, tol, max_iter, error_scaling, warm_start))]
+#[allow(clippy::too_many_arguments)]
+pub fn solve_csr<'py>(
+    py: Python<'py>,
+    indptr: Vec<usize>,
+    indices: Vec<usize>,
+    data: PyReadonlyArray1<'py, f64>,
+    shape: (usize, usize),
+    q: PyReadonlyArray1<'py, f64>,
+    mu: PyReadonlyArray1<'py, f64>,
+    solver: &str,
+    tol: f64,
+    max_iter: Option<u32>,
+    error_scaling: &str,
+    warm_start: Option<PyReadonlyArray1<'py, f64>>,
+) -> PyResult<Bound<'py, PyDict>> {
+    guard(|| {
+        let (q, mu) = (q.as_array().to_vec(), mu.as_array().to_vec());
+        if mu.is_empty() || q.len() % mu.len() != 0 {
+            return Err(SceneError::new_err(format!(
+                "q has {} entries and mu {}: q needs 2 or 3 per contact",
+                q.len(),
+                mu.len()
+            )));
+        }
+        let dim = q.len() / mu.len();
+        let w = csr(indptr, indices, data.as_array().to_vec(), shape)?;
+        let problem =
+            FrictionProblem::new(dim, w, q, mu).map_err(|e| SceneError::new_err(e.to_string()))?;
+        if !(tol > 0.0 && tol.is_finite()) {
+            return Err(SceneError::new_err(format!("tol = {tol}: must be > 0")));
+        }
+        let mut params = SolverParams::with_kind(kind(solver)?);
+        params.tolerance = tol;
+        params.scaling = scaling(error_scaling)?;
+        if let Some(n) = max_iter {
+            params.max_iterations = n;
+        }
+        let warm = warm_start.map(|w| w.as_array().to_vec());
+        let start = std::time::Instant::now();
+        let report = solve(&problem, &params, warm.as_deref())
+            .map_err(|e| SceneError::new_err(e.to_string()))?;
+        let wall = start.elapsed().as_secs_f64();
+        let out = PyDict::new(py);
+        out.set_item("r", PyArray1::from_vec(py, report.r))?;
+        out.set_item("u", PyArray1::from_vec(py, report.u))?;
+        out.set_item("solver", report.solver)?;
+        out.set_item("iterations", report.iterations)?;
+        out.set_item("inner_iterations", report.inner_iterations)?;
+        let error = PyDict::new(py);
+        error.set_item("absolute", report.error.absolute)?;
+        error.set_item("relative_q", report.error.relative_q)?;
+        error.set_item("relative_max", report.error.relative_max)?;
+        out.set_item("error", error)?;
+        out.set_item("converged", report.converged)?;
+        out.set_item("wall_time_s", wall)?;
+        Ok(out)
+    })
+}
+
+/// A CSR matrix from its arrays, checked: the error says what is inconsistent.
+fn csr(
+    row_ptr: Vec<usize>,
+    col_idx: Vec<usize>,
+    values: Vec<f64>,
+    (nrows, ncols): (usize, usize),
+) -> PyResult<CsrMatrix> {
+    let bad = |why: String| Err(SceneError::new_err(format!("W: {why}")));
+    if row_ptr.len() != nrows + 1 || row_ptr.first() != Some(&0) {
+        return bad(format!(
+            "indptr has {} entries starting at {:?}; {} rows need {} starting at 0",
+            row_ptr.len(),
+            row_ptr.first(),
+            nrows,
+            nrows + 1
+        ));
+    }
+    if row_ptr.windows(2).any(|w| w[0] > w[1]) || row_ptr[nrows] != values.len() {
+        return bad("indptr must be non-decreasing and end at the number of values".into());
+    }
+    if col_idx.len() != values.len() {
+        return bad("indices and data differ in length".into());
+    }
+    if let Some(c) = col_idx.iter().find(|&&c| c >= ncols) {
+        return bad(format!("column index {c} out of {ncols} columns"));
+    }
+    if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+        return bad(format!("value {v} is not finite"));
+    }
+    Ok(CsrMatrix {
+        nrows,
+        ncols,
+        row_ptr,
+        col_idx,
+        values,
+    })
+}
+
+/// Reads a problem file (Siconos `.dat`, FCLib `.hdf5` when built with HDF5) in its local
+/// form (a global problem reduced as `xper solve` does); returns a dict: `dim`, `form`,
+/// `indptr`, `indices`, `data`, `shape`, `q`, `mu`.
+#[pyfunction]
+#[pyo3(signature = (path, form="auto"))]
+pub fn read_problem<'py>(
+    py: Python<'py>,
+    path: PathBuf,
+    form: &str,
+) -> PyResult<Bound<'py, PyDict>> {
+    guard(|| {
+        let how = match form {
+            "auto" => ReadAs::Auto,
+            "local" => ReadAs::Local,
+            "global" => ReadAs::Global,
+            _ => {
+                return Err(SceneError::new_err(format!(
+                    "form {form:?}: \"auto\", \"local\" or \"global\""
+                )))
+            }
+        };
+        let (p, form) = read_local(&path, how).map_err(SceneError::new_err)?;
+        let out = PyDict::new(py);
+        out.set_item("dim", p.dim)?;
+        out.set_item("form", form)?;
+        out.set_item("indptr", PyArray1::from_vec(py, p.w.row_ptr))?;
+        out.set_item("indices", PyArray1::from_vec(py, p.w.col_idx))?;
+        out.set_item("data", PyArray1::from_vec(py, p.w.values))?;
+        out.set_item("shape", (p.w.nrows, p.w.ncols))?;
+        out.set_item("q", PyArray1::from_vec(py, p.q))?;
+        out.set_item("mu", PyArray1::from_vec(py, p.mu))?;
+        Ok(out)
+    })
+}

@@ -1,0 +1,89 @@
+"""Control between steps, against exact answers: imposed velocities, forces, a law's
+friction and restitution."""
+
+import math
+
+import numpy as np
+import pytest
+import xper
+from conftest import cut_scene
+
+G = 9.81      # m/s^2
+DT = 1e-3     # s
+Y0 = 0.55     # m, drop's disk centre
+NAN = float("nan")
+
+
+def drop(tmp_path, fresh, duration="2.0"):
+    return xper.Simulation.from_file(cut_scene("drop", tmp_path, duration=duration),
+                                     out=fresh("drop"))
+
+
+def test_an_imposed_velocity_moves_the_body_then_frees_it(tmp_path, fresh):
+    sim = drop(tmp_path, fresh)
+    v = sim.bodies.imposed_velocity
+    # The disk is free; the wall's velocity is imposed (0: it is fixed).
+    assert v.shape == (2, 3) and np.isnan(v[0]).all() and v[1].tolist() == [0.0] * 3
+    v = v.copy()
+    v[0, 1] = -1.0                     # m/s, downwards
+    sim.bodies.imposed_velocity = v
+    sim.step(100)
+    # Moreau-Jean (theta = 1/2): the first step moves by h (0 + v) / 2, the others by h v.
+    y1 = Y0 - (0.1 - DT / 2)
+    assert sim.bodies.position[0, 1] == pytest.approx(y1, abs=1e-12)
+    assert sim.bodies.imposed_velocity[0].tolist()[1] == -1.0
+    v[0, 1] = NAN                      # free again, from -1 m/s
+    sim.bodies.imposed_velocity = v
+    assert np.isnan(sim.bodies.imposed_velocity[0]).all()
+    sim.step(100)
+    t = 0.1
+    assert sim.bodies.position[0, 1] == pytest.approx(y1 - t - G * t * t / 2, abs=1e-12)
+
+
+def test_a_force_equal_to_the_weight_holds_the_body(tmp_path, fresh):
+    sim = drop(tmp_path, fresh)
+    m = sim.bodies.mass[0]
+    f = sim.bodies.force.copy()
+    assert f[0].tolist() == [0.0] * 3 and np.isnan(f[1]).all()
+    f[0, 1] = m * G                    # N per m of thickness
+    sim.bodies.force = f
+    sim.step(200)
+    assert sim.bodies.position[0] == pytest.approx([0.0, Y0], abs=1e-12)
+    assert sim.bodies.force[0, 1] == m * G
+    f[1, 0] = 1.0
+    with pytest.raises(xper.SceneError, match="body 1 has an infinite mass"):
+        sim.bodies.force = f
+
+
+def test_restitution_set_before_the_impact_makes_the_disk_bounce(tmp_path, fresh):
+    sim = drop(tmp_path, fresh)
+    assert sim.group_names == ["ball", "ground"]
+    assert sim.laws.groups.tolist() == [[0, 1]]
+    assert sim.laws.restitution.tolist() == [0.0]
+    sim.laws.restitution = [1.0]
+    impact = math.sqrt(2 * G * 0.5)    # m/s at the wall
+    highest = []
+    sim.run(until=0.45, callback=lambda s: highest.append(s.bodies.velocity[0, 1]))
+    assert max(highest) == pytest.approx(impact, rel=0.02)
+    with pytest.raises(xper.SceneError, match=r"laws.restitution\[0\]: must be in \[0, 1\]"):
+        sim.laws.restitution = [1.5]
+
+
+def test_friction_turns_sliding_into_rolling(tmp_path, fresh):
+    sim = drop(tmp_path, fresh)
+    sim.run(until=0.6)                 # at rest on the wall
+    sim.laws.friction = [0.0]
+    sim.bodies.velocity = [[1.0, 0.0], [0.0, 0.0]]
+    sim.step(100)
+    assert sim.bodies.velocity[0, 0] == pytest.approx(1.0, abs=1e-9)
+    assert sim.bodies.angular_velocity[0, 0] == pytest.approx(0.0, abs=1e-9)
+    sim.laws.friction = [0.3]
+    sim.step(300)
+    # A disk (I = m r^2 / 2) sliding at v0 rolls at v0 / (1 + I / (m r^2)) = 2 v0 / 3, after
+    # (v0 / 3) / (mu g) = 0.11 s.
+    r = sim.bodies.radius[0]
+    v, w = sim.bodies.velocity[0, 0], sim.bodies.angular_velocity[0, 0]
+    assert v == pytest.approx(2.0 / 3.0, rel=2e-3)
+    assert -w * r == pytest.approx(v, rel=2e-3)
+    with pytest.raises(xper.SceneError, match=r"laws.friction\[0\]: must be >= 0"):
+        sim.laws.friction = [-0.1]
