@@ -117,9 +117,8 @@ mod tests {
             (t.len(), t.groups_of(k), t.groups_of(k2)),
             (2, [0, 2], [1, 1])
         );
-        if let InteractionLaw::SignoriniCoulomb(l) = t.law_mut(k2) {
-            l.friction = 0.7;
-        }
+        let InteractionLaw::SignoriniCoulomb(l) = t.law_mut(k2);
+        l.friction = 0.7;
         let InteractionLaw::SignoriniCoulomb(l) = t.law(t.between(1, 1).unwrap());
         assert_eq!(l.friction, 0.7);
     }
