@@ -6,11 +6,14 @@ import xper
 from conftest import cut_scene, run_cli, same_outputs
 
 # 2D: one disk dropped on a wall (contact from step ~300); 2D: a bed of disks; 3D: spheres
-# and polyhedra poured into a box.
+# and polyhedra poured into a box; fracture: a bimaterial specimen pulled apart; fluid: a
+# grain settling.
 SCENES = [
     ("drop", {"duration": "0.35"}),
     ("newton_deposit", {"steps": "40", "dump_problems": "[]"}),
     ("mixed_shapes_3d", {"duration": "0.04"}),
+    ("bimaterial_small", {"steps": "50"}),
+    ("single_grain_settling", {"duration": "0.02"}),
 ]
 
 

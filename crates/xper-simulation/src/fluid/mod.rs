@@ -10,6 +10,7 @@
 
 pub mod build;
 pub mod outputs;
+pub mod state;
 pub mod stepping;
 
 use crate::checkpoint::{checkpoint_bytes, read_checkpoint};
@@ -261,6 +262,21 @@ impl Simulation for FluidSimulation<'_> {
     }
     fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary> {
         self.runner.rank_summaries(wall)
+    }
+    fn arrays(&self) -> Vec<xper_run::state::ArrayInfo> {
+        state::arrays()
+    }
+    fn group_names(&self) -> Vec<String> {
+        self.scene.groups.clone()
+    }
+    fn array(&self, name: &str) -> Option<xper_run::state::StateArray> {
+        state::array(&self.state, &self.params, &self.immersed, name)
+    }
+    fn set_array(&mut self, name: &str, values: &[f64]) -> Result<(), String> {
+        if self.runner.processes() > 1 {
+            return Err("arrays are set only in a run on one process".into());
+        }
+        crate::rigid::state::set_array(&mut self.state.world, name, values)
     }
     fn compare_serial(&mut self, stepping: f64) -> Result<Option<SerialComparison>, RunError> {
         let Some(start) = self.compare_from.take() else {

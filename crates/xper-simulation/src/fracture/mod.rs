@@ -8,6 +8,7 @@ pub mod checkpoint;
 pub mod crack;
 pub mod frames;
 pub mod outputs;
+pub mod state;
 pub mod stepping;
 
 use crate::comparison::SerialComparison;
@@ -160,6 +161,12 @@ impl Simulation for FractureSimulation<'_> {
     }
     fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary> {
         self.runner.rank_summaries(wall)
+    }
+    fn arrays(&self) -> Vec<xper_run::state::ArrayInfo> {
+        state::ARRAYS.to_vec()
+    }
+    fn array(&self, name: &str) -> Option<xper_run::state::StateArray> {
+        state::array(&self.model, name)
     }
     fn compare_serial(&mut self, stepping: f64) -> Result<Option<SerialComparison>, RunError> {
         let Some(start) = self.compare_from.take() else {
