@@ -312,6 +312,22 @@ impl PySimulation {
     }
 }
 
+/// Reads and checks the scene file at `path` without running it; returns its kind:
+/// `rigid`, `rigid3d`, `fluid` or `fracture`.
+#[pyfunction]
+fn scene_kind(path: PathBuf) -> PyResult<&'static str> {
+    guard(|| {
+        Ok(
+            match xper_simulation::LoadedScene::read(&path).map_err(to_py)? {
+                xper_simulation::LoadedScene::Rigid { .. } => "rigid",
+                xper_simulation::LoadedScene::Rigid3 { .. } => "rigid3d",
+                xper_simulation::LoadedScene::Fluid { .. } => "fluid",
+                xper_simulation::LoadedScene::Fracture { .. } => "fracture",
+            },
+        )
+    })
+}
+
 /// A JSON value as Python objects (through the standard `json` module).
 fn json_to_py<'py>(py: Python<'py>, v: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
     py.import("json")?.call_method1("loads", (v.to_string(),))
@@ -324,6 +340,7 @@ fn _xper(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PySimulation>()?;
     m.add_function(wrap_pyfunction!(solve::solve_csr, m)?)?;
     m.add_function(wrap_pyfunction!(solve::read_problem, m)?)?;
+    m.add_function(wrap_pyfunction!(scene_kind, m)?)?;
     m.add("XperError", py.get_type::<XperError>())?;
     m.add("SceneError", py.get_type::<SceneError>())?;
     m.add("RunError", py.get_type::<RunError>())?;

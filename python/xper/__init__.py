@@ -27,8 +27,9 @@ import numpy as np
 from . import _xper
 from ._xper import RunError, SceneError, XperError, __version__
 from .problems import CsrMatrix, Problem, SolveResult, read_problem, solve
+from .scene import Scene
 
-__all__ = ["Simulation", "XperError", "SceneError", "RunError", "__version__", "solve",
+__all__ = ["Simulation", "Scene", "XperError", "SceneError", "RunError", "__version__", "solve",
            "read_problem", "Problem", "SolveResult", "CsrMatrix"]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -98,6 +99,11 @@ class Simulation:
             os.fsync(f.fileno())
         os.replace(partial, path)
         return cls(path, out, **options)
+
+    @classmethod
+    def from_scene(cls, scene: "Scene", out: PathLike, **options: Any) -> "Simulation":
+        """The run of a scene built with :class:`xper.Scene` (saved as ``out/scene.toml``)."""
+        return cls.from_toml(scene.to_toml(), out, **options)
 
     # Stepping.
 

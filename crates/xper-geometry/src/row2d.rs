@@ -68,6 +68,14 @@ impl ContactRow {
         impulse
     }
 
+    /// An impulse `[r_n, r_t]` of this contact as a world vector `r_n n + r_t t`, with
+    /// `t = n` rotated by +90 degrees: what the second body receives.
+    #[inline]
+    pub fn world_impulse(&self, impulse: [Real; 2]) -> Vector {
+        let n = self.normal();
+        n * impulse[0] + tangent(&n) * impulse[1]
+    }
+
     /// A carried impulse ([`ContactRow::carry_out`]) in this contact's frame: unchanged in 2D.
     #[inline(always)]
     pub fn carry_in(&self, carried: [Real; 2]) -> [Real; 2] {

@@ -83,6 +83,13 @@ impl ContactRow {
         (n * impulse[0] + t1 * impulse[1] + t2 * impulse[2]).into()
     }
 
+    /// An impulse `[r_n, r_t1, r_t2]` of this contact as a world vector (the frame of
+    /// [`ContactRow::carry_out`]): what the second body receives.
+    #[inline]
+    pub fn world_impulse(&self, impulse: [Real; 3]) -> Vector {
+        Vector::from(self.carry_out(impulse))
+    }
+
     /// A carried world impulse ([`ContactRow::carry_out`]) in this contact's frame, `F^T R`:
     /// its normal part is the component along this normal, its tangential part the projection
     /// on this tangent plane.

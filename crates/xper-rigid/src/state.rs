@@ -53,7 +53,7 @@ mod shapes {
 use shapes::*;
 
 /// The arrays of a rigid world.
-pub const ARRAYS: [ArrayInfo; 22] = [
+pub const ARRAYS: [ArrayInfo; 23] = [
     info(
         "bodies.id",
         "(n,)",
@@ -156,8 +156,9 @@ pub const ARRAYS: [ArrayInfo; 22] = [
         "float64",
         "N s",
         false,
-        "tangential impulse of the last step, in the contact's frame",
+        "tangential impulse of the last step, in the contact's frame (2D: along n turned by +90 degrees)",
     ),
+    info("contacts.impulse", VECTOR, "float64", "N s", false, "impulse of the last step on the second body, world frame (2D: r_n n + r_t t with t = n turned by +90 degrees)"),
     info(
         "contacts.gap",
         "(n,)",
@@ -253,6 +254,13 @@ pub fn array(world: &World, name: &str) -> Option<StateArray> {
             c.impulses.iter().flat_map(|i| i[1..].to_vec()).collect(),
         ),
         "contacts.gap" => StateArray::reals(m, None, c.gaps.clone()),
+        "contacts.impulse" => StateArray::reals(
+            m,
+            Some(DIM),
+            (c.rows.iter().zip(&c.impulses))
+                .flat_map(|(r, i)| r.world_impulse(*i).iter().copied().collect::<Vec<_>>())
+                .collect(),
+        ),
         "contacts.status" => StateArray::integers(
             m,
             None,
