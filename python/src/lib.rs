@@ -328,6 +328,15 @@ fn scene_kind(path: PathBuf) -> PyResult<&'static str> {
     })
 }
 
+/// The text of the scene the checkpoint in `out` was written for (each checkpoint keeps it).
+#[pyfunction]
+fn checkpoint_scene(out: PathBuf) -> PyResult<String> {
+    guard(|| {
+        let sealed = xper_simulation::checkpoint::open(&out, "cannot load").map_err(to_py)?;
+        Ok(sealed.header.scene_text)
+    })
+}
+
 /// A JSON value as Python objects (through the standard `json` module).
 fn json_to_py<'py>(py: Python<'py>, v: &serde_json::Value) -> PyResult<Bound<'py, PyAny>> {
     py.import("json")?.call_method1("loads", (v.to_string(),))
@@ -341,6 +350,7 @@ fn _xper(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(solve::solve_csr, m)?)?;
     m.add_function(wrap_pyfunction!(solve::read_problem, m)?)?;
     m.add_function(wrap_pyfunction!(scene_kind, m)?)?;
+    m.add_function(wrap_pyfunction!(checkpoint_scene, m)?)?;
     m.add("XperError", py.get_type::<XperError>())?;
     m.add("SceneError", py.get_type::<SceneError>())?;
     m.add("RunError", py.get_type::<RunError>())?;

@@ -38,7 +38,7 @@ fn scaling(name: &str) -> PyResult<ErrorScaling> {
 /// returns a dict: `r`, `u`, `solver`, `iterations`, `inner_iterations`, `error` (`absolute`,
 /// `relative_q`, `relative_max`), `converged`, `wall_time_s`.
 #[pyfunction]
-#[pyo3(signature = (indptr, indices, data, shape, q, mu, solver, tol, max_iter, error_scaling, warm_start))]
+#[pyo3(signature = (indptr, indices, data, shape, q, mu, solver, tol, max_iter, error_scaling, warm_start, dim))]
 #[allow(clippy::too_many_arguments)]
 pub fn solve_csr<'py>(
     py: Python<'py>,
@@ -53,17 +53,22 @@ pub fn solve_csr<'py>(
     max_iter: Option<u32>,
     error_scaling: &str,
     warm_start: Option<PyReadonlyArray1<'py, f64>>,
+    dim: Option<usize>,
 ) -> PyResult<Bound<'py, PyDict>> {
     guard(|| {
         let (q, mu) = (q.as_array().to_vec(), mu.as_array().to_vec());
-        if mu.is_empty() || q.len() % mu.len() != 0 {
-            return Err(SceneError::new_err(format!(
-                "q has {} entries and mu {}: q needs 2 or 3 per contact",
-                q.len(),
-                mu.len()
-            )));
-        }
-        let dim = q.len() / mu.len();
+        let dim = match dim {
+            Some(d) => d,
+            None if !mu.is_empty() && q.len() % mu.len() == 0 => q.len() / mu.len(),
+            None => {
+                return Err(SceneError::new_err(format!(
+                    "q has {} entries and mu {}: q needs 2 or 3 per contact (give dim for a \
+                     problem without contacts)",
+                    q.len(),
+                    mu.len()
+                )))
+            }
+        };
         let w = csr(indptr, indices, data.as_array().to_vec(), shape)?;
         let problem =
             FrictionProblem::new(dim, w, q, mu).map_err(|e| SceneError::new_err(e.to_string()))?;

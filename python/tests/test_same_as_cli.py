@@ -70,3 +70,19 @@ def test_a_checkpoint_written_between_steps_resumes(tmp_path, fresh):
     assert sim.step_index == 21
     sim.run()
     same_outputs(whole, out)
+
+
+def test_save_and_load_without_the_scene_file(tmp_path, fresh):
+    scene = cut_scene("mixed_shapes_3d", tmp_path, duration="0.03")
+    whole = fresh("whole")
+    run_cli("run", scene, "--out", whole, "--quiet")
+    out = fresh("saved")
+    sim = xper.Simulation.from_file(scene, out=out)
+    sim.step(17)
+    assert sim.save() == str(out)
+    del sim
+    scene.unlink()                      # the checkpoint keeps the scene's text
+    sim = xper.Simulation.load(out)
+    assert sim.step_index == 17 and sim.scene == str(out / "scene.toml")
+    sim.run()
+    same_outputs(whole, out)

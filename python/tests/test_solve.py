@@ -44,23 +44,38 @@ def test_dense_and_sparse_give_the_same_impulses():
     assert (dense.r == sparse.r).all() and dense.converged
 
 
-def test_the_problem_files_solve_as_with_the_command(tmp_path):
-    path = FCLIB / "siconos_dat_2d" / "FrictionContactProblem00031.dat"
-    if not path.exists():
-        pytest.skip(f"{path} is not here")
-    problem = xper.read_problem(path)
-    assert problem.dim == 2 and problem.W.shape == (2 * problem.contacts,) * 2
-    res = xper.solve(problem.W, problem.q, problem.mu, tol=1e-8)
+def fclib_files():
+    files = sorted(FCLIB.glob("*/*.dat")) + sorted(FCLIB.glob("*/*.hdf5"))
+    return files or [pytest.param(None, marks=pytest.mark.skip(
+        reason=f"no problem files in {FCLIB}"))]
+
+
+@pytest.mark.parametrize("path", fclib_files(), ids=lambda p: p and p.name)
+def test_the_problem_files_solve_as_with_the_command(path, tmp_path):
+    try:
+        problem = xper.read_problem(path)
+    except xper.SceneError as e:
+        if "HDF5" in str(e) and path.suffix == ".hdf5":
+            pytest.skip(f"the module was built without HDF5: {e}")
+        raise
+    assert problem.dim in (2, 3)
+    assert problem.W.shape == (problem.dim * problem.contacts,) * 2
+    # 30 sweeps at most: the comparison is of the two ways in, not of convergence.
+    res = xper.solve(problem.W, problem.q, problem.mu, tol=1e-8, max_iter=30, dim=problem.dim)
     solution = tmp_path / "solution.json"
-    out = run_cli("solve", path, "--tol", "1e-8", "--solution", solution)
+    out = run_cli("solve", path, "--tol", "1e-8", "--max-iter", "30", "--solution", solution,
+                  ok=(0, 1))
     report = json.loads(out.stdout)
     cli = json.loads(solution.read_text())
+    assert report["contacts"] == problem.contacts and report["form"] == problem.form
     assert res.iterations == report["iterations"]
     assert res.r.tolist() == cli["r"]           # the same solver: the same numbers
     assert res.converged == report["converged"]
 
 
 def test_malformed_problems_raise_scene_errors():
+    empty = xper.solve(np.zeros((0, 0)), [], [], dim=3)
+    assert empty.converged and empty.r.shape == (0,)
     with pytest.raises(xper.SceneError, match="q has 3 entries and mu 2"):
         xper.solve(np.eye(3), [1.0, 2.0, 3.0], [0.1, 0.2])
     with pytest.raises(xper.SceneError, match="W 2 x 2"):

@@ -178,3 +178,23 @@ def test_one_output_directory_holds_one_run(tmp_path, fresh):
     with pytest.raises(xper.XperError, match="lock"):
         xper.Simulation.from_file(scene, out=out)
     first.finish()
+
+
+def test_a_step_that_fails_raises_and_ends_the_run(fresh):
+    # A plate whose sideways motion and rotation are imposed, pressed against a wall by
+    # gravity along x: the contact's normal is along the plate's imposed degree of freedom,
+    # so W_nn = 0 and the contact solver refuses the step.
+    s = xper.Scene(name="blows_up", dt=1e-3, duration=0.1, gravity=[-9.81, 0.0])
+    s.add("materials", name="steel", density=7800.0)
+    s.add("laws", between=["plate", "wall"], kind="signorini_coulomb", friction=0.3)
+    s.add("bodies", shape="rectangle", center=[0.0101, 0.0], size=[0.02, 0.1],
+          material="steel", group="plate",
+          drive={"x": {"velocity": -0.5}, "rotation": {"velocity": 0.0}})
+    s.add("walls", from_=[0.0, -1.0], to=[0.0, 1.0], group="wall")
+    sim = xper.Simulation.from_scene(s, out=fresh("blows_up"))
+    with pytest.raises(xper.RunError, match=r"step \d+ \(t = .* s\): contact solver: .*W_nn"):
+        sim.run()
+    assert sim.is_finished and sim.summary is None
+    with pytest.raises(xper.RunError, match="is finished"):
+        sim.step()
+    assert sim.bodies.position.shape == (2, 2)          # the state is still there to read

@@ -142,6 +142,30 @@ class Simulation:
         """Writes the tables and ``checkpoint.bin`` now; a resume continues from here."""
         self._sim.write_checkpoint()
 
+    def save(self) -> str:
+        """Saves the run as it stands in its output directory (tables, then
+        ``checkpoint.bin``, as ``xper run`` writes them) and returns the directory, which
+        :meth:`load` or ``xper run SCENE --out DIR --resume`` continue from."""
+        self._sim.write_checkpoint()
+        return self.out
+
+    @classmethod
+    def load(cls, out: PathLike, scene: Optional[PathLike] = None,
+             **options: Any) -> "Simulation":
+        """Continues the run saved in the output directory ``out`` (by :meth:`save`, a
+        scheduled checkpoint or ``xper run``). ``scene``: the scene file it was run from;
+        when ``None``, ``out/scene.toml``, written first from the text the checkpoint keeps
+        if it is not there (relative paths in it are then taken from ``out``)."""
+        if scene is None:
+            scene = os.path.join(os.fspath(out), "scene.toml")
+            if not os.path.exists(scene):
+                text = _xper.checkpoint_scene(os.fspath(out))
+                partial = scene + ".partial"
+                with open(partial, "w", encoding="utf-8") as f:
+                    f.write(text)
+                os.replace(partial, scene)
+        return cls(scene, out, resume=True, **options)
+
     def __enter__(self) -> "Simulation":
         return self
 

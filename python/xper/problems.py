@@ -87,12 +87,13 @@ def _as_csr(W: Any) -> CsrMatrix:
 
 def solve(W: Any, q: Any, mu: Any, solver: str = "nlgs", tol: float = 1e-8,
           max_iter: Optional[int] = None, scaling: str = "max",
-          warm_start: Optional[Any] = None) -> SolveResult:
+          warm_start: Optional[Any] = None, dim: Optional[int] = None) -> SolveResult:
     """Solves ``u = W r + q`` under Coulomb friction. ``W``: a NumPy matrix, a SciPy sparse
     matrix or a :class:`CsrMatrix`; ``q``: ``dim * n`` values (normal first per contact);
     ``mu``: ``n`` coefficients. ``solver``: ``nlgs`` (``nsgs``), ``newton``,
     ``proximal_newton`` or ``lemke`` (2D); ``tol`` on the error scaled by ``scaling``
-    (``max`` or ``q``); ``max_iter`` the solver's default when ``None``. An unconverged
+    (``max`` or ``q``); ``max_iter`` the solver's default when ``None``; ``dim`` (2 or 3)
+    is ``len(q) / len(mu)`` unless given (a problem without contacts needs it). An unconverged
     solve is returned with ``converged = False``; a malformed problem raises
     :class:`SceneError`."""
     m = _as_csr(W)
@@ -102,7 +103,7 @@ def solve(W: Any, q: Any, mu: Any, solver: str = "nlgs", tol: float = 1e-8,
     out = _xper.solve_csr([int(i) for i in m.indptr], [int(j) for j in m.indices],
                           np.ascontiguousarray(m.data, dtype=np.float64),
                           (int(m.shape[0]), int(m.shape[1])), q, mu, solver, float(tol),
-                          max_iter, scaling, warm)
+                          max_iter, scaling, warm, dim)
     return SolveResult(**out)
 
 

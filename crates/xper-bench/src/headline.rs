@@ -24,7 +24,7 @@ pub struct Headline {
 }
 
 impl Headline {
-    fn new(benchmark: &str, figure: &str, xper: String, reference: &str) -> Self {
+    pub(crate) fn new(benchmark: &str, figure: &str, xper: String, reference: &str) -> Self {
         Headline {
             benchmark: benchmark.into(),
             figure: figure.into(),
@@ -35,7 +35,7 @@ impl Headline {
     }
 
     /// Marks the row by comparing `xper` with `reference`, smaller being better.
-    fn smaller(mut self, xper: f64, reference: f64) -> Self {
+    pub(crate) fn smaller(mut self, xper: f64, reference: f64) -> Self {
         self.better = Some(xper <= reference);
         self
     }

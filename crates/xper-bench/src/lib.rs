@@ -8,6 +8,7 @@ pub mod fracture;
 pub mod headline;
 pub mod periodic;
 pub mod poisson;
+pub mod python;
 pub mod reading;
 pub mod solvers;
 mod stats;
@@ -364,6 +365,12 @@ fn write_report(dir: &Path, report: &Path) -> Result<(), RunError> {
     if let Some(reading) = optional_result(dir, crate::reading::RESULTS_FILE, "reading")? {
         headlines.extend(headline::reading(&reading));
         md.push_str(&crate::reading::markdown(&reading));
+    }
+    if let Some(python) =
+        optional_result::<crate::python::PythonBench>(dir, crate::python::RESULTS_FILE, "python")?
+    {
+        headlines.extend(crate::python::headlines(&python));
+        md.push_str(&crate::python::markdown(&python));
     }
     if dir.join("NOTES.md").exists() {
         md.push_str(&format!(
