@@ -78,6 +78,23 @@ def reading(scene_name, repeats):
     return n, times
 
 
+def call_cost(calls):
+    """Seconds per call of `step(0)` (the call into the module, its checks, no step) and
+    of reading `time`: what a script pays per call beyond the work asked."""
+    with tempfile.TemporaryDirectory() as tmp:
+        sim = xper.Simulation.from_file(ROOT / "scenes" / "drop", out=Path(tmp) / "out")
+        start = time.perf_counter()
+        for _ in range(calls):
+            sim.step(0)
+        step0 = (time.perf_counter() - start) / calls
+        start = time.perf_counter()
+        for _ in range(calls):
+            sim.time
+        read = (time.perf_counter() - start) / calls
+        sim.finish()
+    return step0, read
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--rounds", type=int, default=2)
@@ -86,8 +103,13 @@ def main():
     ap.add_argument("--million", default="box1m", help="the scene of a million bodies")
     ap.add_argument("--xper", default=str(ROOT / "target" / "release" / "xper"))
     ap.add_argument("--json", default=str(ROOT / "bench-results" / "python.json"))
+    ap.add_argument("--keep-runs", action="store_true",
+                    help="keep the whole runs of the existing JSON; measure the rest again")
     a = ap.parse_args()
     rows = []
+    if a.keep_runs:
+        rows = json.loads(Path(a.json).read_text())["runs"]
+        a.rounds = 0
     with tempfile.TemporaryDirectory() as tmp:
         scene = cut(a.scene, a.steps, tmp)
         for r in range(a.rounds):
@@ -106,7 +128,10 @@ def main():
     py = [x for x in rows if x["how"] == "python"]
     overhead = float(np.mean([p["wall_s"] / c["wall_s"] - 1 for c, p in zip(cli, py)]))
     print(f"Python's overhead over `xper run` on {a.scene} ({a.steps} calls of step(1)): "
-          f"{100 * overhead:+.2f} % (mean of {a.rounds} alternated pairs, whole runs)")
+          f"{100 * overhead:+.2f} % (mean of {len(cli)} alternated pairs, whole runs)")
+    step0, read = call_cost(100_000)
+    print(f"a call of step(0): {1e6 * step0:.2f} us; reading sim.time: {1e6 * read:.2f} us; "
+          f"{a.steps} calls of step(1) pay {1e3 * a.steps * step0:.2f} ms for the calls")
     n, times = reading(a.million, 20)
     median_ms = 1e3 * float(np.median(times))
     print(f"reading the positions of {n:,} bodies: median {median_ms:.2f} ms over 20 reads "
@@ -117,6 +142,8 @@ def main():
         "steps": a.steps,
         "runs": rows,
         "overhead": overhead,
+        "call_seconds": step0,
+        "time_read_seconds": read,
         "reading": {"scene": a.million, "bodies": n, "seconds": times,
                     "median_ms": median_ms},
     }

@@ -217,6 +217,7 @@ fn read_results<T: serde::de::DeserializeOwned>(
                             && name != crate::fluid::RESULTS_FILE
                             && name != crate::periodic::RESULTS_FILE
                             && name != crate::reading::RESULTS_FILE
+                            && name != crate::python::RESULTS_FILE
                     }
                 }
         })

@@ -39,6 +39,10 @@ pub struct PythonBench {
     pub(crate) runs: Vec<PythonRun>,
     /// Mean over the rounds of Python's whole-run time over the command's, minus 1.
     pub(crate) overhead: f64,
+    /// Wall time of one call of `step(0)` (s): the cost of a call, no step.
+    pub(crate) call_seconds: f64,
+    /// Wall time of reading `sim.time` (s).
+    pub(crate) time_read_seconds: f64,
     pub(crate) reading: PythonReading,
 }
 
@@ -61,9 +65,17 @@ pub fn markdown(b: &PythonBench) -> String {
     }
     let _ = writeln!(
         md,
-        "\nOverhead of Python: {:+.2} % (mean over the rounds). Reading `bodies.position` of {} \
-         ({} bodies): median {:.2} ms over {} reads.\n\nMachine: {}.",
+        "\nOverhead of Python: {:+.2} % (mean over the rounds; the steps themselves, timed inside \
+         the library and written to summary.json, differ by as much: the wheel is its own build, \
+         without the MPI and HDF5 features, so this is the two builds' difference and the noise of \
+         a shared machine, not the cost of the calls). A call of `sim.step(0)` costs {:.2} us and \
+         reading `sim.time` {:.2} us: {} calls of `step(1)` pay {:.2} ms for the calls. Reading \
+         `bodies.position` of {} ({} bodies): median {:.2} ms over {} reads.\n\nMachine: {}.",
         100.0 * b.overhead,
+        1e6 * b.call_seconds,
+        1e6 * b.time_read_seconds,
+        b.steps,
+        1e3 * b.steps as f64 * b.call_seconds,
         b.reading.scene,
         b.reading.bodies,
         b.reading.median_ms,
