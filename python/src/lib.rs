@@ -289,6 +289,15 @@ impl PySimulation {
         })
     }
 
+    /// Adds the bodies of `text` (a scene file holding only them and what they need) between
+    /// steps; returns their indices.
+    fn add_bodies(&mut self, text: &str) -> PyResult<Vec<usize>> {
+        guard(|| {
+            self.running()?;
+            self.sim.add_bodies(text).map_err(SceneError::new_err)
+        })
+    }
+
     /// The tables of the run (`series.csv`, ...) as dicts of NumPy columns, by file name.
     fn tables<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let tables = PyDict::new(py);

@@ -87,3 +87,38 @@ def test_friction_turns_sliding_into_rolling(tmp_path, fresh):
     assert -w * r == pytest.approx(v, rel=2e-3)
     with pytest.raises(xper.SceneError, match=r"laws.friction\[0\]: must be >= 0"):
         sim.laws.friction = [-0.1]
+
+
+def test_bodies_added_between_steps_fall_and_land(tmp_path, fresh):
+    sim = drop(tmp_path, fresh)
+    sim.step(100)
+    e0 = sim.report["energy_error"]
+    new = sim.add_bodies(
+        bodies=[dict(shape="disk", center=[0.3, 0.4], radius=0.02, material="iron",
+                     group="ball", velocity=[0.0, 1.0])],
+        materials=[dict(name="iron", density=7800.0)])
+    assert new.tolist() == [2]
+    assert sim.bodies.id.tolist() == [0, 1, 2]
+    assert sim.bodies.mass[2] == pytest.approx(7800.0 * math.pi * 0.02 ** 2, rel=1e-14)
+    sim.step(100)
+    t = 0.1
+    # Added at rest on the theta = 1/2 scheme: exact under gravity from its own start.
+    assert sim.bodies.position[2] == pytest.approx([0.3, 0.4 + t - G * t * t / 2], abs=1e-12)
+    # Its energy entered the budget: the error did not jump.
+    assert abs(sim.report["energy_error"] - e0) < 1e-9
+    sim.run(until=1.0)
+    assert sim.contacts.bodies.tolist() == [[0, 1], [1, 2]]
+    assert sim.bodies.position[2, 1] == pytest.approx(0.02, abs=1e-5)   # on the wall
+
+
+def test_bodies_that_cannot_be_added_are_refused(tmp_path, fresh):
+    sim = drop(tmp_path, fresh)
+    with pytest.raises(xper.SceneError, match='group "stone" is not one of the scene'):
+        sim.add_bodies(bodies=[dict(shape="disk", center=[0.3, 0.4], radius=0.02,
+                                    material="m", group="stone")],
+                       materials=[dict(name="m", density=1000.0)])
+    with pytest.raises(xper.SceneError, match=r"added bodies:\d+:\d+: bodies\[0\]\.radius"):
+        sim.add_bodies(bodies=[dict(shape="disk", center=[0.3, 0.4], radius=-0.02,
+                                    material="m", group="ball")],
+                       materials=[dict(name="m", density=1000.0)])
+    assert len(sim.bodies.id) == 2

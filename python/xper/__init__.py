@@ -20,7 +20,7 @@ output that cannot be written), both :class:`XperError`.
 from __future__ import annotations
 
 import os
-from typing import Any, Callable, Dict, List, Optional, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Union
 
 import numpy as np
 
@@ -229,6 +229,26 @@ class Simulation:
         """Writes ``values`` (the shape ``array(name)`` has) into a writable array; the next
         step starts from them."""
         self._sim.set_array(name, np.ascontiguousarray(values, dtype=np.float64))
+
+    def add_bodies(self, bodies: Sequence[Dict[str, Any]] = (),
+                   walls: Sequence[Dict[str, Any]] = (),
+                   materials: Sequence[Dict[str, Any]] = ()) -> np.ndarray:
+        """Adds bodies between steps: ``bodies`` and ``walls`` are entries as ``[[bodies]]``
+        and ``[[walls]]`` of a scene file (``Scene.add`` keywords), ``materials`` the
+        ``[[materials]]`` they name. They are read and checked as a scene's (errors name
+        ``added bodies``, the line, the field and the reason); their groups must be the
+        scene's, whose laws apply. Their energy counts in the budget's initial energy.
+        Returns their indices in the bodies' arrays."""
+        from .scene import Scene
+        dim = self.bodies.position.shape[1]
+        s = Scene(name="added", dt=1.0, duration=1.0, **({"dimension": 3} if dim == 3 else {}))
+        for m in materials:
+            s.add("materials", **m)
+        for b in bodies:
+            s.add("bodies", **b)
+        for w in walls:
+            s.add("walls", **w)
+        return np.array(self._sim.add_bodies(s.to_toml()), dtype=np.int64)
 
     @property
     def bodies(self) -> _Part:

@@ -166,6 +166,21 @@ impl BodySet {
         }
     }
 
+    /// Body `b` as the description [`BodySet::insert`] takes.
+    pub fn body(&self, b: usize) -> Body {
+        Body {
+            shape: self.shape[b].clone(),
+            position: self.position[b],
+            rotation: self.rotation[b],
+            velocity: self.velocity[b],
+            angular_velocity: self.angular_velocity[b],
+            mass: self.mass[b],
+            inertia: self.inertia[b],
+            group: self.group[b],
+            drives: self.drives(b),
+        }
+    }
+
     /// What drives each degree of freedom of body `b`.
     pub fn drives(&self, b: usize) -> [Drive; DOFS] {
         let handle = BodyHandle(b as u32);
@@ -315,5 +330,9 @@ mod tests {
         }
         assert_eq!(set.driven, fresh.driven);
         assert_eq!(set.imposed, fresh.imposed);
+        // A body read back and inserted again is the same body.
+        let copy = set.body(0);
+        let k = set.insert(copy.clone()).index();
+        assert_eq!(set.body(k), copy);
     }
 }

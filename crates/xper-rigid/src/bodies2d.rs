@@ -8,6 +8,14 @@ use xper_scene::{Scene, ShapeDesc};
 /// The scenes this build runs: 2D rigid scenes.
 pub type RigidScene = Scene;
 
+/// The 2D rigid scene among the kinds a scene file may hold.
+pub(super) fn rigid_scene(any: xper_scene::AnyScene) -> Option<Scene> {
+    match any {
+        xper_scene::AnyScene::Rigid(scene) if scene.fluid.is_none() => Some(scene),
+        _ => None,
+    }
+}
+
 /// The body set of `scene` and the size of its smallest body that is not a wall (m).
 pub(super) fn bodies(scene: &Scene) -> (BodySet, Real) {
     let mut bodies = BodySet::new();

@@ -8,6 +8,14 @@ use xper_scene::{Scene3, ShapeDesc3};
 /// The scenes this build runs: 3D rigid scenes.
 pub type RigidScene = Scene3;
 
+/// The 3D rigid scene among the kinds a scene file may hold.
+pub(super) fn rigid_scene(any: xper_scene::AnyScene) -> Option<Scene3> {
+    match any {
+        xper_scene::AnyScene::Rigid3(scene) => Some(scene),
+        _ => None,
+    }
+}
+
 /// The body set of `scene` and the size of its smallest body that is not a wall (m).
 ///
 /// A polyhedron's vertices are relative to its centroid in the scene; their hull is taken

@@ -121,6 +121,49 @@ pub fn take_solver_limits(world: &mut World, scene: &RigidScene) {
     world.params.solver = velocity_solver(s);
 }
 
+/// Adds to `world` the bodies of `text`: a scene file holding only what they need (`[scene]`
+/// with its required fields, the `[[materials]]` they use, `[[bodies]]` and `[[walls]]`), read
+/// and checked as any scene (`file` names it in errors). Their groups must be among `groups`,
+/// the world's (laws are the scene's). Their kinetic and potential energy count in the energy
+/// budget's initial energy. Returns the new bodies' indices; nothing is added on an error.
+pub fn add_bodies(
+    world: &mut World,
+    groups: &[String],
+    text: &str,
+    file: &std::path::Path,
+) -> Result<Vec<usize>, String> {
+    let any = xper_scene::parse_any_scene(text, file).map_err(|e| e.to_string())?;
+    let scene = dimension::rigid_scene(any).ok_or_else(|| {
+        format!(
+            "{}: not the bodies of a rigid scene of this dimension",
+            file.display()
+        )
+    })?;
+    let map = (scene.groups.iter())
+        .map(|g| match groups.iter().position(|h| h == g) {
+            Some(k) => Ok(k as u16),
+            None => Err(format!(
+                "{}: group {g:?} is not one of the scene's ({}): its laws are the scene's",
+                file.display(),
+                groups.join(", ")
+            )),
+        })
+        .collect::<Result<Vec<u16>, String>>()?;
+    let (set, _) = dimension::bodies(&scene);
+    let g = world.params.gravity;
+    let before = world.bodies.kinetic_energy() + world.bodies.potential_energy(&g);
+    let added = (0..set.len())
+        .map(|b| {
+            let mut body = set.body(b);
+            body.group = map[body.group as usize];
+            world.bodies.insert(body).index()
+        })
+        .collect();
+    let after = world.bodies.kinetic_energy() + world.bodies.potential_energy(&g);
+    world.energy.initial += after - before;
+    Ok(added)
+}
+
 /// Frees the scene's list of body descriptions once the world is built from it (nothing after
 /// needs it): for a generated scene of a million disks it is as large as the world.
 pub fn release_body_descriptions(scene: &mut RigidScene) {

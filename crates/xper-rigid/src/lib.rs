@@ -198,6 +198,12 @@ impl Simulation for RigidSimulation<'_> {
         let world = (self.run.whole_mut()).ok_or("arrays are set only in a run on one process")?;
         state::set_array(world, name, values)
     }
+    fn add_bodies(&mut self, text: &str) -> Result<Vec<usize>, String> {
+        let world =
+            (self.run.whole_mut()).ok_or("bodies are added only in a run on one process")?;
+        let file = Path::new("added bodies");
+        build::add_bodies(world, &self.scene.groups, text, file)
+    }
     fn compare_serial(&mut self, stepping: f64) -> Result<Option<SerialComparison>, RunError> {
         let Some(start) = self.compare_from.take() else {
             return Ok(None);

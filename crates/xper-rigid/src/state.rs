@@ -300,8 +300,19 @@ pub fn array(world: &World, name: &str) -> Option<StateArray> {
     })
 }
 
-/// Writes `values` into the writable array `name` of `world`.
+/// Writes `values` into the writable array `name` of `world`. What this changes of the
+/// kinetic and potential energy (velocities, gravity) is counted as external work, so that the
+/// energy budget stays closed.
 pub fn set_array(world: &mut World, name: &str, values: &[f64]) -> Result<(), String> {
+    let mechanical =
+        |w: &World| w.bodies.kinetic_energy() + w.bodies.potential_energy(&w.params.gravity);
+    let before = mechanical(world);
+    write_array(world, name, values)?;
+    world.energy.external_work += mechanical(world) - before;
+    Ok(())
+}
+
+fn write_array(world: &mut World, name: &str, values: &[f64]) -> Result<(), String> {
     let nan_allowed = matches!(name, "bodies.imposed_velocity" | "bodies.force");
     if values
         .iter()

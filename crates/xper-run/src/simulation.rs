@@ -151,4 +151,9 @@ pub trait Simulation {
     fn set_array(&mut self, name: &str, _values: &[f64]) -> Result<(), String> {
         Err(format!("{name}: not an array this simulation can set"))
     }
+    /// Adds the bodies of `text`, a scene file holding only them and what they need, between
+    /// steps (on one process); returns their indices in the bodies' arrays.
+    fn add_bodies(&mut self, _text: &str) -> Result<Vec<usize>, String> {
+        Err("this simulation cannot add bodies".into())
+    }
 }
