@@ -69,7 +69,9 @@ pub fn solve_csr<'py>(
                 )))
             }
         };
-        let w = csr(indptr, indices, data.as_array().to_vec(), shape)?;
+        let values = data.as_array().to_vec();
+        let w = CsrMatrix::from_parts(shape.0, shape.1, indptr, indices, values)
+            .map_err(|e| SceneError::new_err(format!("W: {e}")))?;
         let problem =
             FrictionProblem::new(dim, w, q, mu).map_err(|e| SceneError::new_err(e.to_string()))?;
         if !(tol > 0.0 && tol.is_finite()) {
@@ -100,44 +102,6 @@ pub fn solve_csr<'py>(
         out.set_item("converged", report.converged)?;
         out.set_item("wall_time_s", wall)?;
         Ok(out)
-    })
-}
-
-/// A CSR matrix from its arrays, checked: the error says what is inconsistent.
-fn csr(
-    row_ptr: Vec<usize>,
-    col_idx: Vec<usize>,
-    values: Vec<f64>,
-    (nrows, ncols): (usize, usize),
-) -> PyResult<CsrMatrix> {
-    let bad = |why: String| Err(SceneError::new_err(format!("W: {why}")));
-    if row_ptr.len() != nrows + 1 || row_ptr.first() != Some(&0) {
-        return bad(format!(
-            "indptr has {} entries starting at {:?}; {} rows need {} starting at 0",
-            row_ptr.len(),
-            row_ptr.first(),
-            nrows,
-            nrows + 1
-        ));
-    }
-    if row_ptr.windows(2).any(|w| w[0] > w[1]) || row_ptr[nrows] != values.len() {
-        return bad("indptr must be non-decreasing and end at the number of values".into());
-    }
-    if col_idx.len() != values.len() {
-        return bad("indices and data differ in length".into());
-    }
-    if let Some(c) = col_idx.iter().find(|&&c| c >= ncols) {
-        return bad(format!("column index {c} out of {ncols} columns"));
-    }
-    if let Some(v) = values.iter().find(|v| !v.is_finite()) {
-        return bad(format!("value {v} is not finite"));
-    }
-    Ok(CsrMatrix {
-        nrows,
-        ncols,
-        row_ptr,
-        col_idx,
-        values,
     })
 }
 

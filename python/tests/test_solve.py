@@ -86,5 +86,9 @@ def test_malformed_problems_raise_scene_errors():
         xper.solve(np.eye(2), [-1.0, 0.0], [0.5], solver="magic")
     with pytest.raises(xper.SceneError, match="tol"):
         xper.solve(np.eye(2), [-1.0, 0.0], [0.5], tol=-1.0)
+    unsorted = xper.CsrMatrix(np.array([0, 2, 3]), np.array([1, 0, 1]),
+                              np.array([0.5, 1.0, 1.0]), (2, 2))
+    with pytest.raises(xper.SceneError, match="W: row 0: column indices not strictly increasing"):
+        xper.solve(unsorted, [-1.0, 0.0], [0.5])
     with pytest.raises(xper.SceneError, match="missing.dat"):
         xper.read_problem("missing.dat")

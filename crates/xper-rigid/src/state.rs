@@ -10,24 +10,6 @@ use xper_math::{ANGULAR_DIM, DIM, DOFS, ROTATION_COORDS};
 use xper_nscd::World;
 use xper_run::state::{check_size, ArrayInfo, StateArray};
 
-const fn info(
-    name: &'static str,
-    shape: &'static str,
-    dtype: &'static str,
-    unit: &'static str,
-    writable: bool,
-    about: &'static str,
-) -> ArrayInfo {
-    ArrayInfo {
-        name,
-        shape,
-        dtype,
-        unit,
-        writable,
-        about,
-    }
-}
-
 #[cfg(feature = "dim2")]
 mod shapes {
     pub const VECTOR: &str = "(n, 2)";
@@ -54,7 +36,7 @@ use shapes::*;
 
 /// The arrays of a rigid world.
 pub const ARRAYS: [ArrayInfo; 23] = [
-    info(
+    ArrayInfo::new(
         "bodies.id",
         "(n,)",
         "int64",
@@ -62,7 +44,7 @@ pub const ARRAYS: [ArrayInfo; 23] = [
         false,
         "the body's identifier in the scene",
     ),
-    info(
+    ArrayInfo::new(
         "bodies.group",
         "(n,)",
         "int64",
@@ -70,7 +52,7 @@ pub const ARRAYS: [ArrayInfo; 23] = [
         false,
         "the body's group (index)",
     ),
-    info(
+    ArrayInfo::new(
         "bodies.position",
         VECTOR,
         "float64",
@@ -78,7 +60,7 @@ pub const ARRAYS: [ArrayInfo; 23] = [
         false,
         "centre of mass",
     ),
-    info(
+    ArrayInfo::new(
         "bodies.orientation",
         ROTATION,
         "float64",
@@ -86,7 +68,7 @@ pub const ARRAYS: [ArrayInfo; 23] = [
         false,
         ROTATION_ABOUT,
     ),
-    info(
+    ArrayInfo::new(
         "bodies.velocity",
         VECTOR,
         "float64",
@@ -94,7 +76,7 @@ pub const ARRAYS: [ArrayInfo; 23] = [
         true,
         "velocity of the centre of mass",
     ),
-    info(
+    ArrayInfo::new(
         "bodies.angular_velocity",
         ANGULAR,
         "float64",
@@ -102,7 +84,7 @@ pub const ARRAYS: [ArrayInfo; 23] = [
         true,
         "angular velocity",
     ),
-    info(
+    ArrayInfo::new(
         "bodies.radius",
         "(n,)",
         "float64",
@@ -110,7 +92,7 @@ pub const ARRAYS: [ArrayInfo; 23] = [
         false,
         "bounding radius (a wall's half-length; inf for a half-space)",
     ),
-    info(
+    ArrayInfo::new(
         "bodies.mass",
         "(n,)",
         "float64",
@@ -118,7 +100,7 @@ pub const ARRAYS: [ArrayInfo; 23] = [
         false,
         "mass (per m of thickness in 2D; inf for a fixed or driven body)",
     ),
-    info(
+    ArrayInfo::new(
         "contacts.bodies",
         "(n, 2)",
         "int64",
@@ -126,7 +108,7 @@ pub const ARRAYS: [ArrayInfo; 23] = [
         false,
         "the two bodies (indices into the bodies' arrays)",
     ),
-    info(
+    ArrayInfo::new(
         "contacts.point",
         VECTOR,
         "float64",
@@ -134,7 +116,7 @@ pub const ARRAYS: [ArrayInfo; 23] = [
         false,
         "contact point, carried with the first body",
     ),
-    info(
+    ArrayInfo::new(
         "contacts.normal",
         VECTOR,
         "float64",
@@ -142,7 +124,7 @@ pub const ARRAYS: [ArrayInfo; 23] = [
         false,
         "unit normal, from the first body to the second",
     ),
-    info(
+    ArrayInfo::new(
         "contacts.normal_impulse",
         "(n,)",
         "float64",
@@ -150,7 +132,7 @@ pub const ARRAYS: [ArrayInfo; 23] = [
         false,
         "normal impulse of the last step (per m of thickness in 2D)",
     ),
-    info(
+    ArrayInfo::new(
         "contacts.tangential_impulse",
         TANGENTIAL,
         "float64",
@@ -158,8 +140,8 @@ pub const ARRAYS: [ArrayInfo; 23] = [
         false,
         "tangential impulse of the last step, in the contact's frame (2D: along n turned by +90 degrees)",
     ),
-    info("contacts.impulse", VECTOR, "float64", "N s", false, "impulse of the last step on the second body, world frame (2D: r_n n + r_t t with t = n turned by +90 degrees)"),
-    info(
+    ArrayInfo::new("contacts.impulse", VECTOR, "float64", "N s", false, "impulse of the last step on the second body, world frame (2D: r_n n + r_t t with t = n turned by +90 degrees)"),
+    ArrayInfo::new(
         "contacts.gap",
         "(n,)",
         "float64",
@@ -167,7 +149,7 @@ pub const ARRAYS: [ArrayInfo; 23] = [
         false,
         "gap at the end of the last step (linearised)",
     ),
-    info(
+    ArrayInfo::new(
         "contacts.status",
         "(n,)",
         "int64",
@@ -175,12 +157,12 @@ pub const ARRAYS: [ArrayInfo; 23] = [
         false,
         "0 open, 1 sticking, 2 sliding",
     ),
-    info("bodies.imposed_velocity", shapes::DOFS, "float64", "m/s, rad/s", true, "velocity imposed on each degree of freedom (translations, then rotations) at the current time; NaN where not imposed (writing NaN frees an imposed one)"),
-    info("bodies.force", shapes::DOFS, "float64", "N, N m", true, "external force or torque on each degree of freedom at the current time (per m of thickness in 2D), gravity aside; NaN where the velocity is imposed (writing NaN leaves it)"),
-    info("laws.groups", "(n, 2)", "int64", "1", false, "the two groups of each law (indices into the group names)"),
-    info("laws.friction", "(n,)", "float64", "1", true, "Coulomb friction coefficient (>= 0)"),
-    info("laws.restitution", "(n,)", "float64", "1", true, "Newton restitution coefficient (in [0, 1])"),
-    info(
+    ArrayInfo::new("bodies.imposed_velocity", shapes::DOFS, "float64", "m/s, rad/s", true, "velocity imposed on each degree of freedom (translations, then rotations) at the current time; NaN where not imposed (writing NaN frees an imposed one)"),
+    ArrayInfo::new("bodies.force", shapes::DOFS, "float64", "N, N m", true, "external force or torque on each degree of freedom at the current time (per m of thickness in 2D), gravity aside; NaN where the velocity is imposed (writing NaN leaves it)"),
+    ArrayInfo::new("laws.groups", "(n, 2)", "int64", "1", false, "the two groups of each law (indices into the group names)"),
+    ArrayInfo::new("laws.friction", "(n,)", "float64", "1", true, "Coulomb friction coefficient (>= 0)"),
+    ArrayInfo::new("laws.restitution", "(n,)", "float64", "1", true, "Newton restitution coefficient (in [0, 1])"),
+    ArrayInfo::new(
         "world.gravity",
         GRAVITY,
         "float64",
@@ -188,7 +170,7 @@ pub const ARRAYS: [ArrayInfo; 23] = [
         true,
         "gravity",
     ),
-    info(
+    ArrayInfo::new(
         "world.time",
         "(1,)",
         "float64",

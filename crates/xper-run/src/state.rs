@@ -19,6 +19,38 @@ pub struct ArrayInfo {
     pub about: &'static str,
 }
 
+impl ArrayInfo {
+    /// An array scripts may read and, if `writable`, write.
+    pub const fn new(
+        name: &'static str,
+        shape: &'static str,
+        dtype: &'static str,
+        unit: &'static str,
+        writable: bool,
+        about: &'static str,
+    ) -> Self {
+        ArrayInfo {
+            name,
+            shape,
+            dtype,
+            unit,
+            writable,
+            about,
+        }
+    }
+
+    /// An array scripts read only.
+    pub const fn read_only(
+        name: &'static str,
+        shape: &'static str,
+        dtype: &'static str,
+        unit: &'static str,
+        about: &'static str,
+    ) -> Self {
+        Self::new(name, shape, dtype, unit, false, about)
+    }
+}
+
 /// The values of an array.
 #[derive(Clone, Debug, PartialEq)]
 pub enum ArrayData {

@@ -93,6 +93,58 @@ impl CsrMatrix {
         })
     }
 
+    /// A matrix from its compressed rows, checked: `row_ptr` has `nrows + 1` non-decreasing
+    /// entries from 0 to the number of values, column indices are below `ncols` and strictly
+    /// increasing within each row, values are finite. The error says which of these fails.
+    pub fn from_parts(
+        nrows: usize,
+        ncols: usize,
+        row_ptr: Vec<usize>,
+        col_idx: Vec<usize>,
+        values: Vec<f64>,
+    ) -> Result<Self, ProblemError> {
+        let bad = |why: String| Err(ProblemError(why));
+        if row_ptr.len() != nrows + 1 || row_ptr[0] != 0 {
+            return bad(format!(
+                "row pointers: {} entries starting at {:?}; {nrows} rows need {} starting at 0",
+                row_ptr.len(),
+                row_ptr.first(),
+                nrows + 1
+            ));
+        }
+        if row_ptr.windows(2).any(|w| w[0] > w[1]) || row_ptr[nrows] != values.len() {
+            return bad(
+                "row pointers must not decrease and must end at the number of values".into(),
+            );
+        }
+        if col_idx.len() != values.len() {
+            return bad(format!(
+                "{} column indices for {} values",
+                col_idx.len(),
+                values.len()
+            ));
+        }
+        for (i, w) in row_ptr.windows(2).enumerate() {
+            let row = &col_idx[w[0]..w[1]];
+            if let Some(&c) = row.iter().find(|&&c| c >= ncols) {
+                return bad(format!("row {i}: column {c} outside {ncols} columns"));
+            }
+            if row.windows(2).any(|p| p[0] >= p[1]) {
+                return bad(format!("row {i}: column indices not strictly increasing"));
+            }
+        }
+        if let Some(v) = values.iter().find(|v| !v.is_finite()) {
+            return bad(format!("value {v} is not finite"));
+        }
+        Ok(CsrMatrix {
+            nrows,
+            ncols,
+            row_ptr,
+            col_idx,
+            values,
+        })
+    }
+
     /// Builds a matrix from dense row-major values, keeping the non-zero ones.
     pub fn from_dense_row_major(nrows: usize, ncols: usize, values: &[f64]) -> Self {
         assert_eq!(values.len(), nrows * ncols, "from_dense_row_major: size");
@@ -278,6 +330,32 @@ pub fn error_measure(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn parts_are_checked_and_equal_the_triplets() {
+        let entries = [(0, 0, 2.0), (0, 2, -1.0), (2, 1, 4.0)];
+        let m = CsrMatrix::from_triplets(3, 3, &entries).unwrap();
+        let parts =
+            |p: Vec<usize>, c: Vec<usize>, v: Vec<f64>| CsrMatrix::from_parts(3, 3, p, c, v);
+        let same = parts(m.row_ptr.clone(), m.col_idx.clone(), m.values.clone()).unwrap();
+        assert_eq!(same, m);
+        let why = |r: Result<CsrMatrix, ProblemError>| r.unwrap_err().0;
+        assert!(why(parts(vec![0, 2, 2], vec![0, 2, 1], vec![1.0; 3])).contains("3 rows need 4"));
+        assert!(
+            why(parts(vec![0, 2, 1, 3], vec![0, 2, 1], vec![1.0; 3])).contains("must not decrease")
+        );
+        assert!(why(parts(vec![0, 2, 2, 3], vec![2, 0, 1], vec![1.0; 3]))
+            .contains("row 0: column indices"));
+        assert!(
+            why(parts(vec![0, 2, 2, 3], vec![0, 3, 1], vec![1.0; 3])).contains("column 3 outside")
+        );
+        assert!(why(parts(
+            vec![0, 2, 2, 3],
+            vec![0, 2, 1],
+            vec![1.0, f64::NAN, 1.0]
+        ))
+        .contains("not finite"));
+    }
 
     #[test]
     fn triplets_sum_duplicates_and_sort() {

@@ -8,69 +8,52 @@ use crate::rigid::state as rigid;
 use xper_fluid::{CoupledState, FluidParams};
 use xper_run::state::{ArrayData, ArrayInfo, StateArray};
 
-const fn info(
-    name: &'static str,
-    shape: &'static str,
-    dtype: &'static str,
-    unit: &'static str,
-    about: &'static str,
-) -> ArrayInfo {
-    ArrayInfo {
-        name,
-        shape,
-        dtype,
-        unit,
-        writable: false,
-        about,
-    }
-}
-
 /// The fluid's arrays (the grains' are [`rigid::ARRAYS`]).
 pub const FLUID_ARRAYS: [ArrayInfo; 8] = [
-    info(
+    ArrayInfo::read_only(
         "fluid.cells",
         "(2,)",
         "int64",
         "1",
         "cells along x and y: nx, ny",
     ),
-    info("fluid.spacing", "(1,)", "float64", "m", "cell side h"),
-    info(
+    ArrayInfo::read_only("fluid.spacing", "(1,)", "float64", "m", "cell side h"),
+    ArrayInfo::read_only(
         "fluid.origin",
         "(2,)",
         "float64",
         "m",
         "lower-left corner of the grid",
     ),
-    info(
+    ArrayInfo::read_only(
         "fluid.velocity",
         "(ny, nx, 2)",
         "float64",
         "m/s",
         "velocity at cell centres (mean of the two faces)",
     ),
-    info(
+    ArrayInfo::read_only(
         "fluid.pressure",
         "(ny, nx)",
         "float64",
         "Pa",
         "pressure at cell centres",
     ),
-    info(
+    ArrayInfo::read_only(
         "fluid.vorticity",
         "(ny, nx)",
         "float64",
         "1/s",
         "vorticity dv/dx - du/dy at cell centres",
     ),
-    info(
+    ArrayInfo::read_only(
         "fluid.face_velocity_x",
         "(ny, nx + 1)",
         "float64",
         "m/s",
         "x velocity on the vertical faces, left to right",
     ),
-    info(
+    ArrayInfo::read_only(
         "fluid.face_velocity_y",
         "(ny + 1, nx)",
         "float64",

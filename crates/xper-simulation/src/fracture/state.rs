@@ -5,125 +5,108 @@ use super::frames::{is_damaged, point_position};
 use xper_fracture::FractureModel;
 use xper_run::state::{ArrayInfo, StateArray};
 
-const fn info(
-    name: &'static str,
-    shape: &'static str,
-    dtype: &'static str,
-    unit: &'static str,
-    about: &'static str,
-) -> ArrayInfo {
-    ArrayInfo {
-        name,
-        shape,
-        dtype,
-        unit,
-        writable: false,
-        about,
-    }
-}
-
 /// The arrays of a fracture model.
 pub const ARRAYS: [ArrayInfo; 16] = [
-    info(
+    ArrayInfo::read_only(
         "nodes.position",
         "(n, 2)",
         "float64",
         "m",
         "the mesh's nodes, unloaded",
     ),
-    info(
+    ArrayInfo::read_only(
         "nodes.displacement",
         "(n, 2)",
         "float64",
         "m",
         "nodal displacement: the mean of the node's copies in its elements",
     ),
-    info(
+    ArrayInfo::read_only(
         "elements.nodes",
         "(n, 3)",
         "int64",
         "1",
         "the triangle's mesh nodes, counter-clockwise",
     ),
-    info(
+    ArrayInfo::read_only(
         "elements.region",
         "(n,)",
         "int64",
         "1",
         "the element's region (material)",
     ),
-    info(
+    ArrayInfo::read_only(
         "elements.displacement",
         "(n, 3, 2)",
         "float64",
         "m",
         "displacement of the element's own copy of each node",
     ),
-    info(
+    ArrayInfo::read_only(
         "elements.velocity",
         "(n, 3, 2)",
         "float64",
         "m/s",
         "velocity of each node copy",
     ),
-    info(
+    ArrayInfo::read_only(
         "elements.stress",
         "(n, 4)",
         "float64",
         "Pa",
         "stress xx, yy, zz, xy (constant over the triangle)",
     ),
-    info(
+    ArrayInfo::read_only(
         "elements.von_mises",
         "(n,)",
         "float64",
         "Pa",
         "von Mises equivalent stress",
     ),
-    info(
+    ArrayInfo::read_only(
         "elements.plastic_strain",
         "(n,)",
         "float64",
         "1",
         "equivalent plastic strain (J2 materials; 0 otherwise)",
     ),
-    info(
+    ArrayInfo::read_only(
         "interfaces.elements",
         "(n, 2)",
         "int64",
         "1",
         "the two elements the interface joins",
     ),
-    info(
+    ArrayInfo::read_only(
         "interfaces.point",
         "(n, 2, 2)",
         "float64",
         "m",
         "the interface's two points (mean of the copies on either side)",
     ),
-    info("interfaces.length", "(n,)", "float64", "m", "edge length"),
-    info(
+    ArrayInfo::read_only("interfaces.length", "(n,)", "float64", "m", "edge length"),
+    ArrayInfo::read_only(
         "interfaces.intensity",
         "(n, 2)",
         "float64",
         "1",
         "adhesion intensity beta at each point: 1 sound, 0 broken (damage is 1 - beta)",
     ),
-    info(
+    ArrayInfo::read_only(
         "interfaces.jump",
         "(n, 2, 2)",
         "float64",
         "m",
         "displacement jump (normal, tangential) at each point",
     ),
-    info(
+    ArrayInfo::read_only(
         "interfaces.status",
         "(n,)",
         "int64",
         "1",
         "0 sound, 1 damaged, 2 broken",
     ),
-    info("world.time", "(1,)", "float64", "s", "simulated time"),
+    ArrayInfo::read_only("world.time", "(1,)", "float64", "s", "simulated time"),
 ];
 
 /// The array `name` of `m`.
