@@ -96,7 +96,7 @@ pub struct BodySet {
     pub id: Vec<u64>,
     /// Owner process of each body.
     pub ownership: Vec<Ownership>,
-    /// Bodies with at least one driven degree of freedom, with their drives.
+    /// Bodies with at least one driven degree of freedom, in body order, with their drives.
     pub driven: Vec<(BodyHandle, [Drive; DOFS])>,
 }
 
@@ -149,20 +149,19 @@ impl BodySet {
             true => self.imposed[b] |= bit,
             false => self.imposed[b] &= !bit,
         }
-        match self.driven.iter().position(|(h, _)| *h == handle) {
-            Some(k) => {
+        match self.driven.binary_search_by_key(&handle, |(h, _)| *h) {
+            Ok(k) => {
                 self.driven[k].1[d] = drive;
                 if self.driven[k].1.iter().all(|x| *x == Drive::Free) {
                     self.driven.remove(k);
                 }
             }
-            None if drive != Drive::Free => {
+            Err(at) if drive != Drive::Free => {
                 let mut drives: [Drive; DOFS] = Default::default();
                 drives[d] = drive;
-                let at = self.driven.partition_point(|(h, _)| h.0 < handle.0);
                 self.driven.insert(at, (handle, drives));
             }
-            None => {}
+            Err(_) => {}
         }
     }
 
@@ -184,9 +183,10 @@ impl BodySet {
     /// What drives each degree of freedom of body `b`.
     pub fn drives(&self, b: usize) -> [Drive; DOFS] {
         let handle = BodyHandle(b as u32);
-        (self.driven.iter())
-            .find(|(h, _)| *h == handle)
-            .map_or_else(Default::default, |(_, d)| d.clone())
+        match self.driven.binary_search_by_key(&handle, |(h, _)| *h) {
+            Ok(k) => self.driven[k].1.clone(),
+            Err(_) => Default::default(),
+        }
     }
 
     /// Moves every body by `dt` times its velocity (`q += dt v`) after saving the configuration

@@ -194,9 +194,9 @@ impl Simulation for RigidSimulation<'_> {
     fn array(&self, name: &str) -> Option<xper_run::state::StateArray> {
         state::array(self.world()?, name)
     }
-    fn set_array(&mut self, name: &str, values: &[f64]) -> Result<(), String> {
+    fn set_array(&mut self, name: &str, shape: &[usize], values: &[f64]) -> Result<(), String> {
         let world = (self.run.whole_mut()).ok_or("arrays are set only in a run on one process")?;
-        state::set_array(world, name, values)
+        state::set_array(world, name, shape, values)
     }
     fn add_bodies(&mut self, text: &str) -> Result<Vec<usize>, String> {
         let world =

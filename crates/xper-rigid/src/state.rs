@@ -8,7 +8,7 @@ use xper_laws::InteractionLaw;
 use xper_math::{angular_coords, angular_from_coords, rotation_coords, Vector};
 use xper_math::{ANGULAR_DIM, DIM, DOFS, ROTATION_COORDS};
 use xper_nscd::World;
-use xper_run::state::{check_size, ArrayInfo, StateArray};
+use xper_run::state::{check_shape, ArrayInfo, StateArray};
 
 #[cfg(feature = "dim2")]
 mod shapes {
@@ -188,35 +188,29 @@ pub fn array(world: &World, name: &str) -> Option<StateArray> {
     let m = c.len();
     let vectors = |v: &[Vector]| v.iter().flat_map(|x| x.iter().copied()).collect();
     Some(match name {
-        "bodies.id" => StateArray::integers(n, None, b.id.iter().map(|&i| i as i64).collect()),
-        "bodies.group" => {
-            StateArray::integers(n, None, b.group.iter().map(|&g| g as i64).collect())
-        }
-        "bodies.position" => StateArray::reals(n, Some(DIM), vectors(&b.position)),
+        "bodies.id" => StateArray::integers(&[n], b.id.iter().map(|&i| i as i64).collect()),
+        "bodies.group" => StateArray::integers(&[n], b.group.iter().map(|&g| g as i64).collect()),
+        "bodies.position" => StateArray::reals(&[n, DIM], vectors(&b.position)),
         "bodies.orientation" => StateArray::reals(
-            n,
-            Some(ROTATION_COORDS),
+            &[n, ROTATION_COORDS],
             b.rotation.iter().flat_map(rotation_coords).collect(),
         ),
-        "bodies.velocity" => StateArray::reals(n, Some(DIM), vectors(&b.velocity)),
+        "bodies.velocity" => StateArray::reals(&[n, DIM], vectors(&b.velocity)),
         "bodies.angular_velocity" => StateArray::reals(
-            n,
-            Some(ANGULAR_DIM),
+            &[n, ANGULAR_DIM],
             b.angular_velocity.iter().flat_map(angular_coords).collect(),
         ),
-        "bodies.radius" => StateArray::reals(n, None, b.shape.iter().map(|s| s.size()).collect()),
-        "bodies.mass" => StateArray::reals(n, None, b.mass.clone()),
+        "bodies.radius" => StateArray::reals(&[n], b.shape.iter().map(|s| s.size()).collect()),
+        "bodies.mass" => StateArray::reals(&[n], b.mass.clone()),
         "contacts.bodies" => StateArray::integers(
-            m,
-            Some(2),
+            &[m, 2],
             c.rows
                 .iter()
                 .flat_map(|r| r.bodies.map(i64::from))
                 .collect(),
         ),
         "contacts.point" => StateArray::reals(
-            m,
-            Some(DIM),
+            &[m, DIM],
             (c.rows.iter())
                 .flat_map(|r| {
                     let p = r.point(&b.position[r.bodies[0] as usize]);
@@ -225,34 +219,29 @@ pub fn array(world: &World, name: &str) -> Option<StateArray> {
                 .collect(),
         ),
         "contacts.normal" => {
-            StateArray::reals(m, Some(DIM), c.rows.iter().flat_map(|r| r.normal).collect())
+            StateArray::reals(&[m, DIM], c.rows.iter().flat_map(|r| r.normal).collect())
         }
         "contacts.normal_impulse" => {
-            StateArray::reals(m, None, c.impulses.iter().map(|i| i[0]).collect())
+            StateArray::reals(&[m], c.impulses.iter().map(|i| i[0]).collect())
         }
         "contacts.tangential_impulse" => StateArray::reals(
-            m,
-            Some(DIM - 1),
+            &[m, DIM - 1],
             c.impulses.iter().flat_map(|i| i[1..].to_vec()).collect(),
         ),
-        "contacts.gap" => StateArray::reals(m, None, c.gaps.clone()),
+        "contacts.gap" => StateArray::reals(&[m], c.gaps.clone()),
         "contacts.impulse" => StateArray::reals(
-            m,
-            Some(DIM),
+            &[m, DIM],
             (c.rows.iter().zip(&c.impulses))
                 .flat_map(|(r, i)| r.world_impulse(*i).iter().copied().collect::<Vec<_>>())
                 .collect(),
         ),
-        "contacts.status" => StateArray::integers(
-            m,
-            None,
-            c.iter().map(|k| status(world, &k) as i64).collect(),
-        ),
-        "world.gravity" => StateArray {
-            shape: vec![DIM],
-            data: xper_run::state::ArrayData::F64(world.params.gravity.iter().copied().collect()),
-        },
-        "world.time" => StateArray::reals(1, None, vec![world.time]),
+        "contacts.status" => {
+            StateArray::integers(&[m], c.iter().map(|k| status(world, &k) as i64).collect())
+        }
+        "world.gravity" => {
+            StateArray::reals(&[DIM], world.params.gravity.iter().copied().collect())
+        }
+        "world.time" => StateArray::reals(&[1], vec![world.time]),
         "bodies.imposed_velocity" | "bodies.force" => {
             let force = name == "bodies.force";
             let values = (0..n).flat_map(|k| {
@@ -263,12 +252,12 @@ pub fn array(world: &World, name: &str) -> Option<StateArray> {
                     (Drive::Free, true) => 0.0,
                 })
             });
-            StateArray::reals(n, Some(DOFS), values.collect())
+            StateArray::reals(&[n, DOFS], values.collect())
         }
         "laws.groups" => {
             let laws = &world.laws;
             let groups = (0..laws.len()).flat_map(|k| laws.groups_of(k as u16).map(|g| g as i64));
-            StateArray::integers(laws.len(), Some(2), groups.collect())
+            StateArray::integers(&[laws.len(), 2], groups.collect())
         }
         "laws.friction" | "laws.restitution" => {
             let laws = &world.laws;
@@ -276,7 +265,7 @@ pub fn array(world: &World, name: &str) -> Option<StateArray> {
                 InteractionLaw::SignoriniCoulomb(l) if name == "laws.friction" => l.friction,
                 InteractionLaw::SignoriniCoulomb(l) => l.restitution,
             });
-            StateArray::reals(laws.len(), None, values.collect())
+            StateArray::reals(&[laws.len()], values.collect())
         }
         _ => return None,
     })
@@ -285,16 +274,26 @@ pub fn array(world: &World, name: &str) -> Option<StateArray> {
 /// Writes `values` into the writable array `name` of `world`. What this changes of the
 /// kinetic and potential energy (velocities, gravity) is counted as external work, so that the
 /// energy budget stays closed.
-pub fn set_array(world: &mut World, name: &str, values: &[f64]) -> Result<(), String> {
+pub fn set_array(
+    world: &mut World,
+    name: &str,
+    shape: &[usize],
+    values: &[f64],
+) -> Result<(), String> {
     let mechanical =
         |w: &World| w.bodies.kinetic_energy() + w.bodies.potential_energy(&w.params.gravity);
     let before = mechanical(world);
-    write_array(world, name, values)?;
+    write_array(world, name, shape, values)?;
     world.energy.external_work += mechanical(world) - before;
     Ok(())
 }
 
-fn write_array(world: &mut World, name: &str, values: &[f64]) -> Result<(), String> {
+fn write_array(
+    world: &mut World,
+    name: &str,
+    shape: &[usize],
+    values: &[f64],
+) -> Result<(), String> {
     let nan_allowed = matches!(name, "bodies.imposed_velocity" | "bodies.force");
     if values
         .iter()
@@ -305,29 +304,29 @@ fn write_array(world: &mut World, name: &str, values: &[f64]) -> Result<(), Stri
     let n = world.bodies.len();
     match name {
         "bodies.velocity" => {
-            check_size(name, values, n, DIM)?;
+            check_shape(name, shape, &[n, DIM])?;
             let b = &mut world.bodies;
             for (v, new) in b.velocity.iter_mut().zip(values.chunks_exact(DIM)) {
                 *v = Vector::from_column_slice(new);
             }
         }
         "bodies.angular_velocity" => {
-            check_size(name, values, n, ANGULAR_DIM)?;
+            check_shape(name, shape, &[n, ANGULAR_DIM])?;
             let b = &mut world.bodies;
             for (w, new) in (b.angular_velocity.iter_mut()).zip(values.chunks_exact(ANGULAR_DIM)) {
                 *w = angular_from_coords(new);
             }
         }
         "bodies.imposed_velocity" | "bodies.force" => {
-            check_size(name, values, n, DOFS)?;
+            check_shape(name, shape, &[n, DOFS])?;
             set_drives(world, name == "bodies.force", values)?;
         }
         "laws.friction" | "laws.restitution" => {
-            check_size(name, values, world.laws.len(), 1)?;
+            check_shape(name, shape, &[world.laws.len()])?;
             set_laws(world, name == "laws.friction", values)?;
         }
         "world.gravity" => {
-            check_size(name, values, 1, DIM)?;
+            check_shape(name, shape, &[DIM])?;
             world.params.gravity = Vector::from_column_slice(values);
         }
         _ => {
@@ -356,6 +355,8 @@ fn set_drives(world: &mut World, force: bool, values: &[f64]) -> Result<(), Stri
     };
     let t = world.time;
     let b = &mut world.bodies;
+    // Every change is checked before any is made: a refused write leaves the world as it was.
+    let mut changes = Vec::new();
     for (k, row) in values.chunks_exact(DOFS).enumerate() {
         let drives = b.drives(k);
         for (d, (&v, now)) in row.iter().zip(drives).enumerate() {
@@ -377,22 +378,30 @@ fn set_drives(world: &mut World, force: bool, values: &[f64]) -> Result<(), Stri
                 }
                 (true, _, false) => Drive::Force(TimeFunction::Constant(v)),
             };
-            b.set_drive(k, d, new);
+            changes.push((k, d, new));
         }
+    }
+    for (k, d, new) in changes {
+        b.set_drive(k, d, new);
     }
     Ok(())
 }
 
 /// Friction (`friction = true`) or restitution coefficients of the laws, checked as a scene's.
+/// Every value is checked before any is written.
 fn set_laws(world: &mut World, friction: bool, values: &[f64]) -> Result<(), String> {
+    for (k, &v) in values.iter().enumerate() {
+        if friction && v < 0.0 {
+            return Err(format!("laws.friction[{k}]: must be >= 0, got {v}"));
+        }
+        if !friction && !(0.0..=1.0).contains(&v) {
+            return Err(format!("laws.restitution[{k}]: must be in [0, 1], got {v}"));
+        }
+    }
     for (k, &v) in values.iter().enumerate() {
         let InteractionLaw::SignoriniCoulomb(law) = world.laws.law_mut(k as u16);
         match friction {
-            true if v < 0.0 => return Err(format!("laws.friction[{k}]: must be >= 0, got {v}")),
             true => law.friction = v,
-            false if !(0.0..=1.0).contains(&v) => {
-                return Err(format!("laws.restitution[{k}]: must be in [0, 1], got {v}"))
-            }
             false => law.restitution = v,
         }
     }

@@ -30,7 +30,6 @@ use xper_parallel::Communicator;
 
 /// What the driver keeps of the scene file: its text (each checkpoint holds it, so that a
 /// resume can tell a compatible edit, [`crate::resume`]) and the notes of its reading.
-#[derive(Clone)]
 pub struct SceneFile {
     /// The scene file's text.
     pub text: String,
@@ -134,9 +133,9 @@ pub fn drive(
     opts: &RunOptions,
     quiet: bool,
     comm: Option<&dyn Communicator>,
-    scene: &SceneFile,
+    scene: SceneFile,
 ) -> Result<serde_json::Value, RunError> {
-    let mut run = Run::start(sim, schedule, opts.clone(), quiet, comm, scene.clone())?;
+    let mut run = Run::start(sim, schedule, opts.clone(), quiet, comm, scene)?;
     while !run.is_over(sim) {
         run.advance(sim)?;
     }
@@ -245,19 +244,10 @@ impl<'c> Run<'c> {
                 .is_some_and(|s| sim.step_index() >= s)
     }
 
-    /// Why a step failed, once one has (the run is then over).
-    pub fn failure(&self) -> Option<&str> {
-        self.failure.as_deref()
-    }
-
-    /// The output directory.
-    pub fn out(&self) -> &Path {
-        &self.opts.out
-    }
-
     /// One step (collective) with the frame and checkpoint the schedule puts after it. A
-    /// failed step ends the loop ([`Run::failure`]) after showing its state when it asks to;
-    /// only an output that cannot be written is an error here.
+    /// failed step ends the loop ([`Run::is_over`]; [`Run::finish`] returns the failure) after
+    /// showing its state when it asks to; only an output that cannot be written is an error
+    /// here.
     pub fn advance(&mut self, sim: &mut dyn Simulation) -> Result<(), RunError> {
         let root = sim.is_root();
         let dir = self.opts.out.as_path();

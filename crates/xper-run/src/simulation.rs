@@ -146,9 +146,10 @@ pub trait Simulation {
     fn array(&self, _name: &str) -> Option<StateArray> {
         None
     }
-    /// Writes `values` (row-major, the shape [`Simulation::array`] gives) into the writable
-    /// array `name` between steps (on one process); the error says why it was refused.
-    fn set_array(&mut self, name: &str, _values: &[f64]) -> Result<(), String> {
+    /// Writes `values` (row-major, of shape `shape`, which must be the one
+    /// [`Simulation::array`] gives) into the writable array `name` between steps (on one
+    /// process); the error says why it was refused, and nothing is written then.
+    fn set_array(&mut self, name: &str, _shape: &[usize], _values: &[f64]) -> Result<(), String> {
         Err(format!("{name}: not an array this simulation can set"))
     }
     /// Adds the bodies of `text`, a scene file holding only them and what they need, between

@@ -70,40 +70,30 @@ pub struct StateArray {
 }
 
 impl StateArray {
-    /// Reals of shape `(rows, columns)`, or `(rows,)` when `columns` is `None`.
-    pub fn reals(rows: usize, columns: Option<usize>, data: Vec<f64>) -> Self {
+    /// Reals of shape `shape` (row-major).
+    pub fn reals(shape: &[usize], data: Vec<f64>) -> Self {
         StateArray {
-            shape: shape(rows, columns),
+            shape: shape.to_vec(),
             data: ArrayData::F64(data),
         }
     }
 
-    /// Integers of shape `(rows, columns)`, or `(rows,)` when `columns` is `None`.
-    pub fn integers(rows: usize, columns: Option<usize>, data: Vec<i64>) -> Self {
+    /// Integers of shape `shape` (row-major).
+    pub fn integers(shape: &[usize], data: Vec<i64>) -> Self {
         StateArray {
-            shape: shape(rows, columns),
+            shape: shape.to_vec(),
             data: ArrayData::I64(data),
         }
     }
 }
 
-fn shape(rows: usize, columns: Option<usize>) -> Vec<usize> {
-    match columns {
-        Some(c) => vec![rows, c],
-        None => vec![rows],
-    }
-}
-
-/// Checks that `values` fill an array of `rows` x `columns` before it is written into a
-/// state: the error names the array and both sizes.
-pub fn check_size(name: &str, values: &[f64], rows: usize, columns: usize) -> Result<(), String> {
-    if values.len() == rows * columns {
-        Ok(())
-    } else {
-        Err(format!(
-            "{name}: {} values given, the state has {rows} x {columns} = {}",
-            values.len(),
-            rows * columns
-        ))
+/// Checks that values of shape `given` fit the array `name` of shape `expected` before they are
+/// written into a state: the error names the array and both shapes.
+pub fn check_shape(name: &str, given: &[usize], expected: &[usize]) -> Result<(), String> {
+    match given == expected {
+        true => Ok(()),
+        false => Err(format!(
+            "{name}: an array of shape {given:?} given, the state's has shape {expected:?}"
+        )),
     }
 }

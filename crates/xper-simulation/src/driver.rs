@@ -31,14 +31,18 @@ pub fn run_on(
     comm: Option<&dyn Communicator>,
 ) -> Result<serde_json::Value, RunError> {
     let distributed = comm.filter(|c| c.size() > 1);
-    let mut prepared = prepare(opts, distributed)?;
+    let Prepared {
+        mut simulation,
+        schedule,
+        file,
+    } = prepare(opts, distributed)?;
     drive(
-        prepared.simulation.as_mut(),
-        prepared.schedule,
+        simulation.as_mut(),
+        schedule,
         opts,
         quiet,
         distributed,
-        &prepared.file,
+        file,
     )
 }
 

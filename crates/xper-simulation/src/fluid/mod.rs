@@ -270,13 +270,13 @@ impl Simulation for FluidSimulation<'_> {
         self.scene.groups.clone()
     }
     fn array(&self, name: &str) -> Option<xper_run::state::StateArray> {
-        state::array(&self.state, &self.params, &self.immersed, name)
+        state::array(&self.state, name)
     }
-    fn set_array(&mut self, name: &str, values: &[f64]) -> Result<(), String> {
+    fn set_array(&mut self, name: &str, shape: &[usize], values: &[f64]) -> Result<(), String> {
         if self.runner.processes() > 1 {
             return Err("arrays are set only in a run on one process".into());
         }
-        crate::rigid::state::set_array(&mut self.state.world, name, values)
+        crate::rigid::state::set_array(&mut self.state.world, name, shape, values)
     }
     fn compare_serial(&mut self, stepping: f64) -> Result<Option<SerialComparison>, RunError> {
         let Some(start) = self.compare_from.take() else {

@@ -3,10 +3,9 @@
 //! (`(ny, nx)`, row `j` at height `origin_y + (j + 1/2) h`) and on the faces where the scheme
 //! holds each velocity component.
 
-use super::outputs::fluid_image;
 use crate::rigid::state as rigid;
-use xper_fluid::{CoupledState, FluidParams};
-use xper_run::state::{ArrayData, ArrayInfo, StateArray};
+use xper_fluid::CoupledState;
+use xper_run::state::{ArrayInfo, StateArray};
 
 /// The fluid's arrays (the grains' are [`rigid::ARRAYS`]).
 pub const FLUID_ARRAYS: [ArrayInfo; 8] = [
@@ -68,30 +67,19 @@ pub fn arrays() -> Vec<ArrayInfo> {
 }
 
 /// The array `name` of `state`.
-pub fn array(
-    state: &CoupledState,
-    params: &FluidParams,
-    immersed: &[usize],
-    name: &str,
-) -> Option<StateArray> {
+pub fn array(state: &CoupledState, name: &str) -> Option<StateArray> {
     let f = &state.fluid;
     let g = f.grid;
     let (nx, ny) = (g.nx, g.ny);
-    let reals = |shape: Vec<usize>, data: Vec<f64>| StateArray {
-        shape,
-        data: ArrayData::F64(data),
-    };
-    let cell_field = |field: &str, components: usize| {
-        let image = fluid_image(state, params, immersed);
-        let (_, stride, values) = image.cell_data.into_iter().find(|(n, _, _)| n == field)?;
-        let data: Vec<f64> = (values.chunks_exact(stride))
-            .flat_map(|c| c[..components].to_vec())
-            .collect();
-        let shape = match components {
-            1 => vec![ny, nx],
-            c => vec![ny, nx, c],
-        };
-        Some(reals(shape, data))
+    // A field at cell centres, row by row from the bottom: `push` appends a cell's values.
+    let cells = |shape: &[usize], push: &dyn Fn(usize, usize, &mut Vec<f64>)| {
+        let mut data = Vec::with_capacity(shape.iter().product());
+        for j in 0..ny {
+            for i in 0..nx {
+                push(i, j, &mut data);
+            }
+        }
+        StateArray::reals(shape, data)
     };
     let faces = |d: usize, (fx, fy): (usize, usize)| {
         let mut data = Vec::with_capacity(fx * fy);
@@ -100,15 +88,18 @@ pub fn array(
                 data.push(f.velocity[d][g.index(i as isize, j as isize)]);
             }
         }
-        reals(vec![fy, fx], data)
+        StateArray::reals(&[fy, fx], data)
     };
     match name {
-        "fluid.cells" => Some(StateArray::integers(2, None, vec![nx as i64, ny as i64])),
-        "fluid.spacing" => Some(StateArray::reals(1, None, vec![g.h])),
-        "fluid.origin" => Some(StateArray::reals(2, None, vec![g.origin.x, g.origin.y])),
-        "fluid.velocity" => cell_field("velocity", 2),
-        "fluid.pressure" => cell_field("pressure", 1),
-        "fluid.vorticity" => cell_field("vorticity", 1),
+        "fluid.cells" => Some(StateArray::integers(&[2], vec![nx as i64, ny as i64])),
+        "fluid.spacing" => Some(StateArray::reals(&[1], vec![g.h])),
+        "fluid.origin" => Some(StateArray::reals(&[2], vec![g.origin.x, g.origin.y])),
+        "fluid.velocity" => Some(cells(&[ny, nx, 2], &|i, j, d| {
+            let v = f.cell_velocity(i, j);
+            d.extend([v.x, v.y]);
+        })),
+        "fluid.pressure" => Some(cells(&[ny, nx], &|i, j, d| d.push(f.cell_pressure(i, j)))),
+        "fluid.vorticity" => Some(cells(&[ny, nx], &|i, j, d| d.push(f.cell_vorticity(i, j)))),
         "fluid.face_velocity_x" => Some(faces(0, (nx + 1, ny))),
         "fluid.face_velocity_y" => Some(faces(1, (nx, ny + 1))),
         _ => rigid::array(&state.world, name),

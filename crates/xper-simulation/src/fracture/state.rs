@@ -113,14 +113,9 @@ pub const ARRAYS: [ArrayInfo; 16] = [
 pub fn array(m: &FractureModel, name: &str) -> Option<StateArray> {
     let (els, ifs) = (&m.elements, &m.interfaces);
     let (ne, ni, nn) = (els.len(), ifs.len(), m.mesh.nodes.len());
-    let reals = |shape: Vec<usize>, data: Vec<f64>| StateArray {
-        shape,
-        data: xper_run::state::ArrayData::F64(data),
-    };
     Some(match name {
         "nodes.position" => StateArray::reals(
-            nn,
-            Some(2),
+            &[nn, 2],
             m.mesh.nodes.iter().flat_map(|x| [x[0], x[1]]).collect(),
         ),
         "nodes.displacement" => {
@@ -138,29 +133,26 @@ pub fn array(m: &FractureModel, name: &str) -> Option<StateArray> {
                 sum[2 * k] /= *c as f64;
                 sum[2 * k + 1] /= *c as f64;
             }
-            StateArray::reals(nn, Some(2), sum)
+            StateArray::reals(&[nn, 2], sum)
         }
         "elements.nodes" => StateArray::integers(
-            ne,
-            Some(3),
+            &[ne, 3],
             els.iter()
                 .flat_map(|e| e.mesh_nodes.map(i64::from))
                 .collect(),
         ),
         "elements.region" => {
-            StateArray::integers(ne, None, els.iter().map(|e| e.region as i64).collect())
+            StateArray::integers(&[ne], els.iter().map(|e| e.region as i64).collect())
         }
-        "elements.displacement" => reals(
-            vec![ne, 3, 2],
+        "elements.displacement" => StateArray::reals(
+            &[ne, 3, 2],
             els.iter().flat_map(|e| e.displacement).collect(),
         ),
-        "elements.velocity" => reals(
-            vec![ne, 3, 2],
-            els.iter().flat_map(|e| e.velocity).collect(),
-        ),
+        "elements.velocity" => {
+            StateArray::reals(&[ne, 3, 2], els.iter().flat_map(|e| e.velocity).collect())
+        }
         "elements.stress" => StateArray::reals(
-            ne,
-            Some(4),
+            &[ne, 4],
             els.iter()
                 .flat_map(|e| {
                     let s = e.state.stress;
@@ -169,43 +161,39 @@ pub fn array(m: &FractureModel, name: &str) -> Option<StateArray> {
                 .collect(),
         ),
         "elements.von_mises" => {
-            StateArray::reals(ne, None, els.iter().map(|e| e.state.von_mises()).collect())
+            StateArray::reals(&[ne], els.iter().map(|e| e.state.von_mises()).collect())
         }
         "elements.plastic_strain" => StateArray::reals(
-            ne,
-            None,
+            &[ne],
             els.iter()
                 .map(|e| e.state.equivalent_plastic_strain)
                 .collect(),
         ),
         "interfaces.elements" => StateArray::integers(
-            ni,
-            Some(2),
+            &[ni, 2],
             ifs.iter().flat_map(|i| i.elements.map(i64::from)).collect(),
         ),
-        "interfaces.point" => reals(
-            vec![ni, 2, 2],
+        "interfaces.point" => StateArray::reals(
+            &[ni, 2, 2],
             ifs.iter()
                 .flat_map(|i| [point_position(m, i, 0), point_position(m, i, 1)].concat())
                 .collect(),
         ),
-        "interfaces.length" => StateArray::reals(ni, None, ifs.iter().map(|i| i.length).collect()),
+        "interfaces.length" => StateArray::reals(&[ni], ifs.iter().map(|i| i.length).collect()),
         "interfaces.intensity" => StateArray::reals(
-            ni,
-            Some(2),
+            &[ni, 2],
             ifs.iter()
                 .flat_map(|i| i.points.map(|p| p.intensity))
                 .collect(),
         ),
-        "interfaces.jump" => reals(
-            vec![ni, 2, 2],
+        "interfaces.jump" => StateArray::reals(
+            &[ni, 2, 2],
             ifs.iter()
                 .flat_map(|i| i.points.iter().flat_map(|p| p.jump).collect::<Vec<_>>())
                 .collect(),
         ),
         "interfaces.status" => StateArray::integers(
-            ni,
-            None,
+            &[ni],
             ifs.iter()
                 .map(|i| match (m.is_broken(i), is_damaged(m, i)) {
                     (true, _) => 2,
@@ -214,7 +202,7 @@ pub fn array(m: &FractureModel, name: &str) -> Option<StateArray> {
                 })
                 .collect(),
         ),
-        "world.time" => StateArray::reals(1, None, vec![m.time]),
+        "world.time" => StateArray::reals(&[1], vec![m.time]),
         _ => return None,
     })
 }
