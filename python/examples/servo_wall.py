@@ -21,7 +21,7 @@ WIDTH = 0.09      # m, the box and the lid
 RHO = 2500.0      # kg/m^3, glass
 
 
-def build(grains, pressure_ramp_end):
+def build(grains):
     s = xper.Scene(name="servo_wall", dt=DT, duration=0.3, alert_distance=5e-4,
                    gravity=[0.0, -G])
     s.section("output", frame_every=100, checkpoint_every=1000)
@@ -51,7 +51,7 @@ def lid_pressure(sim, lid):
 
 
 def run(out, pressure=2000.0, grains=200, ramp=0.1):
-    sim = xper.Simulation.from_scene(build(grains, ramp), out=out)
+    sim = xper.Simulation.from_scene(build(grains), out=out)
     lid = int(np.flatnonzero(sim.bodies.group == sim.group_names.index("lid"))[0])
     mass = sim.bodies.mass[lid]
     times, asked, measured = [], [], []

@@ -277,15 +277,10 @@ impl PySimulation {
     /// next step starts from them.
     fn set_array(&mut self, name: &str, values: PyReadonlyArrayDyn<'_, f64>) -> PyResult<()> {
         guard(|| {
-            let now = self.sim.array(name).map(|a| a.shape);
-            if let Some(shape) = now.filter(|s| s.as_slice() != values.shape()) {
-                return Err(SceneError::new_err(format!(
-                    "{name}: an array of shape {:?} given, the state's has shape {shape:?}",
-                    values.shape()
-                )));
-            }
             let flat: Vec<f64> = values.as_array().iter().copied().collect();
-            self.sim.set_array(name, &flat).map_err(SceneError::new_err)
+            (self.sim)
+                .set_array(name, values.shape(), &flat)
+                .map_err(SceneError::new_err)
         })
     }
 
@@ -312,6 +307,20 @@ impl PySimulation {
             tables.set_item(name, columns)?;
         }
         Ok(tables)
+    }
+
+    /// The last row of the first table (`series.csv`: the last step's sweeps, residual,
+    /// energies...) as a dict, empty before the first step.
+    fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let row = PyDict::new(py);
+        if let Some((_, table)) = self.sim.tables().first() {
+            if let Some(last) = table.rows.last() {
+                for (column, value) in table.columns.iter().zip(last) {
+                    row.set_item(column, value)?;
+                }
+            }
+        }
+        Ok(row)
     }
 
     /// The summary of the finished run (`summary.json`), `None` before.

@@ -42,8 +42,8 @@ fn scaling(name: &str) -> PyResult<ErrorScaling> {
 #[allow(clippy::too_many_arguments)]
 pub fn solve_csr<'py>(
     py: Python<'py>,
-    indptr: Vec<usize>,
-    indices: Vec<usize>,
+    indptr: PyReadonlyArray1<'py, i64>,
+    indices: PyReadonlyArray1<'py, i64>,
     data: PyReadonlyArray1<'py, f64>,
     shape: (usize, usize),
     q: PyReadonlyArray1<'py, f64>,
@@ -69,8 +69,15 @@ pub fn solve_csr<'py>(
                 )))
             }
         };
+        let index = |what: &str, a: PyReadonlyArray1<'py, i64>| {
+            (a.as_array().iter())
+                .map(|&k| usize::try_from(k))
+                .collect::<Result<Vec<usize>, _>>()
+                .map_err(|_| SceneError::new_err(format!("W: negative entry in {what}")))
+        };
+        let (row_ptr, col_idx) = (index("indptr", indptr)?, index("indices", indices)?);
         let values = data.as_array().to_vec();
-        let w = CsrMatrix::from_parts(shape.0, shape.1, indptr, indices, values)
+        let w = CsrMatrix::from_parts(shape.0, shape.1, row_ptr, col_idx, values)
             .map_err(|e| SceneError::new_err(format!("W: {e}")))?;
         let problem =
             FrictionProblem::new(dim, w, q, mu).map_err(|e| SceneError::new_err(e.to_string()))?;

@@ -34,6 +34,21 @@ def cut_scene(name, tmp_path, **edits):
     return path
 
 
+# The drop scene (scenes/drop): one disk above a wall.
+G = 9.81        # m/s^2, the scenes' gravity
+DT = 1e-3       # s, drop's time step
+RHO = 1000.0    # kg/m^3, drop's disk
+R = 0.05        # m, drop's disk
+Y0 = 0.55       # m, drop's disk centre at rest
+
+
+def drop(tmp_path, fresh, duration="2.0"):
+    """A run of scenes/drop lasting `duration` s (outputs in a fresh directory)."""
+    import xper
+    return xper.Simulation.from_file(cut_scene("drop", tmp_path, duration=duration),
+                                     out=fresh("drop"))
+
+
 def run_cli(*args, ok=(0,)):
     """`xper ARGS...`; fails the test with its output when its exit code is not in `ok`."""
     done = subprocess.run([xper_command(), *map(str, args)], capture_output=True, text=True,

@@ -6,17 +6,9 @@ import math
 import numpy as np
 import pytest
 import xper
-from conftest import cut_scene
+from conftest import DT, G, Y0, drop
 
-G = 9.81      # m/s^2
-DT = 1e-3     # s
-Y0 = 0.55     # m, drop's disk centre
 NAN = float("nan")
-
-
-def drop(tmp_path, fresh, duration="2.0"):
-    return xper.Simulation.from_file(cut_scene("drop", tmp_path, duration=duration),
-                                     out=fresh("drop"))
 
 
 def test_an_imposed_velocity_moves_the_body_then_frees_it(tmp_path, fresh):

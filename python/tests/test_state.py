@@ -7,18 +7,8 @@ import re
 import numpy as np
 import pytest
 import xper
-from conftest import REPO, cut_scene
+from conftest import DT, G, R, REPO, RHO, Y0, cut_scene, drop
 
-G = 9.81        # m/s^2, the scenes' gravity
-DT = 1e-3       # s, drop's time step
-RHO = 1000.0    # kg/m^3, drop's disk
-R = 0.05        # m, drop's disk
-Y0 = 0.55       # m, drop's disk centre at rest
-
-
-def drop(tmp_path, fresh, duration="1.0"):
-    return xper.Simulation.from_file(cut_scene("drop", tmp_path, duration=duration),
-                                     out=fresh("drop"))
 
 
 def check_documented(sim):

@@ -35,6 +35,17 @@ __all__ = ["Simulation", "Scene", "XperError", "SceneError", "RunError", "__vers
 PathLike = Union[str, "os.PathLike[str]"]
 
 
+def _write_atomic(path: str, text: str) -> None:
+    """Writes `text` to `path` through a temporary file renamed over it: a crash leaves the
+    old file or the new one, never part of one."""
+    partial = path + ".partial"
+    with open(partial, "w", encoding="utf-8") as f:
+        f.write(text)
+        f.flush()
+        os.fsync(f.fileno())
+    os.replace(partial, path)
+
+
 class _Part:
     """The arrays of one part of the state (``bodies``, ``contacts``, ``world``) as
     attributes: ``sim.bodies.velocity`` reads ``bodies.velocity``; assigning a writable one
@@ -92,12 +103,7 @@ class Simulation:
         ``xper run out/scene.toml --out out --resume`` continues it."""
         os.makedirs(out, exist_ok=True)
         path = os.path.join(os.fspath(out), "scene.toml")
-        partial = path + ".partial"
-        with open(partial, "w", encoding="utf-8") as f:
-            f.write(text)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(partial, path)
+        _write_atomic(path, text)
         return cls(path, out, **options)
 
     @classmethod
@@ -159,11 +165,7 @@ class Simulation:
         if scene is None:
             scene = os.path.join(os.fspath(out), "scene.toml")
             if not os.path.exists(scene):
-                text = _xper.checkpoint_scene(os.fspath(out))
-                partial = scene + ".partial"
-                with open(partial, "w", encoding="utf-8") as f:
-                    f.write(text)
-                os.replace(partial, scene)
+                _write_atomic(scene, _xper.checkpoint_scene(os.fspath(out)))
         return cls(scene, out, resume=True, **options)
 
     def __enter__(self) -> "Simulation":
@@ -290,7 +292,7 @@ class Simulation:
     def report(self) -> Dict[str, float]:
         """The last step's row of ``series.csv`` (sweeps, residual, energies, ...), empty
         before the first step."""
-        return {k: float(v[-1]) for k, v in self.series.items() if len(v)}
+        return self._sim.report()
 
     def __repr__(self) -> str:
         return (f"<xper.Simulation {self.scene}: step {self.step_index} of {self.steps}, "

@@ -4,6 +4,7 @@ Coulomb cone of ``mu`` and ``(u_n + mu |u_t|, u_t)`` in its dual, complementary 
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass
 from typing import Any, Dict, Optional, Tuple
 
@@ -100,7 +101,8 @@ def solve(W: Any, q: Any, mu: Any, solver: str = "nlgs", tol: float = 1e-8,
     q = np.ascontiguousarray(q, dtype=np.float64).ravel()
     mu = np.ascontiguousarray(mu, dtype=np.float64).ravel()
     warm = None if warm_start is None else np.ascontiguousarray(warm_start, np.float64).ravel()
-    out = _xper.solve_csr([int(i) for i in m.indptr], [int(j) for j in m.indices],
+    out = _xper.solve_csr(np.ascontiguousarray(m.indptr, dtype=np.int64),
+                          np.ascontiguousarray(m.indices, dtype=np.int64),
                           np.ascontiguousarray(m.data, dtype=np.float64),
                           (int(m.shape[0]), int(m.shape[1])), q, mu, solver, float(tol),
                           max_iter, scaling, warm, dim)
@@ -110,7 +112,6 @@ def solve(W: Any, q: Any, mu: Any, solver: str = "nlgs", tol: float = 1e-8,
 def read_problem(path: Any, form: str = "auto") -> Problem:
     """Reads a problem file as ``xper solve`` does: Siconos ``.dat`` (``form``: ``auto``,
     ``local`` or ``global``) or FCLib ``.hdf5`` (when the module was built with HDF5)."""
-    import os
     p = _xper.read_problem(os.fspath(path), form)
     W = CsrMatrix(p["indptr"], p["indices"], p["data"], tuple(p["shape"]))
     return Problem(p["dim"], W, p["q"], p["mu"], p["form"])
