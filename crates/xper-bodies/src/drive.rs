@@ -1,7 +1,7 @@
 //! Imposed velocities and forces on a body's degrees of freedom, as functions of time.
 
 use serde::{Deserialize, Serialize};
-use xper_math::Real;
+use xper_math::{Real, Vector};
 
 /// A scalar function of time (s).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -64,6 +64,62 @@ pub enum Drive {
     Velocity(TimeFunction),
     /// An external force (N per unit thickness) or torque added to gravity.
     Force(TimeFunction),
+    /// A pressure on a wall, applied as the force `p A n_d` on this translational degree of
+    /// freedom, with `A` the loaded length (2D, m) or area (3D, m^2) measured at the
+    /// beginning of each step: a servo wall holding a confining pressure.
+    Pressure(PressureDrive),
+}
+
+/// A pressure (Pa) on a wall and the extent it acts on ([`Drive::Pressure`]).
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PressureDrive {
+    /// The pressure (Pa) as a function of time; positive pushes along `direction`.
+    pub pressure: TimeFunction,
+    /// `n_d`: the component along this degree of freedom of the unit direction the pressure
+    /// pushes the wall (its normal, towards the sample).
+    pub direction: Real,
+    /// The loaded extent `A`: the product of these factors (one per direction along the wall).
+    pub extent: Vec<ExtentFactor>,
+}
+
+/// One factor of a loaded extent.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub enum ExtentFactor {
+    /// A fixed length (m).
+    Fixed(Real),
+    /// The distance between two bodies along a unit `axis`: `|(x_b - x_a) . axis|` (m), e.g.
+    /// the height of a sample between its top and bottom walls.
+    Between {
+        /// The two bodies `[a, b]` (indices in the body set).
+        bodies: [u32; 2],
+        /// The unit axis.
+        axis: Vector,
+    },
+}
+
+impl PressureDrive {
+    /// The force (N per unit thickness in 2D, N in 3D) at pressure `p` (Pa) with the bodies at
+    /// `positions` (indexed by body).
+    pub fn force(&self, p: Real, positions: &[Vector]) -> Real {
+        let extent: Real = (self.extent.iter())
+            .map(|f| match f {
+                ExtentFactor::Fixed(l) => *l,
+                ExtentFactor::Between { bodies, axis } => {
+                    let [a, b] = bodies.map(|k| positions[k as usize]);
+                    (b - a).dot(axis).abs()
+                }
+            })
+            .product();
+        p * extent * self.direction
+    }
+
+    /// The bodies whose positions the extent follows.
+    pub fn followed_bodies(&self) -> impl Iterator<Item = u32> + '_ {
+        self.extent.iter().flat_map(|f| match f {
+            ExtentFactor::Fixed(_) => vec![],
+            ExtentFactor::Between { bodies, .. } => bodies.to_vec(),
+        })
+    }
 }
 
 impl Drive {
@@ -95,5 +151,24 @@ mod tests {
             offset: 1.0,
         };
         assert!((f.eval(1.0) - 3.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn pressure_force_is_pressure_times_the_followed_extent() {
+        let drive = PressureDrive {
+            pressure: TimeFunction::Constant(1e5),
+            direction: -1.0,
+            extent: vec![
+                ExtentFactor::Between {
+                    bodies: [0, 1],
+                    axis: Vector::from_fn(|k, _| (k == 1) as u8 as Real),
+                },
+                ExtentFactor::Fixed(0.5),
+            ],
+        };
+        let at = |y: Real| Vector::from_fn(|k, _| if k == 1 { y } else { 7.0 });
+        let f = drive.force(1e5, &[at(0.25), at(0.05)]);
+        assert!((f - (-1e5 * 0.2 * 0.5)).abs() < 1e-9, "{f}");
+        assert_eq!(drive.followed_bodies().collect::<Vec<_>>(), vec![0, 1]);
     }
 }

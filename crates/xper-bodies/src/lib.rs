@@ -14,7 +14,7 @@ mod shape;
 #[path = "shape3d.rs"]
 mod shape;
 
-pub use drive::{Drive, TimeFunction};
+pub use drive::{Drive, ExtentFactor, PressureDrive, TimeFunction};
 #[cfg(feature = "dim3")]
 pub use set::isotropic_inertia;
 pub use set::{Body, BodyHandle, BodySet, Configuration, InverseMass, Ownership};

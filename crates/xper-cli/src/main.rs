@@ -74,6 +74,20 @@ enum Command {
         #[arg(long)]
         json: Option<PathBuf>,
     },
+    /// Measure the packing a rigid run's checkpoint holds: granular stress, fabric,
+    /// coordination, solid fraction, normal-force distribution and force chains, written to
+    /// micro.json, forces.csv and force_chains.vtu.
+    Post {
+        /// The run's output directory (holding checkpoint.bin).
+        run: PathBuf,
+        /// Where to write (default: <run>/post).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// The volume of the measures: the box of the walls' positions, or the grains'
+        /// bounding box (default: the scene's `[output] micro`, else `walls`).
+        #[arg(long, value_parser = ["walls", "grains"])]
+        volume: Option<String>,
+    },
     /// Run benchmark scenes without outputs; print figures, save JSON and regenerate BENCHMARKS.md.
     Bench(bench::BenchArgs),
     /// Solve a frictional contact problem file (Siconos .dat, FCLib .hdf5) and print JSON.
@@ -149,6 +163,13 @@ fn main() -> ExitCode {
         }
         Command::Homogenize { scene, json } => {
             xper_simulation::homogenize::homogenize(&scene, json.as_deref())
+        }
+        Command::Post { run, out, volume } => {
+            let volume = volume.map(|v| match v.as_str() {
+                "grains" => xper_scene::MicroVolume::Grains,
+                _ => xper_scene::MicroVolume::Walls,
+            });
+            xper_simulation::post::post(&run, out.as_deref(), volume)
         }
         Command::Bench(args) => bench::bench(&args),
         Command::Solve(args) => solve::run_solve(&args),

@@ -181,7 +181,12 @@ fn check_hashes(list: &str, ranks: usize, every_scene: bool) {
             run.status.code(),
             String::from_utf8_lossy(&run.stderr)
         );
-        let series = format!("{:016x}", series_hash(&out.join("series.csv")));
+        let mut series = series_hash(&out.join("series.csv"));
+        let micro = out.join("micro.csv");
+        if micro.exists() {
+            series = fnv1a(&std::fs::read(&micro).unwrap(), series);
+        }
+        let series = format!("{series:016x}");
         let (frame, files) = last_frame_hash(&out.join("frames"));
         let frame = format!("{frame:016x}");
         eprintln!(
@@ -204,7 +209,8 @@ fn check_hashes(list: &str, ranks: usize, every_scene: bool) {
     let _ = std::fs::remove_dir_all(&tmp);
     if update {
         let mut text = format!(
-            "# scene, steps run, FNV-1a of series.csv without timing columns, of the last frame\n\
+            "# scene, steps run, FNV-1a of series.csv without timing columns (then of micro.csv where\n\
+             # written), of the last frame\n\
              # ({ranks} process(es)). Refresh: XPER_UPDATE_HASHES=1 cargo test --release -p xper-cli \
              --all-features --test output_hashes\n",
         );

@@ -53,7 +53,8 @@ pub struct NodeLoad {
     pub name: String,
     /// Mesh node indices.
     pub nodes: Vec<u32>,
-    /// Drive of the x and y components.
+    /// Drive of the x and y components (velocity or force; a pressure is refused by
+    /// [`FractureModel::new`]).
     pub drives: [Drive; 2],
 }
 
@@ -307,6 +308,14 @@ impl FractureModel {
         }
         if !(0.5..=1.0).contains(&spec.theta) {
             return err(format!("theta {} must be in [0.5, 1]", spec.theta));
+        }
+        if let Some(load) =
+            (spec.loads.iter()).find(|l| l.drives.iter().any(|d| matches!(d, Drive::Pressure(_))))
+        {
+            return err(format!(
+                "load `{}`: a pressure drives a wall of a rigid scene, not mesh nodes; use `force`",
+                load.name
+            ));
         }
         if spec.materials.len() != mesh.regions.len() {
             return err(format!(

@@ -241,7 +241,7 @@ impl FractureStepper {
                 match &load.drives[d % 2] {
                     Drive::Velocity(f) => dv[d] = f.eval(t_end) - el.velocity[d],
                     Drive::Force(f) => ext[d] += f.eval(t_theta) * el.load_share[d / 2],
-                    Drive::Free => {}
+                    Drive::Free | Drive::Pressure(_) => {}
                 }
             }
             let kv = mul_vec(&el.stiffness, &el.velocity);

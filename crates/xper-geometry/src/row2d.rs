@@ -61,6 +61,17 @@ impl ContactRow {
         position_i + n * self.arms[1] - tangent(&n) * self.arms[0]
     }
 
+    /// The lever arms `[r_i, r_j]` from each body's position to the contact point (m), as
+    /// detected: `r = (r x t) n - (r x n) t`.
+    #[inline]
+    pub fn arm_vectors(&self) -> [Vector; 2] {
+        let (n, t) = (self.normal(), tangent(&self.normal()));
+        [
+            n * self.arms[1] - t * self.arms[0],
+            n * self.arms[3] - t * self.arms[2],
+        ]
+    }
+
     /// An impulse of this contact as the next detection carries it to the contact that
     /// replaces it: in 2D its components, unchanged (the tangent turns with the normal).
     #[inline(always)]

@@ -74,6 +74,13 @@ impl ContactRow {
         position_i + Vector::from(self.arms[0])
     }
 
+    /// The lever arms `[r_i, r_j]` from each body's position to the contact point (m), as
+    /// detected.
+    #[inline]
+    pub fn arm_vectors(&self) -> [Vector; 2] {
+        self.arms.map(Vector::from)
+    }
+
     /// An impulse of this contact (in its frame) as the next detection carries it to the
     /// contact that replaces it: the world vector `F R`, since the new contact's tangents are
     /// not this one's (they turn with the normal).

@@ -75,6 +75,35 @@ pub fn angular_from_coords(c: &[Real]) -> AngVector {
     c[0]
 }
 
+/// A second-order tensor of the space (stress, fabric), `DIM x DIM`.
+pub type Tensor = nalgebra::Matrix2<Real>;
+
+/// Mean stress and deviator of a symmetric stress tensor from its principal values
+/// (`s1 >= s2`) in the 2D convention of granular mechanics (e.g. F. Radjai, F. Dubois,
+/// "Discrete-element modeling of granular materials", Wiley 2011, ch. 8): `p = (s1 + s2) / 2`,
+/// `q = (s1 - s2) / 2`, so that `q / p = sin(phi)` with `phi` the mobilised friction angle.
+pub fn stress_invariants(principal: [Real; DIM]) -> (Real, Real) {
+    let [s1, s2] = principal;
+    ((s1 + s2) / 2.0, (s1 - s2) / 2.0)
+}
+
+/// Anisotropy of a fabric tensor of unit trace from its principal values (`f1 >= f2`):
+/// `a = 2 (f1 - f2)`, the `a` of the contact-orientation density
+/// `E(theta) = (1 + a cos 2(theta - theta_a)) / (2 pi)` (L. Rothenburg, R.J. Bathurst,
+/// "Analytical study of induced anisotropy in idealized granular materials", Geotechnique 39,
+/// 1989).
+pub fn fabric_anisotropy(principal: [Real; DIM]) -> Real {
+    2.0 * (principal[0] - principal[1])
+}
+
+/// Principal values of a symmetric tensor, largest first (closed form).
+pub fn principal_values(t: &Tensor) -> [Real; DIM] {
+    let mean = (t[(0, 0)] + t[(1, 1)]) / 2.0;
+    let half_diff = (t[(0, 0)] - t[(1, 1)]) / 2.0;
+    let radius = half_diff.hypot((t[(0, 1)] + t[(1, 0)]) / 2.0);
+    [mean + radius, mean - radius]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -90,6 +90,33 @@ pub fn angular_from_coords(c: &[Real]) -> AngVector {
     AngVector::new(c[0], c[1], c[2])
 }
 
+/// A second-order tensor of the space (stress, fabric), `DIM x DIM`.
+pub type Tensor = nalgebra::Matrix3<Real>;
+
+/// Mean stress and deviator of a symmetric stress tensor from its principal values
+/// (`s1 >= s2 >= s3`) in the convention of triaxial tests (e.g. E. Azema, F. Radjai,
+/// "Stress-strain behavior and geometrical properties of packings of elongated particles",
+/// Phys. Rev. E 81, 051304, 2010): `p = (s1 + s2 + s3) / 3`, `q = s1 - s3`.
+pub fn stress_invariants(principal: [Real; DIM]) -> (Real, Real) {
+    let [s1, s2, s3] = principal;
+    ((s1 + s2 + s3) / 3.0, s1 - s3)
+}
+
+/// Anisotropy of a fabric tensor of unit trace from its principal values (`f1 >= f2 >= f3`):
+/// `a = 5 (f1 - f3) / 2`, the `a` of an axisymmetric contact-orientation density
+/// `E(n) = (1 + a (3 cos^2 theta - 1) / 2) / (4 pi)` (Azema and Radjai 2010, above).
+pub fn fabric_anisotropy(principal: [Real; DIM]) -> Real {
+    2.5 * (principal[0] - principal[2])
+}
+
+/// Principal values of a symmetric tensor, largest first.
+pub fn principal_values(t: &Tensor) -> [Real; DIM] {
+    let sym = (t + t.transpose()) / 2.0;
+    let mut e: [Real; DIM] = sym.symmetric_eigenvalues().into();
+    e.sort_by(|a, b| b.total_cmp(a));
+    e
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

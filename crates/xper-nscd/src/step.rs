@@ -478,8 +478,8 @@ impl MoreauJean {
                     xper_bodies::Drive::Velocity(f) => {
                         self.op.bodies[b].velocity[d] = f.eval(t_end)
                     }
-                    xper_bodies::Drive::Force(f) => {
-                        let force = (1.0 - theta) * f.eval(t_begin) + theta * f.eval(t_end);
+                    xper_bodies::Drive::Force(_) | xper_bodies::Drive::Pressure(_) => {
+                        let force = imposed_force(drive, world, theta, t_begin, t_end);
                         self.op.bodies[b].add_dof_force(d, h, force);
                     }
                 }
@@ -505,10 +505,9 @@ impl MoreauJean {
             for (d, drive) in drives.iter().enumerate() {
                 match drive {
                     xper_bodies::Drive::Free => {}
-                    xper_bodies::Drive::Force(f) => {
+                    xper_bodies::Drive::Force(_) | xper_bodies::Drive::Pressure(_) => {
                         let mean = (v0[d] + v1[d]) / 2.0;
-                        work +=
-                            h * ((1.0 - theta) * f.eval(t_begin) + theta * f.eval(t_end)) * mean;
+                        work += h * imposed_force(drive, world, theta, t_begin, t_end) * mean;
                     }
                     xper_bodies::Drive::Velocity(_) => {
                         work += imposed_velocity_work(&world.bodies, b, d, [&v0, &v1], h, &g);
@@ -548,5 +547,23 @@ impl MoreauJean {
             }
         }
         Ok(())
+    }
+}
+
+/// The force of a force or pressure drive over a step, `(1 - theta) F(t_begin) + theta F(t_end)`;
+/// a pressure's extent is measured on the positions at the beginning of the step.
+fn imposed_force(
+    drive: &xper_bodies::Drive,
+    world: &World,
+    theta: Real,
+    t_begin: Real,
+    t_end: Real,
+) -> Real {
+    let mean =
+        |f: &xper_bodies::TimeFunction| (1.0 - theta) * f.eval(t_begin) + theta * f.eval(t_end);
+    match drive {
+        xper_bodies::Drive::Force(f) => mean(f),
+        xper_bodies::Drive::Pressure(p) => p.force(mean(&p.pressure), &world.bodies.position),
+        xper_bodies::Drive::Free | xper_bodies::Drive::Velocity(_) => 0.0,
     }
 }

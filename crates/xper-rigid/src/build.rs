@@ -9,7 +9,7 @@ mod dimension;
 mod dimension;
 
 pub use dimension::RigidScene;
-use xper_bodies::{Drive, TimeFunction};
+use xper_bodies::{Drive, ExtentFactor, PressureDrive, TimeFunction};
 use xper_laws::{InteractionLaw, LawTable, SignoriniCoulomb};
 use xper_math::{Real, Vector};
 use xper_nscd::{Detection, StepParams, VelocitySolver, World};
@@ -25,6 +25,19 @@ pub(crate) fn drive(d: &xper_scene::Drive) -> Drive {
         xper_scene::Drive::Free => Drive::Free,
         xper_scene::Drive::Velocity(f) => Drive::Velocity(time_function(f)),
         xper_scene::Drive::Force(f) => Drive::Force(time_function(f)),
+        xper_scene::Drive::Pressure(p) => Drive::Pressure(PressureDrive {
+            pressure: time_function(&p.pressure),
+            direction: p.direction,
+            extent: (p.extent.iter())
+                .map(|e| match e {
+                    xper_scene::ExtentDesc::Fixed(l) => ExtentFactor::Fixed(*l),
+                    xper_scene::ExtentDesc::Between { bodies, axis } => ExtentFactor::Between {
+                        bodies: bodies.map(|b| b as u32),
+                        axis: Vector::from_fn(|k, _| axis[k]),
+                    },
+                })
+                .collect(),
+        }),
     }
 }
 

@@ -10,6 +10,7 @@
 pub mod bench;
 pub mod build;
 pub mod frames;
+pub mod micro;
 pub mod outputs;
 pub mod state;
 pub mod stepping;
@@ -46,6 +47,10 @@ pub struct RigidSimulation<'c> {
     compare_from: Option<World>,
     /// Time, contacts and sweeps of the last step, for the progress bar.
     last: (f64, usize, u32),
+    /// `micro.csv` and the volume of its measures, when `[output] micro` asks for them.
+    micro: Option<(SeriesTable, xper_nscd::micro::VolumeSource)>,
+    /// The scene file, for messages.
+    scene_file: std::path::PathBuf,
 }
 
 impl<'c> RigidSimulation<'c> {
@@ -90,6 +95,7 @@ impl<'c> RigidSimulation<'c> {
             ),
             None => (Box::new(SerialRun::new(world, dumps, opts.out.clone())), 1),
         };
+        let micro = (scene.output.micro).map(|v| (micro::table(), micro::volume_source(v)));
         Ok(RigidSimulation {
             run,
             gathered: None,
@@ -100,6 +106,8 @@ impl<'c> RigidSimulation<'c> {
             series: SeriesTable::new(&SERIES_COLUMNS),
             compare_from,
             last: (0.0, 0, 0),
+            micro,
+            scene_file: opts.scene.clone(),
         })
     }
 
@@ -165,6 +173,14 @@ impl Simulation for RigidSimulation<'_> {
     }
     fn write_frame(&mut self, dir: &Path, pvd: &mut PvdCollection) -> Result<(), RunError> {
         let world = self.whole()?;
+        if let Some((_, source)) = &self.micro {
+            let m = micro::measures(world, *source, &self.scene_file)?;
+            let row = micro::row(world, &m);
+            if let Some((table, _)) = &mut self.micro {
+                table.push(row);
+            }
+        }
+        let world = self.whole()?;
         let parts = frame_parts(world);
         pvd.truncate_after(world.time - 0.5 * world.params.dt);
         write_vtu_parts(dir, pvd, world.step, world.time, 0, &parts)?;
@@ -177,10 +193,14 @@ impl Simulation for RigidSimulation<'_> {
         checkpoint_bytes(self.scene_hash, &self.whole()?.to_bytes())
     }
     fn tables(&self) -> Vec<(&'static str, &SeriesTable)> {
-        vec![("series.csv", &self.series)]
+        let mut tables = vec![("series.csv", &self.series)];
+        tables.extend(self.micro.as_ref().map(|(t, _)| ("micro.csv", t)));
+        tables
     }
     fn tables_mut(&mut self) -> Vec<(&'static str, &mut SeriesTable)> {
-        vec![("series.csv", &mut self.series)]
+        let mut tables = vec![("series.csv", &mut self.series)];
+        tables.extend(self.micro.as_mut().map(|(t, _)| ("micro.csv", t)));
+        tables
     }
     fn rank_summaries(&mut self, wall: f64) -> Vec<RankSummary> {
         self.run.rank_summaries(wall)

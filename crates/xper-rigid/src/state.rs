@@ -158,7 +158,7 @@ pub const ARRAYS: [ArrayInfo; 23] = [
         "0 open, 1 sticking, 2 sliding",
     ),
     ArrayInfo::new("bodies.imposed_velocity", shapes::DOFS, "float64", "m/s, rad/s", true, "velocity imposed on each degree of freedom (translations, then rotations) at the current time; NaN where not imposed (writing NaN frees an imposed one)"),
-    ArrayInfo::new("bodies.force", shapes::DOFS, "float64", "N, N m", true, "external force or torque on each degree of freedom at the current time (per m of thickness in 2D), gravity aside; NaN where the velocity is imposed (writing NaN leaves it)"),
+    ArrayInfo::new("bodies.force", shapes::DOFS, "float64", "N, N m", true, "external force or torque on each degree of freedom at the current time (per m of thickness in 2D), gravity aside (a pressure drive: its force at the current positions; writing another value makes it a constant force); NaN where the velocity is imposed (writing NaN leaves it)"),
     ArrayInfo::new("laws.groups", "(n, 2)", "int64", "1", false, "the two groups of each law (indices into the group names)"),
     ArrayInfo::new("laws.friction", "(n,)", "float64", "1", true, "Coulomb friction coefficient (>= 0)"),
     ArrayInfo::new("laws.restitution", "(n,)", "float64", "1", true, "Newton restitution coefficient (in [0, 1])"),
@@ -248,6 +248,7 @@ pub fn array(world: &World, name: &str) -> Option<StateArray> {
                 b.drives(k).map(|d| match (d, force) {
                     (Drive::Velocity(f), false) => f.eval(world.time),
                     (Drive::Force(f), true) => f.eval(world.time),
+                    (Drive::Pressure(p), true) => p.force(p.pressure.eval(world.time), &b.position),
                     (Drive::Velocity(_), true) | (_, false) => f64::NAN,
                     (Drive::Free, true) => 0.0,
                 })
@@ -345,7 +346,7 @@ fn write_array(
 }
 
 /// Imposed velocities or forces: a value equal to the current one keeps its drive (and its
-/// function of time); another becomes a constant drive; NaN frees an imposed velocity
+/// function of time, or its pressure); another becomes a constant drive; NaN frees an imposed velocity
 /// (`force = false`) or leaves a degree of freedom as it is (`force = true`).
 fn set_drives(world: &mut World, force: bool, values: &[f64]) -> Result<(), String> {
     let name = if force {
@@ -365,6 +366,11 @@ fn set_drives(world: &mut World, force: bool, values: &[f64]) -> Result<(), Stri
                 (_, _, true) => continue,
                 (false, Drive::Velocity(f), false) | (true, Drive::Force(f), false)
                     if f.eval(t) == v =>
+                {
+                    continue
+                }
+                (true, Drive::Pressure(p), false)
+                    if p.force(p.pressure.eval(t), &b.position) == v =>
                 {
                     continue
                 }

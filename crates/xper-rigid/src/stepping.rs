@@ -51,6 +51,14 @@ pub fn check_distributable(
             file.display()
         )));
     }
+    let pressure = |d: &xper_scene::Drive| matches!(d, xper_scene::Drive::Pressure(_));
+    if let Some(k) = (scene.bodies.iter()).position(|b| b.drives.iter().any(pressure)) {
+        return Err(RunError::BadInput(format!(
+            "{}: body {k} is driven by a pressure, which runs on one process only for now (its \
+             loaded length follows bodies another process may hold)",
+            file.display()
+        )));
+    }
     if !scene.output.dump_problems.is_empty() {
         return Err(RunError::BadInput(format!(
             "{}: [output] dump_problems: problems are dumped by runs on one process only",

@@ -3,6 +3,7 @@
 use std::f64::consts::PI;
 
 use crate::geometry::{self, norm, sub};
+use crate::pressure::{PendingSpan, WallFrame};
 use crate::read::{as_num, as_vec2, choose, ensure, Ctx, Got, Tbl};
 use crate::shared::{Built, Groups, Materials, Origin, Part};
 use crate::tree::{Kind, Node};
@@ -104,7 +105,7 @@ fn body(ctx: &mut Ctx, t: &Tbl, mats: &Materials, groups: &mut Groups) -> Option
                     "`drive` cannot be combined with `fixed = true`",
                 );
             }
-            drives(ctx, &d, false)
+            drives(ctx, &d, Driven::Body)
         }
     };
     let (geom, (mass, inertia), group) = (geom?, mass_inertia?, group?);
@@ -255,18 +256,33 @@ fn mass_inertia(
     Some((m?, i?))
 }
 
-/// Reads a `drive` table: per dof (`x`, `y`, `rotation`), `None` when not driven.
-/// On walls a force drive is an error.
-pub(crate) fn drives(ctx: &mut Ctx, d: &Tbl, wall: bool) -> Option<[Option<Drive>; 3]> {
-    drives_of(ctx, d, wall, ["x", "y", "rotation"])
+/// What a `drive` table may hold, by the kind of body it drives.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Driven {
+    /// A body: velocity or force.
+    Body,
+    /// A wall without a mass: velocity only.
+    Wall,
+    /// A wall with a mass: velocity, force, or (on a translation) a pressure.
+    MassiveWall,
 }
 
-/// Reads a `drive` table whose degrees of freedom are named `dofs`.
+/// A pressure entry of a `drive` table, read by the wall's reader (which knows its normal).
+pub(crate) type PressureReader<'r> = dyn FnMut(&mut Ctx, usize, &Tbl) -> Option<Drive> + 'r;
+
+/// Reads a 2D body's `drive` table: per dof (`x`, `y`, `rotation`), `None` when not driven.
+pub(crate) fn drives(ctx: &mut Ctx, d: &Tbl, driven: Driven) -> Option<[Option<Drive>; 3]> {
+    drives_of(ctx, d, driven, ["x", "y", "rotation"], None)
+}
+
+/// Reads a `drive` table whose degrees of freedom are named `dofs`; `pressure` reads the
+/// entries with a `pressure` key (walls with a mass only).
 pub(crate) fn drives_of<const N: usize>(
     ctx: &mut Ctx,
     d: &Tbl,
-    wall: bool,
+    driven: Driven,
     dofs: [&str; N],
+    mut pressure: Option<&mut PressureReader>,
 ) -> Option<[Option<Drive>; N]> {
     d.check_keys(ctx, &dofs);
     let mut out: [Option<Drive>; N] = std::array::from_fn(|_| None);
@@ -280,12 +296,29 @@ pub(crate) fn drives_of<const N: usize>(
             }
             Got::Val(e, _) => e,
         };
+        if let Some(p) = e.get("pressure") {
+            let drive = match (driven, pressure.as_mut()) {
+                (Driven::MassiveWall, Some(read)) => read(ctx, k, &e),
+                (Driven::Body, _) => {
+                    let why = "a pressure drives a wall with a `mass` (it needs the wall's normal                                and length); drive a body by a `force`";
+                    ctx.err(p.pos, &e.field("pressure"), why);
+                    None
+                }
+                _ => {
+                    let why = "a wall is driven by a pressure only when it has a `mass` (kg per                                m of thickness; walls without one have an infinite mass)";
+                    ctx.err(p.pos, &e.field("pressure"), why);
+                    None
+                }
+            };
+            ok &= drive.is_some();
+            out[k] = drive;
+            continue;
+        }
         e.check_keys(ctx, &["velocity", "force"]);
         let drive = match (e.get("velocity"), e.get("force")) {
             (Some(v), None) => time_function(ctx, v, &e.field("velocity")).map(Drive::Velocity),
-            (None, Some(f)) if wall => {
-                let why =
-                    "a wall cannot be driven by a force (walls have infinite mass); use `velocity`";
+            (None, Some(f)) if driven == Driven::Wall => {
+                let why = "a wall without a `mass` cannot be driven by a force (its mass is                            infinite); give it a `mass` (kg per m of thickness) or use `velocity`";
                 ctx.err(f.pos, &e.field("force"), why);
                 None
             }
@@ -386,25 +419,36 @@ pub(crate) fn wall_body(from: [f64; 2], to: [f64; 2], group: usize) -> BodyDesc 
     }
 }
 
-/// Reads `[[walls]]` into `built`.
-pub(crate) fn walls(ctx: &mut Ctx, root: &Tbl, groups: &mut Groups, built: &mut Built) {
+/// Reads `[[walls]]` into `built`; the groups of pressure drives' `between` are resolved
+/// into `pending` once every body is built ([`crate::pressure::resolve`]).
+pub(crate) fn walls(
+    ctx: &mut Ctx,
+    root: &Tbl,
+    groups: &mut Groups,
+    built: &mut Built,
+    pending: &mut Vec<PendingSpan>,
+) {
     for (i, t) in root.tables(ctx, "walls") {
-        t.check_keys(ctx, &["from", "to", "group", "drive"]);
+        t.check_keys(ctx, &["from", "to", "group", "drive", "mass"]);
         let from = t.vec2(ctx, "from").req(ctx, &t, "from");
         let to = t.vec2(ctx, "to").req(ctx, &t, "to");
         let group = t
             .string(ctx, "group")
             .req(ctx, &t, "group")
             .map(|(g, _)| groups.index(g));
-        let drive = match t.table(ctx, "drive") {
-            Got::Absent => Some([None, None, None]),
+        let mass = match t.num(ctx, "mass") {
+            Got::Absent => Some(None),
             Got::Bad => None,
-            Got::Val(d, _) => drives(ctx, &d, true),
+            Got::Val(m, pos) => {
+                let what = "positive (kg per m of thickness)";
+                ensure(ctx, Some((m, pos)), &t.field("mass"), |m| m > 0.0, what).map(Some)
+            }
         };
         let (Some((from, _)), Some((to, to_pos))) = (from, to) else {
             continue;
         };
-        if !norm(sub(to, from)).is_finite() {
+        let length = norm(sub(to, from));
+        if !length.is_finite() {
             ctx.err(
                 to_pos,
                 &t.field("to"),
@@ -412,7 +456,7 @@ pub(crate) fn walls(ctx: &mut Ctx, root: &Tbl, groups: &mut Groups, built: &mut 
             );
             continue;
         }
-        if !(norm(sub(to, from)) > 0.0) {
+        if !(length > 0.0) {
             ctx.err(
                 to_pos,
                 &t.field("to"),
@@ -420,10 +464,38 @@ pub(crate) fn walls(ctx: &mut Ctx, root: &Tbl, groups: &mut Groups, built: &mut 
             );
             continue;
         }
+        let Some(mass) = mass else {
+            continue;
+        };
+        let along = [(to[0] - from[0]) / length, (to[1] - from[1]) / length];
+        let frame = WallFrame {
+            body: built.bodies.len(),
+            normal: [-along[1], along[0]],
+            along,
+            length,
+        };
+        let driven = if mass.is_some() {
+            Driven::MassiveWall
+        } else {
+            Driven::Wall
+        };
+        let mut read = |ctx: &mut Ctx, dof: usize, e: &Tbl| {
+            crate::pressure::read(ctx, dof, e, &frame, pending)
+        };
+        let drive = match t.table(ctx, "drive") {
+            Got::Absent => Some([None, None, None]),
+            Got::Bad => None,
+            Got::Val(d, _) => drives_of(ctx, &d, driven, ["x", "y", "rotation"], Some(&mut read)),
+        };
         let (Some(group), Some(drive)) = (group, drive) else {
             continue;
         };
         let mut b = wall_body(from, to, group);
+        if let Some(m) = mass {
+            // A rod of length L about its centre: I = m L^2 / 12 (its rotation stays imposed
+            // unless driven).
+            (b.mass, b.inertia) = (m, m * length * length / 12.0);
+        }
         for (slot, d) in b.drives.iter_mut().zip(drive) {
             if let Some(d) = d {
                 *slot = d;

@@ -25,6 +25,7 @@ mod fracture;
 mod generators;
 mod geometry;
 mod overlap;
+mod pressure;
 mod read;
 mod scene3d;
 mod sections;
@@ -42,8 +43,9 @@ pub use fracture::types::{
 pub use generators::MAX_GENERATED;
 pub use overlap::MAX_OVERLAP_REPORTS;
 pub use types::{
-    Acceleration, BodyDesc, CheckPass, ConvergenceNorm, Detection, Drive, FluidDesc, FluidSideDesc,
-    LawDesc, OutputSettings, Scene, ShapeDesc, SolverSettings, TimeFunction, VelocitySolverKind,
+    Acceleration, BodyDesc, CheckPass, ConvergenceNorm, Detection, Drive, ExtentDesc, FluidDesc,
+    FluidSideDesc, LawDesc, MicroVolume, OutputSettings, PressureDesc, Scene, ShapeDesc,
+    SolverSettings, TimeFunction, VelocitySolverKind,
 };
 pub use types3d::{BodyDesc3, Scene3, ShapeDesc3};
 pub use xper_math::SplitMix64;
@@ -235,14 +237,22 @@ fn rigid_scene_with(ctx: &mut Ctx, root: &Tbl, header: sections::Header) -> Opti
     let mut groups = Groups::default();
     let mut built = Built::default();
     bodies::bodies(ctx, root, &materials, &mut groups, &mut built);
-    bodies::walls(ctx, root, &mut groups, &mut built);
+    let mut spans = Vec::new();
+    bodies::walls(ctx, root, &mut groups, &mut built, &mut spans);
     generators::generators(ctx, root, &materials, &mut groups, &mut built);
+    pressure::resolve(ctx, &groups, &mut built, spans);
     if ctx.errors.len() == before {
         // Only when every body was built, so that indices are those of the scene.
         overlap::check(ctx, &built);
     }
     let laws = sections::laws(ctx, root, &groups);
     let fluid = fluid::fluid(ctx, root, &built).flatten();
+    if let (Some(_), Some(_), Some(t)) = (&fluid, output.micro, root.get("output")) {
+        if let Some(n) = (Tbl::of(ctx, t, "output".into())).and_then(|t| t.get("micro")) {
+            let why = "the granular measures are of rigid scenes without `[fluid]`";
+            ctx.err(n.pos, "output.micro", why);
+        }
+    }
 
     let steps = header.steps.unwrap_or(1);
     let alert_distance = header

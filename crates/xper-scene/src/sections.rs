@@ -323,6 +323,7 @@ pub(crate) struct Output {
     pub checkpoint_every: Option<Option<u64>>,
     /// Sorted step numbers (empty when not given or invalid).
     pub dump_problems: Vec<u64>,
+    pub micro: Option<crate::types::MicroVolume>,
 }
 
 impl Output {
@@ -334,6 +335,7 @@ impl Output {
             checkpoint_every: (self.checkpoint_every.flatten())
                 .unwrap_or(steps.div_ceil(10).max(1)),
             dump_problems: self.dump_problems,
+            micro: self.micro,
         }
     }
 }
@@ -345,19 +347,38 @@ pub(crate) fn output(ctx: &mut Ctx, root: &Tbl, steps: Option<u64>) -> Output {
             frame_every: Some(None),
             checkpoint_every: Some(None),
             dump_problems: Vec::new(),
+            micro: None,
         };
     };
-    t.check_keys(ctx, &["frame_every", "checkpoint_every", "dump_problems"]);
+    t.check_keys(
+        ctx,
+        &["frame_every", "checkpoint_every", "dump_problems", "micro"],
+    );
     let mut one = |key: &str| match t.int(ctx, key) {
         Got::Absent => Some(None),
         g => int_in(ctx, g.ok(), &t.field(key), 1, i64::MAX).map(|v| Some(v as u64)),
     };
     let frame_every = one("frame_every");
     let checkpoint_every = one("checkpoint_every");
+    let volumes = [
+        ("walls", crate::types::MicroVolume::Walls),
+        ("grains", crate::types::MicroVolume::Grains),
+    ];
+    let micro = match t.string(ctx, "micro") {
+        Got::Absent => None,
+        g => choose(
+            ctx,
+            g.ok(),
+            &t.field("micro"),
+            "volume of the measures",
+            &volumes,
+        ),
+    };
     Output {
         frame_every,
         checkpoint_every,
         dump_problems: dump_problems(ctx, &t, steps),
+        micro,
     }
 }
 

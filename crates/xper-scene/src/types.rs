@@ -138,6 +138,18 @@ pub struct OutputSettings {
     /// Steps (1-based, increasing, each in `1..=steps`) whose contact problem is written to a
     /// file before it is solved; empty when not asked for.
     pub dump_problems: Vec<u64>,
+    /// Micromechanical measures at every step (`micro.csv`, columns of `series.csv`) with the
+    /// volume they take (`[output] micro = "walls"` or `"grains"`); `None`: not computed.
+    pub micro: Option<MicroVolume>,
+}
+
+/// The volume of the micromechanical measures.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub enum MicroVolume {
+    /// The box spanned by the walls' positions (the bodies that are not free grains).
+    Walls,
+    /// The bounding box of the grains.
+    Grains,
 }
 
 /// A Signorini-Coulomb law between two groups.
@@ -205,6 +217,36 @@ pub enum Drive {
     Velocity(TimeFunction),
     /// External force (N) or torque (N m) applied as a function of time, added to gravity.
     Force(TimeFunction),
+    /// A pressure on a wall with a mass, applied as the force `p A n_d` on this translational
+    /// degree of freedom (`[[walls]] drive.<dof> = { pressure = ..., between = [...] }`).
+    Pressure(PressureDesc),
+}
+
+/// A pressure drive of a wall: a servo wall at constant confining pressure.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PressureDesc {
+    /// Pressure in Pa as a function of time; positive pushes the wall along its normal (the
+    /// left of `from -> to` in 2D: walls drawn counter-clockwise round a sample push inwards).
+    pub pressure: TimeFunction,
+    /// `n_d`, the component of that normal along the driven degree of freedom.
+    pub direction: f64,
+    /// The loaded length (m, 2D) or area (m^2, 3D): the product of these factors.
+    pub extent: Vec<ExtentDesc>,
+}
+
+/// A factor of a pressure's loaded extent.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub enum ExtentDesc {
+    /// A fixed length in m (the wall's own length when no `between` is given).
+    Fixed(f64),
+    /// The distance in m between two bodies (indices into [`Scene::bodies`]) along the unit
+    /// `axis` (z = 0 in 2D): the sample's extent between two other walls.
+    Between {
+        /// The two bodies.
+        bodies: [usize; 2],
+        /// The axis (the wall's direction).
+        axis: [f64; 3],
+    },
 }
 
 /// A scalar function of time (the engine's own type: the scene builds it directly).

@@ -15,6 +15,7 @@ mod driver;
 pub mod fluid;
 pub mod fracture;
 pub mod homogenize;
+pub mod post;
 pub mod resources;
 pub mod scene;
 

@@ -195,12 +195,18 @@ fn output(ctx: &mut Ctx, root: &Tbl, steps: Option<u64>) -> Option<OutputSetting
             "dump_problems",
             "does not apply to a fracture scene (only rigid scenes dump contact problems)",
         );
+        t.forbid(
+            ctx,
+            "micro",
+            "does not apply to a fracture scene (the granular measures are of rigid scenes)",
+        );
     }
     let steps = steps.unwrap_or(1);
     Some(OutputSettings {
         frame_every: o.frame_every?.unwrap_or(steps.div_ceil(100).max(1)),
         checkpoint_every: o.checkpoint_every?.unwrap_or(steps.div_ceil(10).max(1)),
         dump_problems: Vec::new(),
+        micro: None,
     })
 }
 

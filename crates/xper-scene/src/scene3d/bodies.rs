@@ -4,7 +4,7 @@
 //! vertices, with the mass properties of `xper_bodies3d` (divergence theorem over the faces);
 //! a sphere of radius `r` and density `rho` has `m = rho 4/3 pi r^3`, `I = 2/5 m r^2`.
 
-use crate::bodies::{drives_of, read_bodies};
+use crate::bodies::{drives_of, read_bodies, Driven};
 use crate::read::{as_vec3, choose, ensure, Ctx, Got, Tbl};
 use crate::shared::{Built3, Groups, Materials, Origin, Part};
 use crate::tree::Kind;
@@ -131,7 +131,7 @@ fn body(ctx: &mut Ctx, t: &Tbl, mats: &Materials, groups: &mut Groups) -> Option
                 let why = "`drive` cannot be combined with `fixed = true`";
                 ctx.err(pos, &t.field("drive"), why);
             }
-            drives_of(ctx, &d, false, DOFS3)
+            drives_of(ctx, &d, Driven::Body, DOFS3, None)
         }
     };
     let (geom, (mass, inertia), group) = (geom?, mass_inertia?, group?);
@@ -328,7 +328,7 @@ pub(crate) fn walls(ctx: &mut Ctx, root: &Tbl, groups: &mut Groups, built: &mut 
         let drive = match t.table(ctx, "drive") {
             Got::Absent => Some(std::array::from_fn(|_| None)),
             Got::Bad => None,
-            Got::Val(d, _) => drives_of(ctx, &d, true, DOFS3),
+            Got::Val(d, _) => drives_of(ctx, &d, Driven::Wall, DOFS3, None),
         };
         let (Some((point, _)), Some(n), Some(half)) = (point, normal, half) else {
             continue;

@@ -1,0 +1,133 @@
+//! The granular laboratory on `scenes/isotropic_compaction`: servo walls hold their pressure,
+//! and the granular stress of the packing equals the wall forces over the wall lengths (two
+//! independent measures of the same stress); `micro.csv` and `xper post` agree.
+
+mod common;
+use common::*;
+use std::path::Path;
+use xper_math::{Real, Vector};
+use xper_nscd::micro::{measure, VolumeSource};
+use xper_nscd::{MoreauJean, World};
+use xper_simulation::rigid::build::world_from_scene;
+
+const SCENE: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../scenes/isotropic_compaction"
+);
+
+/// Walls in the scene's order.
+const BOTTOM: usize = 0;
+const RIGHT: usize = 1;
+const TOP: usize = 2;
+const LEFT: usize = 3;
+const PRESSURE: Real = 1e3;
+
+/// The mean force the contacts exerted on body `b` over the last step (N per m).
+fn contact_force(world: &World, b: usize) -> Vector {
+    let c = &world.contacts;
+    let mut f = Vector::zeros();
+    for (row, impulse) in c.rows.iter().zip(&c.impulses) {
+        let r = row.world_impulse(*impulse) / world.params.dt;
+        if row.bodies[1] as usize == b {
+            f += r;
+        } else if row.bodies[0] as usize == b {
+            f -= r;
+        }
+    }
+    f
+}
+
+fn relative(a: Real, b: Real) -> Real {
+    (a - b).abs() / b.abs()
+}
+
+/// The shipped scene with friction 0.3 between grains: a frictional packing jams and comes
+/// to rest (the frictionless one keeps rearranging, its stress fluctuating by a few percent).
+fn frictional_scene() -> String {
+    let text = std::fs::read_to_string(Path::new(SCENE).join("scene.toml")).unwrap();
+    let frictionless = "friction = 0.0          # frictionless preparation";
+    assert!(text.contains(frictionless));
+    text.replace(frictionless, "friction = 0.3 #")
+}
+
+#[test]
+fn servo_walls_hold_their_pressure_and_the_granular_stress_is_the_wall_stress() {
+    let scene = xper_scene::parse_scene(&frictional_scene(), Path::new("scene.toml")).unwrap();
+    let mut world = world_from_scene(&scene);
+    let mut stepper = MoreauJean::new();
+    for _ in 0..scene.steps {
+        stepper.step(&mut world).unwrap();
+    }
+    let x = |b: usize| world.bodies.position[b];
+    let (width, height) = (x(RIGHT).x - x(LEFT).x, x(TOP).y - x(BOTTOM).y);
+    let f = |b| contact_force(&world, b);
+    let m = measure(&world, VolumeSource::Walls).unwrap();
+    // The stress each wall bears: the contacts push the top and right walls outwards (+y,
+    // +x), the bottom and left ones outwards too (-y, -x).
+    let walls = [
+        f(TOP).y / width,
+        f(RIGHT).x / height,
+        -f(BOTTOM).y / width,
+        -f(LEFT).x / height,
+    ];
+    let (sxx, syy) = (m.stress[(0, 0)], m.stress[(1, 1)]);
+    eprintln!(
+        "wall stresses (top, right, bottom, left) {walls:?} Pa; sigma_xx {sxx}, sigma_yy {syy} Pa"
+    );
+    // The servo walls hold their pressure within 1 % once the sample is at rest (after 0.3 s
+    // the kinetic energy is ~1e-9 of the work done by the walls).
+    assert!(relative(walls[0], PRESSURE) < 0.01, "{walls:?}");
+    assert!(relative(walls[1], PRESSURE) < 0.01, "{walls:?}");
+    // The granular stress from every contact's branch vector equals the fixed walls' forces
+    // over their lengths: 1e-3 covers the solver's relative tolerance (1e-4) and the residual
+    // inertia (here they agree to 2e-5).
+    assert!(relative(syy, walls[2]) < 1e-3, "{syy} {walls:?}");
+    assert!(relative(sxx, walls[3]) < 1e-3, "{sxx} {walls:?}");
+    // Shear stresses: symmetric (moment balance of the grains).
+    assert!((m.stress[(0, 1)] - m.stress[(1, 0)]).abs() < 1e-6 * sxx);
+}
+
+#[test]
+fn micro_csv_rows_are_the_measures_of_the_frames_and_post_agrees() {
+    let dir = temp_dir("granular_micro");
+    let text = std::fs::read_to_string(Path::new(SCENE).join("scene.toml")).unwrap();
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, text.replace("steps = 6000 ", "steps = 300 ")).unwrap();
+    let out = dir.join("out");
+    assert_success(&run_scene(&path, &out, &["--quiet"]));
+    let table = xper_io::SeriesTable::read_csv(&out.join("micro.csv")).unwrap();
+    // A row per frame: steps 0, 100, 200, 300.
+    assert_eq!(
+        table.column("step").unwrap(),
+        vec![0.0, 100.0, 200.0, 300.0]
+    );
+    let post = xper(&["post", out.to_str().unwrap()]);
+    assert_success(&post);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("post/micro.json")).unwrap())
+            .unwrap();
+    let last = table.rows.last().unwrap();
+    // Equal up to serde_json's parsing of decimals (not always correctly rounded).
+    for (name, value) in table.columns.iter().zip(last) {
+        let got = json[name].as_f64().unwrap();
+        assert!(
+            (got - value).abs() <= 1e-14 * value.abs(),
+            "{name}: {got} {value}"
+        );
+    }
+    assert!(
+        last[table
+            .columns
+            .iter()
+            .position(|c| c == "solid_fraction")
+            .unwrap()]
+            > 0.5
+    );
+    let forces = std::fs::read_to_string(out.join("post/forces.csv")).unwrap();
+    // The distribution integrates to 1 over bins of 0.1.
+    let total: f64 = (forces.lines().skip(1))
+        .map(|l| l.split(',').nth(1).unwrap().parse::<f64>().unwrap() * 0.1)
+        .sum();
+    assert!((total - 1.0).abs() < 1e-9, "{total}");
+    assert!(out.join("post/force_chains.vtu").exists());
+}

@@ -1,0 +1,143 @@
+//! The micromechanical measures of a rigid run (`[output] micro`): one row of `micro.csv` per
+//! frame, and `xper post` on a checkpoint (the measures, the normal-force distribution and the
+//! force chains of that state). The measures are `xper_nscd::micro`'s.
+
+use crate::run_outputs::io_err;
+use crate::RunError;
+use std::path::Path;
+use xper_io::SeriesTable;
+use xper_math::{Real, DIM};
+use xper_nscd::micro::{measure, normalised_normal_forces, Micro, VolumeSource};
+use xper_nscd::World;
+
+/// Axis names of tensor components.
+const AXES: [&str; 3] = ["x", "y", "z"];
+
+/// The volume source of a scene's setting.
+pub fn volume_source(v: xper_scene::MicroVolume) -> VolumeSource {
+    match v {
+        xper_scene::MicroVolume::Walls => VolumeSource::Walls,
+        xper_scene::MicroVolume::Grains => VolumeSource::Grains,
+    }
+}
+
+/// The columns of `micro.csv`: step, time, the box of the volume, then the measures (tensor
+/// components `stress_xy` for `sigma_xy`, Pa; `fabric_xy`).
+pub fn columns() -> Vec<String> {
+    let mut c: Vec<String> = ["step", "time", "volume"].map(String::from).to_vec();
+    let tensor = |name: &str, c: &mut Vec<String>| {
+        for a in &AXES[..DIM] {
+            for b in &AXES[..DIM] {
+                c.push(format!("{name}_{a}{b}"));
+            }
+        }
+    };
+    tensor("stress", &mut c);
+    c.extend(["pressure", "deviator", "stress_ratio"].map(String::from));
+    tensor("fabric", &mut c);
+    c.extend(
+        [
+            "anisotropy",
+            "solid_fraction",
+            "grains",
+            "grain_contacts",
+            "boundary_contacts",
+            "coordination",
+            "coordination_without_rattlers",
+            "rattler_fraction",
+            "mean_normal_force",
+            "strong_fraction",
+            "strong_share",
+        ]
+        .map(String::from),
+    );
+    c
+}
+
+/// An empty `micro.csv` table.
+pub fn table() -> SeriesTable {
+    let names = columns();
+    SeriesTable::new(&names.iter().map(String::as_str).collect::<Vec<_>>())
+}
+
+/// The row of `world`'s measures.
+pub fn row(world: &World, m: &Micro) -> Vec<Real> {
+    let mut r = vec![world.step as Real, world.time, m.volume];
+    r.extend(m.stress.transpose().iter());
+    let ratio = if m.pressure != 0.0 {
+        m.deviator / m.pressure
+    } else {
+        0.0
+    };
+    r.extend([m.pressure, m.deviator, ratio]);
+    r.extend(m.fabric.transpose().iter());
+    r.extend([
+        m.anisotropy,
+        m.solid_fraction,
+        m.grains as Real,
+        m.grain_contacts as Real,
+        m.boundary_contacts as Real,
+        m.coordination,
+        m.coordination_without_rattlers,
+        m.rattler_fraction,
+        m.mean_normal_force,
+        m.strong_fraction,
+        m.strong_share,
+    ]);
+    r
+}
+
+/// The measures of `world`, as a run error naming `scene` when they cannot be taken.
+pub fn measures(world: &World, source: VolumeSource, scene: &Path) -> Result<Micro, RunError> {
+    measure(world, source)
+        .map_err(|e| RunError::BadInput(format!("{}: [output] micro: {e}", scene.display())))
+}
+
+/// Bins of the normal-force distribution per unit of `f_n / <f_n>`.
+const BINS_PER_MEAN: usize = 10;
+
+/// The probability density of `f_n / <f_n>` over bins of width 0.1 from 0 to the largest
+/// value: rows `(bin centre, density, count)`.
+pub fn force_distribution(world: &World) -> Vec<[Real; 3]> {
+    let forces = normalised_normal_forces(world);
+    let largest = forces.iter().copied().fold(0.0, Real::max);
+    let per = BINS_PER_MEAN as Real;
+    let bins = ((largest * per).floor() as usize + 1).min(100 * BINS_PER_MEAN);
+    let mut count = vec![0usize; bins];
+    for f in &forces {
+        count[((f * per) as usize).min(bins - 1)] += 1;
+    }
+    let total = forces.len().max(1) as Real;
+    (count.iter().enumerate())
+        .map(|(k, &c)| {
+            let centre = (2 * k + 1) as Real / (2.0 * per);
+            [centre, c as Real / total * per, c as Real]
+        })
+        .collect()
+}
+
+/// `xper post`: the measures of `world` written to `out` as `micro.json`, `forces.csv` (the
+/// distribution) and `force_chains.vtu`; returns the measures.
+pub fn post(
+    world: &World,
+    source: VolumeSource,
+    out: &Path,
+    scene: &Path,
+) -> Result<Micro, RunError> {
+    let m = measures(world, source, scene)?;
+    crate::run_outputs::create_output_dir(out)?;
+    let mut json = serde_json::Map::new();
+    for (name, value) in columns().into_iter().zip(row(world, &m)) {
+        json.insert(name, serde_json::json!(value));
+    }
+    xper_io::write_json_atomic(&out.join("micro.json"), &serde_json::Value::Object(json))
+        .map_err(io_err)?;
+    let mut text = String::from("normal_force_over_mean,probability_density,contacts\n");
+    for [f, p, c] in force_distribution(world) {
+        text.push_str(&format!("{f},{p},{c}\n"));
+    }
+    xper_io::write_atomic(&out.join("forces.csv"), text.as_bytes()).map_err(io_err)?;
+    let chains = crate::frames::contacts_grid(world, true);
+    xper_io::write_vtu(&out.join("force_chains.vtu"), &chains).map_err(io_err)?;
+    Ok(m)
+}
