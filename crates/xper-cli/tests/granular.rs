@@ -131,3 +131,63 @@ fn micro_csv_rows_are_the_measures_of_the_frames_and_post_agrees() {
     assert!((total - 1.0).abs() < 1e-9, "{total}");
     assert!(out.join("post/force_chains.vtu").exists());
 }
+
+/// The rows of `micro.csv` as maps from column to value.
+fn micro_rows(out: &Path) -> Vec<std::collections::HashMap<String, f64>> {
+    let table = xper_io::SeriesTable::read_csv(&out.join("micro.csv")).unwrap();
+    (table.rows.iter())
+        .map(|r| {
+            table
+                .columns
+                .iter()
+                .cloned()
+                .zip(r.iter().copied())
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn biaxial_small_compacts_isotropically_then_shears_with_friction() {
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/biaxial_small");
+    let out = temp_dir("biaxial_small").join("out");
+    assert_success(&run_scene(&scene, &out, &["--quiet"]));
+    let rows = micro_rows(&out);
+    let at = |step: f64| rows.iter().find(|r| r["step"] == step).unwrap();
+    // End of the compaction (0.3 s, the event's time): isotropic, at the servo pressure.
+    let start = at(3000.0);
+    assert!(
+        relative(start["stress_xx"], 1e4) < 0.01,
+        "{}",
+        start["stress_xx"]
+    );
+    assert!(
+        relative(start["stress_yy"], 1e4) < 0.01,
+        "{}",
+        start["stress_yy"]
+    );
+    assert!(start["stress_ratio"] < 0.05);
+    // From the event on the top wall moves at exactly 0.02 m/s (from the second row on: in
+    // the event's step theta-method averages the old velocity and the imposed one).
+    let after: Vec<_> = rows.iter().filter(|r| r["step"] > 3000.0).collect();
+    for w in after.windows(2) {
+        let moved = w[0]["extent_y"] - w[1]["extent_y"];
+        let expected = 0.02 * (w[1]["time"] - w[0]["time"]);
+        assert!((moved - expected).abs() < 1e-12, "{moved} {expected}");
+    }
+    // With friction 0.5 the sample resists shear (a frictionless one flows at q/p near 0.1)
+    // and dilates, as a dense frictional packing does.
+    let sheared: Vec<_> = (rows.iter())
+        .filter(|r| start["extent_y"] - r["extent_y"] > 0.02 * start["extent_y"])
+        .collect();
+    let mean_ratio = sheared.iter().map(|r| r["stress_ratio"]).sum::<f64>() / sheared.len() as f64;
+    assert!(mean_ratio > 0.25, "{mean_ratio}");
+    let last = rows.last().unwrap();
+    let dilation = (last["volume"] - start["volume"]) / start["volume"];
+    assert!(dilation > 0.01, "{dilation}");
+    // The confining wall: the granular stress across it stays at 10 kPa on average (within
+    // 5 %: 400 grains sheared at an inertial number of 4e-4 fluctuate by about 10 %).
+    let sxx = sheared.iter().map(|r| r["stress_xx"]).sum::<f64>() / sheared.len() as f64;
+    assert!(relative(sxx, 1e4) < 0.05, "{sxx}");
+    assert!(out.join("micro.png").exists());
+}

@@ -40,6 +40,7 @@ mod dimension;
 #[path = "body3d.rs"]
 mod dimension;
 mod domain;
+pub mod events;
 pub mod micro;
 mod operator;
 mod report;

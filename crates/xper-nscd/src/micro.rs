@@ -46,6 +46,8 @@ pub enum VolumeSource {
 pub struct Micro {
     /// Volume `V` (m^2 per m of thickness in 2D, m^3 in 3D).
     pub volume: Real,
+    /// The extents of the box `V` is the volume of, along each axis (m).
+    pub extent: Vector,
     /// Solid fraction.
     pub solid_fraction: Real,
     /// Granular stress tensor (Pa), compression positive; not symmetrised.
@@ -116,8 +118,12 @@ pub fn is_grain(world: &World, b: usize) -> bool {
             .is_err()
 }
 
-/// The volume `V` of the measures.
-pub fn volume(world: &World, grain: &[bool], source: VolumeSource) -> Result<Real, MicroError> {
+/// The extents of the box whose volume is `V` (m).
+pub fn volume_box(
+    world: &World,
+    grain: &[bool],
+    source: VolumeSource,
+) -> Result<Vector, MicroError> {
     let b = &world.bodies;
     let (mut lo, mut hi) = (
         Vector::repeat(Real::INFINITY),
@@ -137,7 +143,7 @@ pub fn volume(world: &World, grain: &[bool], source: VolumeSource) -> Result<Rea
     let extent = hi - lo;
     match extent.iter().position(|e| !(*e > 0.0 && e.is_finite())) {
         Some(axis) => Err(MicroError::NoVolume { source, axis }),
-        None => Ok(extent.product()),
+        None => Ok(extent),
     }
 }
 
@@ -184,7 +190,8 @@ fn bearing_contacts(world: &World, grain: &[bool]) -> Vec<Bearing> {
 pub fn measure(world: &World, source: VolumeSource) -> Result<Micro, MicroError> {
     let n = world.bodies.len();
     let grain: Vec<bool> = (0..n).map(|b| is_grain(world, b)).collect();
-    let volume = volume(world, &grain, source)?;
+    let extent = volume_box(world, &grain, source)?;
+    let volume = extent.product();
     let contacts = bearing_contacts(world, &grain);
     let grains = grain.iter().filter(|&&g| g).count();
 
@@ -228,6 +235,7 @@ pub fn measure(world: &World, source: VolumeSource) -> Result<Micro, MicroError>
         .sum();
     Ok(Micro {
         volume,
+        extent,
         solid_fraction: solid / volume,
         pressure,
         deviator,

@@ -122,6 +122,7 @@ impl MoreauJean {
         shared: Option<&mut dyn ContactSolve<RigidContactOperator>>,
     ) -> Result<StepReport, StepError> {
         self.h = h;
+        world.apply_due_events(t_begin);
         let start = Instant::now();
         let mut report = StepReport {
             step: world.step + 1,

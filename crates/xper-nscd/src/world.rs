@@ -94,6 +94,8 @@ pub struct World {
     pub step: u64,
     /// Energy budget.
     pub energy: EnergyBudget,
+    /// Changes of drives and laws at given times (a staged test), and how many were made.
+    pub events: crate::events::Events,
 }
 
 impl World {
@@ -112,6 +114,7 @@ impl World {
                 initial,
                 ..Default::default()
             },
+            events: Default::default(),
         }
     }
 

@@ -3,6 +3,7 @@
 use super::drive;
 use xper_bodies::{Body, BodySet, ConvexPolyhedron, Shape};
 use xper_math::{AngMatrix, AngVector, Real, Rotation, Vector};
+use xper_nscd::events::Events;
 use xper_scene::{Scene3, ShapeDesc3};
 
 /// The scenes this build runs: 3D rigid scenes.
@@ -57,4 +58,9 @@ pub(super) fn bodies(scene: &Scene3) -> (BodySet, Real) {
         });
     }
     (bodies, smallest)
+}
+
+/// A 3D scene has no `[[events]]` yet.
+pub(super) fn events(_scene: &Scene3) -> Events {
+    Events::default()
 }

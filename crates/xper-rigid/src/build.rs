@@ -120,7 +120,9 @@ pub fn world_from_scene(scene: &RigidScene) -> World {
         projection_tolerance: (s.position_projection && smallest.is_finite())
             .then_some(PROJECTION_TOLERANCE_RELATIVE * smallest),
     };
-    World::new(bodies, laws, params)
+    let mut world = World::new(bodies, laws, params);
+    world.events = dimension::events(scene);
+    world
 }
 
 /// Gives a world restored from a checkpoint the solver limits of its (possibly edited) scene:
@@ -181,4 +183,9 @@ pub fn add_bodies(
 /// needs it): for a generated scene of a million disks it is as large as the world.
 pub fn release_body_descriptions(scene: &mut RigidScene) {
     scene.bodies = Vec::new();
+}
+
+/// Whether the scene changes drives or laws during the run (`[[events]]`).
+pub(crate) fn scene_has_events(scene: &RigidScene) -> bool {
+    !dimension::events(scene).list.is_empty()
 }

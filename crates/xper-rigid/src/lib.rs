@@ -252,6 +252,10 @@ impl Simulation for RigidSimulation<'_> {
         };
         write_json_atomic(&dir.join("summary.json"), &summary).map_err(io_err)?;
         outputs::write_plot(&self.series, &dir.join("series.png"), &self.scene.name)?;
+        if let (Some((table, _)), Some(world)) = (&self.micro, self.world()) {
+            let start = world.events.list.last().map_or(0.0, |e| e.time);
+            micro::write_plot(table, start, &dir.join("micro.png"), &self.scene.name)?;
+        }
         serde_json::to_value(&summary).map_err(|e| RunError::Runtime(e.to_string()))
     }
     fn closing_line(&self, facts: &RunFacts, dir: &Path) -> String {

@@ -21,10 +21,12 @@ pub fn volume_source(v: xper_scene::MicroVolume) -> VolumeSource {
     }
 }
 
-/// The columns of `micro.csv`: step, time, the box of the volume, then the measures (tensor
+/// The columns of `micro.csv`: step, time, the volume and the extents of its box (m), then
+/// the measures (tensor
 /// components `stress_xy` for `sigma_xy`, Pa; `fabric_xy`).
 pub fn columns() -> Vec<String> {
     let mut c: Vec<String> = ["step", "time", "volume"].map(String::from).to_vec();
+    c.extend(AXES[..DIM].iter().map(|a| format!("extent_{a}")));
     let tensor = |name: &str, c: &mut Vec<String>| {
         for a in &AXES[..DIM] {
             for b in &AXES[..DIM] {
@@ -63,6 +65,7 @@ pub fn table() -> SeriesTable {
 /// The row of `world`'s measures.
 pub fn row(world: &World, m: &Micro) -> Vec<Real> {
     let mut r = vec![world.step as Real, world.time, m.volume];
+    r.extend(m.extent.iter());
     r.extend(m.stress.transpose().iter());
     let ratio = if m.pressure != 0.0 {
         m.deviator / m.pressure
@@ -140,4 +143,80 @@ pub fn post(
     let chains = crate::frames::contacts_grid(world, true);
     xper_io::write_vtu(&out.join("force_chains.vtu"), &chains).map_err(io_err)?;
     Ok(m)
+}
+
+/// A row's strains: axial `(L0 - L) / L0`, volumetric `(V - V0) / V0` (dilation positive),
+/// and the row's index in `micro.csv`.
+pub type Strains = (Real, Real, usize);
+
+/// Strains of the rows of `micro.csv` from the first row at or after `start` (s; the last
+/// stage's beginning): the axial axis is the one that shortened most by the last row;
+/// returns the axis and the strains of each row from `start` on.
+pub fn strains(table: &SeriesTable, start: Real) -> Option<(usize, Vec<Strains>)> {
+    let time = table.column("time")?;
+    let first = time.iter().position(|&t| t >= start - 1e-12)?;
+    let volume = table.column("volume")?;
+    let extents: Vec<Vec<Real>> = (AXES[..DIM].iter())
+        .map(|a| table.column(&format!("extent_{a}")))
+        .collect::<Option<_>>()?;
+    let last = time.len() - 1;
+    let shortening = |e: &Vec<Real>| (e[first] - e[last]) / e[first];
+    let axis =
+        (0..DIM).max_by(|&a, &b| shortening(&extents[a]).total_cmp(&shortening(&extents[b])))?;
+    let e = &extents[axis];
+    let rows = (first..=last)
+        .map(|k| {
+            let axial = (e[first] - e[k]) / e[first];
+            (axial, (volume[k] - volume[first]) / volume[first], k)
+        })
+        .collect();
+    Some((axis, rows))
+}
+
+/// `micro.png`: the stress ratio `q/p`, the volumetric strain and `z*` against the axial strain
+/// of the last stage (the biaxial or triaxial test's curves), from the rows of `micro.csv`
+/// from `start` (s) on.
+pub fn write_plot(
+    table: &SeriesTable,
+    start: Real,
+    path: &Path,
+    title: &str,
+) -> Result<(), RunError> {
+    let Some((axis, rows)) = strains(table, start) else {
+        return Ok(());
+    };
+    let column = |name: &str| table.column(name).unwrap_or_default();
+    let (ratio, z) = (
+        column("stress_ratio"),
+        column("coordination_without_rattlers"),
+    );
+    let curve = |label: &str, y: &dyn Fn(&Strains) -> Real| xper_io::Curve {
+        label: label.into(),
+        points: rows.iter().map(|r| (r.0, y(r))).collect(),
+    };
+    let x = format!("axial strain (L0 - L) / L0 along {}", AXES[axis]);
+    let panels = [
+        crate::run_outputs::panel(
+            "Stress ratio",
+            &x,
+            "q / p",
+            vec![curve("q/p", &|r| ratio[r.2])],
+            false,
+        ),
+        crate::run_outputs::panel(
+            "Volumetric strain",
+            &x,
+            "(V - V0) / V0 (dilation > 0)",
+            vec![curve("volumetric strain", &|r| r.1)],
+            false,
+        ),
+        crate::run_outputs::panel(
+            "Coordination",
+            &x,
+            "z*",
+            vec![curve("z* (no rattlers)", &|r| z[r.2])],
+            false,
+        ),
+    ];
+    xper_io::plot_panels(path, title, &panels, 900, 300).map_err(io_err)
 }

@@ -51,6 +51,12 @@ pub fn check_distributable(
             file.display()
         )));
     }
+    if crate::build::scene_has_events(scene) {
+        return Err(RunError::BadInput(format!(
+            "{}: [[events]] run on one process only for now",
+            file.display()
+        )));
+    }
     let pressure = |d: &xper_scene::Drive| matches!(d, xper_scene::Drive::Pressure(_));
     if let Some(k) = (scene.bodies.iter()).position(|b| b.drives.iter().any(pressure)) {
         return Err(RunError::BadInput(format!(

@@ -265,6 +265,8 @@ pub(crate) enum Driven {
     Wall,
     /// A wall with a mass: velocity, force, or (on a translation) a pressure.
     MassiveWall,
+    /// The bodies of a group from an `[[events]]` entry: velocity or force.
+    Event,
 }
 
 /// A pressure entry of a `drive` table, read by the wall's reader (which knows its normal).
@@ -300,12 +302,20 @@ pub(crate) fn drives_of<const N: usize>(
             let drive = match (driven, pressure.as_mut()) {
                 (Driven::MassiveWall, Some(read)) => read(ctx, k, &e),
                 (Driven::Body, _) => {
-                    let why = "a pressure drives a wall with a `mass` (it needs the wall's normal                                and length); drive a body by a `force`";
+                    let why = "a pressure drives a wall with a `mass` (it needs the wall's normal \
+                               and length); drive a body by a `force`";
+                    ctx.err(p.pos, &e.field("pressure"), why);
+                    None
+                }
+                (Driven::Event, _) => {
+                    let why = "an event sets velocity or force drives; give a pressure in the \
+                               wall's own `drive`";
                     ctx.err(p.pos, &e.field("pressure"), why);
                     None
                 }
                 _ => {
-                    let why = "a wall is driven by a pressure only when it has a `mass` (kg per                                m of thickness; walls without one have an infinite mass)";
+                    let why = "a wall is driven by a pressure only when it has a `mass` (kg per \
+                               m of thickness; walls without one have an infinite mass)";
                     ctx.err(p.pos, &e.field("pressure"), why);
                     None
                 }
@@ -318,7 +328,8 @@ pub(crate) fn drives_of<const N: usize>(
         let drive = match (e.get("velocity"), e.get("force")) {
             (Some(v), None) => time_function(ctx, v, &e.field("velocity")).map(Drive::Velocity),
             (None, Some(f)) if driven == Driven::Wall => {
-                let why = "a wall without a `mass` cannot be driven by a force (its mass is                            infinite); give it a `mass` (kg per m of thickness) or use `velocity`";
+                let why = "a wall without a `mass` cannot be driven by a force (its mass is \
+                           infinite); give it a `mass` (kg per m of thickness) or use `velocity`";
                 ctx.err(f.pos, &e.field("force"), why);
                 None
             }

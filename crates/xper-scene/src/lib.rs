@@ -20,6 +20,7 @@ pub mod types3d;
 
 mod bodies;
 mod document;
+mod events;
 mod fluid;
 mod fracture;
 mod generators;
@@ -43,8 +44,8 @@ pub use fracture::types::{
 pub use generators::MAX_GENERATED;
 pub use overlap::MAX_OVERLAP_REPORTS;
 pub use types::{
-    Acceleration, BodyDesc, CheckPass, ConvergenceNorm, Detection, Drive, ExtentDesc, FluidDesc,
-    FluidSideDesc, LawDesc, MicroVolume, OutputSettings, PressureDesc, Scene, ShapeDesc,
+    Acceleration, BodyDesc, CheckPass, ConvergenceNorm, Detection, Drive, EventDesc, ExtentDesc,
+    FluidDesc, FluidSideDesc, LawDesc, MicroVolume, OutputSettings, PressureDesc, Scene, ShapeDesc,
     SolverSettings, TimeFunction, VelocitySolverKind,
 };
 pub use types3d::{BodyDesc3, Scene3, ShapeDesc3};
@@ -65,6 +66,7 @@ const TOP_KEYS: &[&str] = &[
     "bodies",
     "walls",
     "generators",
+    "events",
 ];
 
 /// Reads and parses the scene file at `path`. An I/O error is reported as a single
@@ -246,7 +248,12 @@ fn rigid_scene_with(ctx: &mut Ctx, root: &Tbl, header: sections::Header) -> Opti
         overlap::check(ctx, &built);
     }
     let laws = sections::laws(ctx, root, &groups);
+    let events = events::events(ctx, root, &groups, &built, &laws);
     let fluid = fluid::fluid(ctx, root, &built).flatten();
+    if let (Some(_), Some(n)) = (&fluid, root.get("events")) {
+        let why = "events change rigid scenes without `[fluid]`";
+        ctx.err(n.pos, "events", why);
+    }
     if let (Some(_), Some(_), Some(t)) = (&fluid, output.micro, root.get("output")) {
         if let Some(n) = (Tbl::of(ctx, t, "output".into())).and_then(|t| t.get("micro")) {
             let why = "the granular measures are of rigid scenes without `[fluid]`";
@@ -273,6 +280,7 @@ fn rigid_scene_with(ctx: &mut Ctx, root: &Tbl, header: sections::Header) -> Opti
         laws,
         bodies: built.bodies,
         fluid,
+        events,
     };
     Some(scene)
 }

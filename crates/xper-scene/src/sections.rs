@@ -498,7 +498,11 @@ pub(crate) fn laws(ctx: &mut Ctx, root: &Tbl, groups: &Groups) -> Vec<LawDesc> {
     out
 }
 
-fn between(ctx: &mut Ctx, t: &Tbl, groups: &Groups) -> Option<([usize; 2], crate::tree::Pos)> {
+pub(crate) fn between(
+    ctx: &mut Ctx,
+    t: &Tbl,
+    groups: &Groups,
+) -> Option<([usize; 2], crate::tree::Pos)> {
     let field = t.field("between");
     let Some(n) = t.get("between") else {
         t.missing(ctx, "between");

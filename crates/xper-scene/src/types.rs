@@ -31,6 +31,8 @@ pub struct Scene {
     pub bodies: Vec<BodyDesc>,
     /// The fluid around the disks, when the scene has a `[fluid]` section.
     pub fluid: Option<FluidDesc>,
+    /// `[[events]]` by increasing time.
+    pub events: Vec<EventDesc>,
 }
 
 /// Which contact solver to use for the velocity problem of each step.
@@ -220,6 +222,18 @@ pub enum Drive {
     /// A pressure on a wall with a mass, applied as the force `p A n_d` on this translational
     /// degree of freedom (`[[walls]] drive.<dof> = { pressure = ..., between = [...] }`).
     Pressure(PressureDesc),
+}
+
+/// An `[[events]]` entry: changes made at a time, the stages of a staged test.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EventDesc {
+    /// When, in s: before the first step that begins at or after it.
+    pub time: f64,
+    /// New friction coefficients of the laws between pairs of groups (indices into
+    /// [`Scene::groups`]).
+    pub frictions: Vec<([usize; 2], f64)>,
+    /// New drives: `(body, degree of freedom, drive)`, bodies indexing [`Scene::bodies`].
+    pub drives: Vec<(usize, usize, Drive)>,
 }
 
 /// A pressure drive of a wall: a servo wall at constant confining pressure.

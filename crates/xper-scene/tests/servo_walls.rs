@@ -133,3 +133,70 @@ fn micro_output_setting() {
     let t = with_header("[output]\nmicro = \"box\"\n");
     expect_error(&t, "output.micro", "micro", "box");
 }
+
+#[test]
+fn events_change_friction_and_drives_at_their_time() {
+    let walls = box_walls("mass = 2.0\ndrive = { y = { pressure = 1e4 } }");
+    let laws =
+        "[[laws]]\nbetween = [\"top\", \"top\"]\nkind = \"signorini_coulomb\"\nfriction = 0.0\n";
+    let event = |time: &str, body: &str| format!("[[events]]\ntime = {time}\n{body}\n");
+    let t = with_header(&format!(
+        "{walls}{laws}{}{}",
+        event(
+            "0.5",
+            "drives = [{ group = \"top\", drive = { y = { velocity = -0.1 } } }]"
+        ),
+        event(
+            "0.25",
+            "friction = [{ between = [\"top\", \"top\"], value = 0.4 }]"
+        ),
+    ));
+    let s = ok(&t);
+    // Sorted by time.
+    assert_eq!(s.events.len(), 2);
+    assert_eq!(s.events[0].time, 0.25);
+    assert_eq!(s.events[0].frictions, vec![([2, 2], 0.4)]);
+    assert_eq!(
+        s.events[1].drives,
+        vec![(2, 1, Drive::Velocity(TimeFunction::Constant(-0.1)))]
+    );
+
+    let bad = |body: &str| with_header(&format!("{walls}{laws}{}", event("0.5", body)));
+    let t = bad("friction = [{ between = [\"top\", \"left\"], value = 0.4 }]");
+    expect_error(
+        &t,
+        "events[0].friction[0].between",
+        "friction",
+        "no law between `top` and `left`",
+    );
+    let t = bad("friction = [{ between = [\"top\", \"top\"], value = -1.0 }]");
+    expect_error(
+        &t,
+        "events[0].friction[0].value",
+        "friction",
+        "must be >= 0",
+    );
+    let t = bad("drives = [{ group = \"nowhere\", drive = { y = { velocity = 1.0 } } }]");
+    expect_error(
+        &t,
+        "events[0].drives[0].group",
+        "drives",
+        "no group named `nowhere`",
+    );
+    let t = bad("drives = [{ group = \"left\", drive = { y = { force = 1.0 } } }]");
+    expect_error(
+        &t,
+        "events[0].drives[0].drive",
+        "drives",
+        "a force cannot move it",
+    );
+    let t = bad("drives = [{ group = \"top\", drive = { y = { pressure = 1.0 } } }]");
+    expect_error(
+        &t,
+        "events[0].drives[0].drive.y.pressure",
+        "drives",
+        "give a pressure in the wall's own",
+    );
+    let t = with_header(&format!("{walls}{laws}[[events]]\ntime = -1.0\n"));
+    expect_error(&t, "events[0].time", "time = -1.0", "must be >= 0");
+}
