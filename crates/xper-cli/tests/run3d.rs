@@ -342,3 +342,50 @@ fn a_dumped_3d_problem_solved_by_xper_solve_gives_the_stepping_impulses() {
         "impulses differ by {worst:e} (largest {scale:e})"
     );
 }
+
+#[test]
+fn micro_measures_of_a_3d_scene_take_the_box_of_the_walls() {
+    use xper_scene::ShapeDesc3;
+    let dir = common::temp_dir("micro3d");
+    let path = common::shipped_scene("box3d10k", 20, [10, 20], &dir);
+    let text = std::fs::read_to_string(&path).unwrap();
+    std::fs::write(
+        &path,
+        text.replace("[output]", "[output]\nmicro = \"walls\""),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    common::assert_success(&common::run_scene(&path, &out, &["--quiet"]));
+    let table = xper_io::SeriesTable::read_csv(&out.join("micro.csv")).unwrap();
+    for c in ["stress_xz", "stress_zz", "fabric_yz", "extent_z"] {
+        assert!(table.columns.iter().any(|x| x == c), "{c}");
+    }
+    // Independently: the spheres' volume over the box spanned by the six walls' centres.
+    let xper_scene::AnyScene::Rigid3(scene) = xper_scene::load_any_scene(&path).unwrap() else {
+        panic!("a 3D scene");
+    };
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    let mut spheres = 0.0;
+    for b in &scene.bodies {
+        match b.shape {
+            ShapeDesc3::Sphere { radius } => {
+                spheres += 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3)
+            }
+            ShapeDesc3::Plane { .. } => {
+                for k in 0..3 {
+                    lo[k] = lo[k].min(b.position[k]);
+                    hi[k] = hi[k].max(b.position[k]);
+                }
+            }
+            ShapeDesc3::Polyhedron { .. } => panic!("box3d10k holds spheres"),
+        }
+    }
+    let volume: f64 = (0..3).map(|k| hi[k] - lo[k]).product();
+    let phi = table.column("solid_fraction").unwrap()[0];
+    assert!(
+        (phi - spheres / volume).abs() < 1e-12 * phi,
+        "{phi} {}",
+        spheres / volume
+    );
+    assert!((table.column("volume").unwrap()[0] - volume).abs() < 1e-12 * volume);
+}

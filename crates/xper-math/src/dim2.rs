@@ -109,6 +109,18 @@ mod tests {
     use super::*;
 
     #[test]
+    fn principal_values_and_invariants_of_a_rotated_tensor() {
+        let (c, s) = (0.3f64.cos(), 0.3f64.sin());
+        let r = Tensor::new(c, -s, s, c);
+        let t = r * Tensor::new(3.0, 0.0, 0.0, 1.0) * r.transpose();
+        let [s1, s2] = principal_values(&t);
+        assert!((s1 - 3.0).abs() < 1e-14 && (s2 - 1.0).abs() < 1e-14);
+        // q / p = sin(phi): 1 / 2 at 30 degrees.
+        assert_eq!(stress_invariants([3.0, 1.0]), (2.0, 1.0));
+        assert!((fabric_anisotropy([0.6, 0.4]) - 0.4).abs() < 1e-15);
+    }
+
+    #[test]
     fn cross_and_spin_are_consistent() {
         let r = Vector::new(0.3, -1.2);
         let n = Vector::new(0.6, 0.8);

@@ -137,6 +137,17 @@ mod tests {
     }
 
     #[test]
+    fn principal_values_and_invariants_of_a_rotated_tensor() {
+        let q = Rotation::from_scaled_axis(Vector::new(0.3, -0.7, 0.2));
+        let r = q.to_rotation_matrix();
+        let t = r * Tensor::from_diagonal(&Vector::new(1.0, 3.0, 2.0)) * r.transpose();
+        let [s1, s2, s3] = principal_values(&t);
+        assert!((s1 - 3.0).abs() < 1e-12 && (s2 - 2.0).abs() < 1e-12 && (s3 - 1.0).abs() < 1e-12);
+        assert_eq!(stress_invariants([3.0, 2.0, 1.0]), (2.0, 2.0));
+        assert!((fabric_anisotropy([0.5, 0.3, 0.2]) - 0.75).abs() < 1e-15);
+    }
+
+    #[test]
     fn cross_and_spin_are_consistent() {
         let (r, n, w) = (
             Vector::new(0.3, -1.2, 0.7),

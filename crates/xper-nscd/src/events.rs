@@ -94,16 +94,7 @@ mod tests {
             restitution: 0.0,
         };
         laws.set(0, 0, InteractionLaw::SignoriniCoulomb(law));
-        let params = StepParams {
-            dt: 0.01,
-            theta: 0.5,
-            gravity: Vector::zeros(),
-            alert_distance: 0.0,
-            detection: Default::default(),
-            nlgs: Default::default(),
-            solver: Default::default(),
-            projection_tolerance: None,
-        };
+        let params = StepParams::for_tests(0.01);
         let mut world = World::new(bodies, laws, params);
         world.events.list = vec![Event {
             // Three steps of 0.01 s end at 0.030000000000000002: round-off must not delay it.

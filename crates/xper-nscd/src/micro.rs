@@ -316,16 +316,7 @@ mod tests {
             bodies.insert(Body::disk(1.0, 1.0, at(x)));
         }
         bodies.insert(wall(4.0));
-        let params = StepParams {
-            dt: 0.01,
-            theta: 0.5,
-            gravity: Vector::zeros(),
-            alert_distance: 0.0,
-            detection: Default::default(),
-            nlgs: Default::default(),
-            solver: Default::default(),
-            projection_tolerance: None,
-        };
+        let params = StepParams::for_tests(0.01);
         let mut world = World::new(bodies, LawTable::new(1), params);
         for (pair, point) in [([0, 1], 0.0), ([1, 2], 2.0), ([2, 6], 4.0), ([3, 4], 11.0)] {
             let x = |b: u32| world.bodies.position[b as usize];

@@ -30,6 +30,24 @@ pub struct StepParams {
     pub projection_tolerance: Option<Real>,
 }
 
+#[cfg(all(test, feature = "dim2"))]
+impl StepParams {
+    /// Time step `dt` (s), theta 0.5, no gravity, no alert distance, the default NLGS: the
+    /// parameters of the unit tests.
+    pub(crate) fn for_tests(dt: Real) -> Self {
+        StepParams {
+            dt,
+            theta: 0.5,
+            gravity: Vector::zeros(),
+            alert_distance: 0.0,
+            detection: Default::default(),
+            nlgs: Default::default(),
+            solver: Default::default(),
+            projection_tolerance: None,
+        }
+    }
+}
+
 /// The configuration on which a step detects its contacts (pairs within the alert distance)
 /// and measures their gaps, normals and lever arms.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]

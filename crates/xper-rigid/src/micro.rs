@@ -119,6 +119,28 @@ pub fn force_distribution(world: &World) -> Vec<[Real; 3]> {
         .collect()
 }
 
+/// `xper post` on the payload of a rigid run's checkpoint (`label` names it in errors): the
+/// measures of its world written to `out` ([`post`]); returns the line to print.
+pub fn post_checkpoint(
+    payload: &[u8],
+    source: VolumeSource,
+    out: &Path,
+    label: &Path,
+) -> Result<String, RunError> {
+    let world = World::from_bytes(payload)
+        .map_err(|e| RunError::BadInput(format!("{}: {e}", label.display())))?;
+    let m = post(&world, source, out, label)?;
+    Ok(format!(
+        "step {}: p {:.6e} Pa, q/p {:.4}, solid fraction {:.4}, z {:.4}, z* {:.4}",
+        world.step,
+        m.pressure,
+        m.deviator / m.pressure,
+        m.solid_fraction,
+        m.coordination,
+        m.coordination_without_rattlers
+    ))
+}
+
 /// `xper post`: the measures of `world` written to `out` as `micro.json`, `forces.csv` (the
 /// distribution) and `force_chains.vtu`; returns the measures.
 pub fn post(

@@ -166,14 +166,14 @@ fn events_change_friction_and_drives_at_their_time() {
     expect_error(
         &t,
         "events[0].friction[0].between",
-        "friction",
+        "value = 0.4",
         "no law between `top` and `left`",
     );
     let t = bad("friction = [{ between = [\"top\", \"top\"], value = -1.0 }]");
     expect_error(
         &t,
         "events[0].friction[0].value",
-        "friction",
+        "value = -1.0",
         "must be >= 0",
     );
     let t = bad("drives = [{ group = \"nowhere\", drive = { y = { velocity = 1.0 } } }]");

@@ -28,50 +28,21 @@ pub fn post(
         ))
     };
     let what = "an xper checkpoint of a rigid scene";
+    let source = |micro: Option<MicroVolume>| volume.or(micro).unwrap_or(MicroVolume::Walls);
     let line = match scene {
         AnyScene::Rigid(s) if s.fluid.is_some() => return Err(not_rigid("fluid")),
         AnyScene::Rigid(s) => {
-            let source = volume.or(s.output.micro).unwrap_or(MicroVolume::Walls);
-            let bytes: Vec<u8> = read_checkpoint(run_dir, what)?;
-            let world = xper_nscd::World::from_bytes(&bytes).map_err(bad(&label))?;
-            let source = xper_rigid::micro::volume_source(source);
-            let m = xper_rigid::micro::post(&world, source, &out, &label)?;
-            summary(
-                world.step,
-                m.pressure,
-                m.deviator,
-                m.solid_fraction,
-                m.coordination,
-            ) + &format!(", z* {:.4}", m.coordination_without_rattlers)
+            let payload: Vec<u8> = read_checkpoint(run_dir, what)?;
+            let source = xper_rigid::micro::volume_source(source(s.output.micro));
+            xper_rigid::micro::post_checkpoint(&payload, source, &out, &label)?
         }
         AnyScene::Rigid3(s) => {
-            let source = volume.or(s.output.micro).unwrap_or(MicroVolume::Walls);
-            let bytes: Vec<u8> = read_checkpoint(run_dir, what)?;
-            let world = xper_nscd3d::World::from_bytes(&bytes).map_err(bad(&label))?;
-            let source = xper_rigid3d::micro::volume_source(source);
-            let m = xper_rigid3d::micro::post(&world, source, &out, &label)?;
-            summary(
-                world.step,
-                m.pressure,
-                m.deviator,
-                m.solid_fraction,
-                m.coordination,
-            ) + &format!(", z* {:.4}", m.coordination_without_rattlers)
+            let payload: Vec<u8> = read_checkpoint(run_dir, what)?;
+            let source = xper_rigid3d::micro::volume_source(source(s.output.micro));
+            xper_rigid3d::micro::post_checkpoint(&payload, source, &out, &label)?
         }
         AnyScene::Fracture(_) => return Err(not_rigid("fracture")),
     };
     println!("{line}; written to {}", out.display());
     Ok(())
-}
-
-/// A checkpoint's payload error as a bad input naming the file.
-fn bad(label: &Path) -> impl Fn(String) -> RunError + '_ {
-    move |e| RunError::BadInput(format!("{}: {e}", label.display()))
-}
-
-fn summary(step: u64, p: f64, q: f64, phi: f64, z: f64) -> String {
-    format!(
-        "step {step}: p {p:.6e} Pa, q/p {:.4}, solid fraction {phi:.4}, z {z:.4}",
-        q / p
-    )
 }
