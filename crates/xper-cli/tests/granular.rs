@@ -191,3 +191,23 @@ fn biaxial_small_compacts_isotropically_then_shears_with_friction() {
     assert!(relative(sxx, 1e4) < 0.05, "{sxx}");
     assert!(out.join("micro.png").exists());
 }
+
+#[test]
+fn measures_without_a_box_of_walls_stop_the_run_with_exit_2() {
+    let dir = temp_dir("micro_no_box");
+    let drop = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/drop/scene.toml");
+    let text = std::fs::read_to_string(drop).unwrap();
+    let path = dir.join("scene.toml");
+    std::fs::write(
+        &path,
+        text.replace("[output]", "[output]\nmicro = \"walls\""),
+    )
+    .unwrap();
+    let run = run_scene(&path, &dir.join("out"), &["--quiet"]);
+    assert_eq!(run.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(
+        stderr.contains("scene.toml: [output] micro: the walls") && stderr.contains("along x"),
+        "{stderr}"
+    );
+}

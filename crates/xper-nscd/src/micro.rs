@@ -97,12 +97,13 @@ impl std::fmt::Display for MicroError {
         match self {
             MicroError::NoVolume { source, axis } => write!(
                 f,
-                "the {} span no volume along axis {axis}: the measures need a box of walls \
-                 around the grains (`walls`), or use `grains`",
+                "the {} span no volume along {}: the measures need a box of walls around the \
+                 grains (`walls`), or use `grains`",
                 match source {
                     VolumeSource::Walls => "walls (the bodies that are not free grains)",
                     VolumeSource::Grains => "grains",
-                }
+                },
+                ["x", "y", "z"][*axis]
             ),
         }
     }
