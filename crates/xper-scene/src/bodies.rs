@@ -490,6 +490,7 @@ pub(crate) fn walls(
         } else {
             Driven::Wall
         };
+        let spans_before = pending.len();
         let mut read = |ctx: &mut Ctx, dof: usize, e: &Tbl| {
             crate::pressure::read(ctx, dof, e, &frame, pending)
         };
@@ -499,6 +500,8 @@ pub(crate) fn walls(
             Got::Val(d, _) => drives_of(ctx, &d, driven, ["x", "y", "rotation"], Some(&mut read)),
         };
         let (Some(group), Some(drive)) = (group, drive) else {
+            // Not built: its `between` would name a body that is not this wall.
+            pending.truncate(spans_before);
             continue;
         };
         let mut b = wall_body(from, to, group);

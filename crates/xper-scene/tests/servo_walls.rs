@@ -126,6 +126,21 @@ fn refused_pressures_name_the_field_and_the_reason() {
 }
 
 #[test]
+fn a_refused_wall_with_a_pressure_span_is_an_error_not_a_panic() {
+    // The wall is not built (no group): its `between` must not be resolved for another body.
+    let t = with_header(
+        "[[walls]]\nfrom = [1.0, 1.0]\nto = [0.0, 1.0]\nmass = 1.0\n\
+         drive = { y = { pressure = 1e4, between = [\"a\", \"b\"] } }\n",
+    );
+    expect_error(
+        &t,
+        "walls[0].group",
+        "[[walls]]",
+        "missing required key `group`",
+    );
+}
+
+#[test]
 fn micro_output_setting() {
     let s = ok(&with_header("[output]\nmicro = \"grains\"\n"));
     assert_eq!(s.output.micro, Some(MicroVolume::Grains));
