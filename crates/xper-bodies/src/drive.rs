@@ -112,14 +112,6 @@ impl PressureDrive {
             .product();
         p * extent * self.direction
     }
-
-    /// The bodies whose positions the extent follows.
-    pub fn followed_bodies(&self) -> impl Iterator<Item = u32> + '_ {
-        self.extent.iter().flat_map(|f| match f {
-            ExtentFactor::Fixed(_) => vec![],
-            ExtentFactor::Between { bodies, .. } => bodies.to_vec(),
-        })
-    }
 }
 
 impl Drive {
@@ -169,6 +161,5 @@ mod tests {
         let at = |y: Real| Vector::from_fn(|k, _| if k == 1 { y } else { 7.0 });
         let f = drive.force(1e5, &[at(0.25), at(0.05)]);
         assert!((f - (-1e5 * 0.2 * 0.5)).abs() < 1e-9, "{f}");
-        assert_eq!(drive.followed_bodies().collect::<Vec<_>>(), vec![0, 1]);
     }
 }

@@ -75,6 +75,9 @@ pub fn angular_from_coords(c: &[Real]) -> AngVector {
     c[0]
 }
 
+/// The names of the axes (column names, messages).
+pub const AXIS_NAMES: [&str; DIM] = ["x", "y"];
+
 /// A second-order tensor of the space (stress, fabric), `DIM x DIM`.
 pub type Tensor = nalgebra::Matrix2<Real>;
 

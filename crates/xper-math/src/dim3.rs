@@ -90,6 +90,9 @@ pub fn angular_from_coords(c: &[Real]) -> AngVector {
     AngVector::new(c[0], c[1], c[2])
 }
 
+/// The names of the axes (column names, messages).
+pub const AXIS_NAMES: [&str; DIM] = ["x", "y", "z"];
+
 /// A second-order tensor of the space (stress, fabric), `DIM x DIM`.
 pub type Tensor = nalgebra::Matrix3<Real>;
 

@@ -30,7 +30,9 @@
 //! ([`VolumeSource::Grains`]).
 
 use crate::World;
-use xper_math::{fabric_anisotropy, principal_values, stress_invariants, Real, Tensor, Vector};
+use xper_math::{
+    fabric_anisotropy, principal_values, stress_invariants, Real, Tensor, Vector, AXIS_NAMES,
+};
 
 /// How the volume `V` of the measures is taken.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -103,7 +105,7 @@ impl std::fmt::Display for MicroError {
                     VolumeSource::Walls => "walls (the bodies that are not free grains)",
                     VolumeSource::Grains => "grains",
                 },
-                ["x", "y", "z"][*axis]
+                AXIS_NAMES[*axis]
             ),
         }
     }
@@ -111,12 +113,30 @@ impl std::fmt::Display for MicroError {
 
 impl std::error::Error for MicroError {}
 
+impl Micro {
+    /// `q / p` (0 without stress).
+    pub fn stress_ratio(&self) -> Real {
+        if self.pressure != 0.0 {
+            self.deviator / self.pressure
+        } else {
+            0.0
+        }
+    }
+}
+
 /// Whether body `b` is a grain: finite mass, nothing driven.
 pub fn is_grain(world: &World, b: usize) -> bool {
     world.bodies.is_dynamic(b)
         && (world.bodies.driven)
             .binary_search_by_key(&(b as u32), |(h, _)| h.0)
             .is_err()
+}
+
+/// Which bodies are grains ([`is_grain`]).
+fn grain_flags(world: &World) -> Vec<bool> {
+    (0..world.bodies.len())
+        .map(|b| is_grain(world, b))
+        .collect()
 }
 
 /// The extents of the box whose volume is `V` (m).
@@ -190,7 +210,7 @@ fn bearing_contacts(world: &World, grain: &[bool]) -> Vec<Bearing> {
 /// The measures of `world` with its last step's contact impulses.
 pub fn measure(world: &World, source: VolumeSource) -> Result<Micro, MicroError> {
     let n = world.bodies.len();
-    let grain: Vec<bool> = (0..n).map(|b| is_grain(world, b)).collect();
+    let grain = grain_flags(world);
     let extent = volume_box(world, &grain, source)?;
     let volume = extent.product();
     let contacts = bearing_contacts(world, &grain);
@@ -287,10 +307,7 @@ fn without_rattlers(contacts: &[Bearing], grain: &[bool], mut count: Vec<u32>) -
 /// The normal forces of the force-bearing contacts touching a grain, each over their mean
 /// (empty without such contacts).
 pub fn normalised_normal_forces(world: &World) -> Vec<Real> {
-    let grain: Vec<bool> = (0..world.bodies.len())
-        .map(|b| is_grain(world, b))
-        .collect();
-    let forces: Vec<Real> = (bearing_contacts(world, &grain).iter())
+    let forces: Vec<Real> = (bearing_contacts(world, &grain_flags(world)).iter())
         .map(|c| c.normal_force)
         .collect();
     let mean = forces.iter().sum::<Real>() / forces.len().max(1) as Real;

@@ -53,6 +53,11 @@ pub(super) fn bodies(scene: &Scene) -> (BodySet, Real) {
     (bodies, smallest)
 }
 
+/// Whether the scene has `[[events]]`.
+pub(super) fn has_events(scene: &Scene) -> bool {
+    !scene.events.is_empty()
+}
+
 /// The scene's `[[events]]` as the engine's.
 pub(super) fn events(scene: &Scene) -> Events {
     let list = (scene.events.iter())

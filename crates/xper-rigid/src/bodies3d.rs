@@ -61,6 +61,11 @@ pub(super) fn bodies(scene: &Scene3) -> (BodySet, Real) {
 }
 
 /// A 3D scene has no `[[events]]` yet.
+pub(super) fn has_events(_scene: &Scene3) -> bool {
+    false
+}
+
+/// A 3D scene has no `[[events]]` yet.
 pub(super) fn events(_scene: &Scene3) -> Events {
     Events::default()
 }

@@ -187,5 +187,5 @@ pub fn release_body_descriptions(scene: &mut RigidScene) {
 
 /// Whether the scene changes drives or laws during the run (`[[events]]`).
 pub(crate) fn scene_has_events(scene: &RigidScene) -> bool {
-    !dimension::events(scene).list.is_empty()
+    dimension::has_events(scene)
 }

@@ -172,10 +172,9 @@ impl Simulation for RigidSimulation<'_> {
         }
     }
     fn write_frame(&mut self, dir: &Path, pvd: &mut PvdCollection) -> Result<(), RunError> {
-        let world = self.whole()?;
-        if let Some((_, source)) = &self.micro {
-            let m = micro::measures(world, *source, &self.scene_file)?;
-            let row = micro::row(world, &m);
+        if let Some((_, source)) = self.micro {
+            let world = self.whole()?;
+            let row = micro::row(world, &micro::measures(world, source, &self.scene_file)?);
             if let Some((table, _)) = &mut self.micro {
                 table.push(row);
             }

@@ -6,12 +6,9 @@ use crate::run_outputs::io_err;
 use crate::RunError;
 use std::path::Path;
 use xper_io::SeriesTable;
-use xper_math::{Real, DIM};
+use xper_math::{Real, AXIS_NAMES, DIM};
 use xper_nscd::micro::{measure, normalised_normal_forces, Micro, VolumeSource};
 use xper_nscd::World;
-
-/// Axis names of tensor components.
-const AXES: [&str; 3] = ["x", "y", "z"];
 
 /// The volume source of a scene's setting.
 pub fn volume_source(v: xper_scene::MicroVolume) -> VolumeSource {
@@ -22,14 +19,13 @@ pub fn volume_source(v: xper_scene::MicroVolume) -> VolumeSource {
 }
 
 /// The columns of `micro.csv`: step, time, the volume and the extents of its box (m), then
-/// the measures (tensor
-/// components `stress_xy` for `sigma_xy`, Pa; `fabric_xy`).
+/// the measures (tensor components `stress_xy` for `sigma_xy`, Pa; `fabric_xy`).
 pub fn columns() -> Vec<String> {
     let mut c: Vec<String> = ["step", "time", "volume"].map(String::from).to_vec();
-    c.extend(AXES[..DIM].iter().map(|a| format!("extent_{a}")));
+    c.extend(AXIS_NAMES.iter().map(|a| format!("extent_{a}")));
     let tensor = |name: &str, c: &mut Vec<String>| {
-        for a in &AXES[..DIM] {
-            for b in &AXES[..DIM] {
+        for a in &AXIS_NAMES {
+            for b in &AXIS_NAMES {
                 c.push(format!("{name}_{a}{b}"));
             }
         }
@@ -67,12 +63,7 @@ pub fn row(world: &World, m: &Micro) -> Vec<Real> {
     let mut r = vec![world.step as Real, world.time, m.volume];
     r.extend(m.extent.iter());
     r.extend(m.stress.transpose().iter());
-    let ratio = if m.pressure != 0.0 {
-        m.deviator / m.pressure
-    } else {
-        0.0
-    };
-    r.extend([m.pressure, m.deviator, ratio]);
+    r.extend([m.pressure, m.deviator, m.stress_ratio()]);
     r.extend(m.fabric.transpose().iter());
     r.extend([
         m.anisotropy,
@@ -134,7 +125,7 @@ pub fn post_checkpoint(
         "step {}: p {:.6e} Pa, q/p {:.4}, solid fraction {:.4}, z {:.4}, z* {:.4}",
         world.step,
         m.pressure,
-        m.deviator / m.pressure,
+        m.stress_ratio(),
         m.solid_fraction,
         m.coordination,
         m.coordination_without_rattlers
@@ -178,7 +169,7 @@ pub fn strains(table: &SeriesTable, start: Real) -> Option<(usize, Vec<Strains>)
     let time = table.column("time")?;
     let first = time.iter().position(|&t| t >= start - 1e-12)?;
     let volume = table.column("volume")?;
-    let extents: Vec<Vec<Real>> = (AXES[..DIM].iter())
+    let extents: Vec<Vec<Real>> = (AXIS_NAMES.iter())
         .map(|a| table.column(&format!("extent_{a}")))
         .collect::<Option<_>>()?;
     let last = time.len() - 1;
@@ -216,7 +207,7 @@ pub fn write_plot(
         label: label.into(),
         points: rows.iter().map(|r| (r.0, y(r))).collect(),
     };
-    let x = format!("axial strain (L0 - L) / L0 along {}", AXES[axis]);
+    let x = format!("axial strain (L0 - L) / L0 along {}", AXIS_NAMES[axis]);
     let panels = [
         crate::run_outputs::panel(
             "Stress ratio",
