@@ -96,6 +96,7 @@ fn solve_velocities(problem: &RigidProblem, tolerance: Real) -> Option<Vec<[Real
     let mut op = RigidContactOperator {
         bodies: problem.bodies.clone(),
         rows: problem.rows.clone(),
+        cell: None,
     };
     let mut impulses = problem.impulses.clone();
     let info = nlgs(

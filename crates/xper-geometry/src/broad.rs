@@ -164,16 +164,34 @@ impl BroadPhase {
     /// Appends to `pairs` every pair `(i, j)`, `i < j`, whose bounding boxes grown by `alert`
     /// overlap. The order is deterministic.
     pub fn find_pairs(&mut self, bodies: &BodySet, alert: Real, pairs: &mut Vec<(u32, u32)>) {
-        let n = bodies.len();
+        self.find_pairs_of(
+            bodies.len(),
+            |b| {
+                let aabb = bodies.shape[b].aabb(&bodies.position[b], bodies.rotation[b]);
+                (aabb, bodies.shape[b].is_wall())
+            },
+            alert,
+            pairs,
+        );
+    }
+
+    /// [`BroadPhase::find_pairs`] over `n` boxes given by `box_of(k) = (box, is_wall)`
+    /// rather than a body set's (e.g. bodies and the periodic images of some of them).
+    pub fn find_pairs_of(
+        &mut self,
+        n: usize,
+        box_of: impl Fn(usize) -> (Aabb, bool),
+        alert: Real,
+        pairs: &mut Vec<(u32, u32)>,
+    ) {
         clear_for(&mut self.aabbs, n);
         clear_for(&mut self.small, n);
         self.large.clear();
         for b in 0..n {
-            let aabb = bodies.shape[b]
-                .aabb(&bodies.position[b], bodies.rotation[b])
-                .loosened(alert / 2.0);
-            self.aabbs.push(OuterBox::around(&aabb));
-            if bodies.shape[b].is_wall() {
+            let (aabb, wall) = box_of(b);
+            self.aabbs
+                .push(OuterBox::around(&aabb.loosened(alert / 2.0)));
+            if wall {
                 self.large.push(b as u32);
             } else {
                 self.small.push(b as u32);

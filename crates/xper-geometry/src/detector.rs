@@ -27,11 +27,12 @@ use crate::broad::BroadPhase;
 use crate::carry::CarryOver;
 use crate::contacts::{Contact, ContactKey, ContactSet};
 use crate::narrow::{collide, Manifold};
+use crate::periodic::{relabel, Image, Periodic};
 use crate::pose::{self, Orientation};
 use crate::ContactRow;
 use xper_bodies::BodySet;
 use xper_math::buffer::refill;
-use xper_math::{Real, DIM};
+use xper_math::{Aabb, Real, Tensor, DIM};
 
 /// Calls a candidate list should last, at the rate the bodies moved during the previous one.
 /// On box10k, 8 rather than 4 builds the list 328 times instead of 406 in 1500 steps and
@@ -81,6 +82,13 @@ pub struct Detector {
     first_start: Vec<u32>,
     /// The second body of each candidate pair, ascending within each first body's.
     seconds: Vec<u32>,
+    /// In a periodic cell, the image of the second body of each candidate pair at the build
+    /// (parallel to `seconds`); empty otherwise.
+    images: Vec<Image>,
+    /// In a periodic cell, each body's wrap count at the build (see [`Periodic::wraps`]).
+    built_wraps: Vec<Image>,
+    /// In a periodic cell, its edges and relabel count at the build.
+    built_lattice: Option<(Tensor, u64)>,
     /// Each body's position at the build, in single precision (see `pose::rounded`).
     built: Vec<[f32; DIM]>,
     /// The bodies with a reach (not disks or spheres), ascending, with their orientation and
@@ -124,19 +132,53 @@ impl Detector {
         law_of: impl Fn(u16, u16) -> Option<u16>,
         contacts: &mut ContactSet,
     ) {
+        self.detect_in(bodies, None, alert, law_of, contacts, &mut Vec::new());
+    }
+
+    /// [`Detector::detect`], in a periodic cell when `periodic` is given: contacts are also
+    /// found between a body and the images of the others, and `images` receives, per contact
+    /// in order, the image of its second body it is with (cleared first; left empty without a
+    /// cell).
+    pub fn detect_in(
+        &mut self,
+        bodies: &BodySet,
+        periodic: Option<Periodic>,
+        alert: Real,
+        law_of: impl Fn(u16, u16) -> Option<u16>,
+        contacts: &mut ContactSet,
+        images: &mut Vec<Image>,
+    ) {
         self.stats.calls += 1;
+        images.clear();
         // The list first, then the contacts: a build's arrays are gone before the merge.
-        let moved = self.moved_since_build(bodies, alert);
+        let moved = self.moved_since_build(bodies, periodic, alert);
         if moved.is_none_or(|m| m > self.skin) {
-            self.build(bodies, alert, moved);
+            self.build(bodies, periodic, alert, moved);
         }
         self.calls_since_build += 1;
         let mut merge = CarryOver::new(contacts);
         let immobile = |b: usize| !bodies.is_movable(b);
-        let mut pair = |i: u32, j: u32| {
+        let built_wraps = &self.built_wraps;
+        let mut pair = |i: u32, j: u32, built_image: Option<&Image>| {
             let (a, b) = (i as usize, j as usize);
             let (shape_a, shape_b) = (&bodies.shape[a], &bodies.shape[b]);
-            let (pa, pb) = (&bodies.position[a], &bodies.position[b]);
+            let pa = &bodies.position[a];
+            let image = match (periodic, built_image) {
+                (Some(p), Some(n)) => Some(relabel(
+                    n,
+                    [&p.wraps[a], &p.wraps[b]],
+                    [&built_wraps[a], &built_wraps[b]],
+                )),
+                _ => None,
+            };
+            let shifted;
+            let pb = match (periodic, &image) {
+                (Some(p), Some(n)) if n.iter().any(|&x| x != 0) => {
+                    shifted = bodies.position[b] + p.lattice.shift(n);
+                    &shifted
+                }
+                _ => &bodies.position[b],
+            };
             // Pairs of disks (spheres), the common case, without the general dispatch.
             let disks = match pose::round_pair(shape_a, shape_b, pa, pb, alert) {
                 Some(Some(p)) => Manifold::one(p),
@@ -167,11 +209,21 @@ impl Detector {
                     gap: p.gap,
                     impulse,
                 });
+                if let Some(n) = image {
+                    images.push(n);
+                }
             }
         };
         for (i, range) in (0u32..).zip(self.first_start.windows(2)) {
-            for &j in &self.seconds[range[0] as usize..range[1] as usize] {
-                pair(i, j);
+            let (from, to) = (range[0] as usize, range[1] as usize);
+            if self.images.is_empty() {
+                for &j in &self.seconds[from..to] {
+                    pair(i, j, None);
+                }
+            } else {
+                for (&j, n) in self.seconds[from..to].iter().zip(&self.images[from..to]) {
+                    pair(i, j, Some(n));
+                }
             }
         }
     }
@@ -179,19 +231,48 @@ impl Detector {
     /// How far two bodies may have moved towards each other since the list was built: the
     /// sum of the two largest displacement bounds `d_b`; `None` when the list is no use (none
     /// yet, another alert distance, bodies added, removed or renumbered).
-    fn moved_since_build(&self, bodies: &BodySet, alert: Real) -> Option<Real> {
+    fn moved_since_build(
+        &self,
+        bodies: &BodySet,
+        periodic: Option<Periodic>,
+        alert: Real,
+    ) -> Option<Real> {
         if self.built.len() != bodies.len()
             || self.built_alert != alert
             || ids_fingerprint(&bodies.id) != self.built_ids
         {
             return None;
         }
+        // In a periodic cell: each body's displacement counts its wraps since the build, and
+        // the images moved with the cell's edges by at most the sum of the edges' changes.
+        let mut drift = 0.0;
+        match (periodic, &self.built_lattice) {
+            (None, None) => {}
+            (Some(p), Some((edges, relabels))) => {
+                if p.lattice.relabels != *relabels || p.wraps.len() != bodies.len() {
+                    return None;
+                }
+                let change = p.lattice.edges - edges;
+                drift = (0..DIM)
+                    .filter(|&k| p.lattice.periodic[k])
+                    .map(|k| change.column(k).norm())
+                    .sum();
+            }
+            _ => return None,
+        }
         // The two largest squared bounds: the square root is taken of these two only (for a
         // disk, `d_b^2` is the squared displacement itself).
         let (mut first, mut second): (Real, Real) = (0.0, 0.0);
         let mut turning = self.built_turning.iter().peekable();
         for (b, built) in self.built.iter().enumerate() {
-            let p = bodies.position[b];
+            let mut p = bodies.position[b];
+            if let Some(periodic) = periodic {
+                let (now, then) = (&periodic.wraps[b], &self.built_wraps[b]);
+                if now != then {
+                    let n: Image = std::array::from_fn(|k| now[k] - then[k]);
+                    p += periodic.lattice.shift(&n);
+                }
+            }
             let d: [Real; DIM] = std::array::from_fn(|k| p[k] - built[k] as Real);
             let mut squared = d[0] * d[0];
             for x in &d[1..] {
@@ -205,12 +286,18 @@ impl Detector {
             second = second.max(squared.min(first));
             first = first.max(squared);
         }
-        Some(first.sqrt() + second.sqrt() + 2.0 * self.pose_rounding)
+        Some(first.sqrt() + second.sqrt() + 2.0 * self.pose_rounding + drift)
     }
 
     /// Runs the broad phase with the alert distance grown by a new skin, and records the
     /// poses it was built at; `moved` is [`Self::moved_since_build`] for the list that ends.
-    fn build(&mut self, bodies: &BodySet, alert: Real, moved: Option<Real>) {
+    fn build(
+        &mut self,
+        bodies: &BodySet,
+        periodic: Option<Periodic>,
+        alert: Real,
+        moved: Option<Real>,
+    ) {
         self.skin = self.next_skin(bodies, alert, moved);
         self.built_alert = alert;
         self.calls_since_build = 0;
@@ -234,13 +321,20 @@ impl Detector {
         );
         self.built_turning.shrink_to_fit();
         self.pose_rounding = rounding;
+        let previous = self.seconds.len();
+        self.seconds = Vec::new();
+        self.images = Vec::new();
+        if let Some(periodic) = periodic {
+            self.build_periodic(bodies, periodic, alert + self.skin);
+            return;
+        }
+        self.built_lattice = None;
+        self.built_wraps = Vec::new();
         // What serves only this build is held only during it, and never all at once: the list
         // that ends (dropped first), the broad phase's arrays (dropped once the pairs are
         // found), the unsorted pairs (dropped once sorted). Between builds the detector holds
         // the list and the poses alone; at a build its peak is the broad phase's arrays and
         // the unsorted pairs.
-        let previous = self.seconds.len();
-        self.seconds = Vec::new();
         let mut unsorted = Vec::with_capacity(previous + previous / 16 + 16);
         let mut broad = BroadPhase::new();
         broad.find_pairs(bodies, alert + self.skin, &mut unsorted);
@@ -251,6 +345,86 @@ impl Detector {
             &mut self.first_start,
             &mut self.seconds,
         );
+    }
+
+    /// The candidate pairs in a periodic cell, within `reach` (the alert distance and the
+    /// skin): the broad phase over the bodies and the images of those within reach of a side
+    /// (walls have no images); a pair of a body and an image is kept as the pair of the two
+    /// bodies with the image of the second, sorted by bodies then image, each once.
+    fn build_periodic(&mut self, bodies: &BodySet, periodic: Periodic, reach: Real) {
+        let lattice = periodic.lattice;
+        self.built_lattice = Some((lattice.edges, lattice.relabels));
+        refill(&mut self.built_wraps, periodic.wraps.iter().copied());
+        let Some(inverse) = lattice.inverse() else {
+            refill(
+                &mut self.first_start,
+                std::iter::repeat_n(0, bodies.len() + 1),
+            );
+            return;
+        };
+        let n = bodies.len();
+        let boxes: Vec<Aabb> = (0..n)
+            .map(|b| bodies.shape[b].aabb(&bodies.position[b], bodies.rotation[b]))
+            .collect();
+        let half_diagonal = |b: &Aabb| (b.max - b.min).norm() / 2.0;
+        let largest = (0..n)
+            .filter(|&b| !bodies.shape[b].is_wall())
+            .map(|b| half_diagonal(&boxes[b]))
+            .fold(0.0, Real::max);
+        let mut proxies: Vec<(u32, Image)> = Vec::new();
+        let mut near = Vec::new();
+        for (b, bb) in boxes.iter().enumerate() {
+            if bodies.shape[b].is_wall() {
+                continue;
+            }
+            near.clear();
+            let centre = (bb.min + bb.max) / 2.0;
+            let within = half_diagonal(bb) + largest + reach;
+            lattice.images_near(&inverse, &centre, within, &mut near);
+            proxies.extend(near.iter().map(|&m| (b as u32, m)));
+        }
+        let mut found = Vec::new();
+        BroadPhase::new().find_pairs_of(
+            n + proxies.len(),
+            |k| match k.checked_sub(n) {
+                None => (boxes[k], bodies.shape[k].is_wall()),
+                Some(p) => (
+                    lattice.shifted(&boxes[proxies[p].0 as usize], &proxies[p].1),
+                    false,
+                ),
+            },
+            reach,
+            &mut found,
+        );
+        let mut pairs: Vec<(u32, u32, Image)> = Vec::with_capacity(found.len());
+        for (a, b) in found {
+            let (a, b) = (a as usize, b as usize);
+            match (a.checked_sub(n), b.checked_sub(n)) {
+                (None, None) => pairs.push((a as u32, b as u32, [0; DIM])),
+                // Walls meet bodies, never their images (a wall is not repeated).
+                (None, Some(p)) | (Some(p), None) if !bodies.shape[a.min(b)].is_wall() => {
+                    let real = a.min(b) as u32;
+                    let (body, m) = proxies[p];
+                    if body > real {
+                        pairs.push((real, body, m));
+                    } else if body < real {
+                        pairs.push((body, real, m.map(|x| -x)));
+                    }
+                }
+                _ => {}
+            }
+        }
+        pairs.sort_unstable();
+        pairs.dedup();
+        refill(&mut self.first_start, std::iter::repeat_n(0, n + 1));
+        for &(i, _, _) in &pairs {
+            self.first_start[i as usize + 1] += 1;
+        }
+        for b in 0..n {
+            self.first_start[b + 1] += self.first_start[b];
+        }
+        self.seconds = pairs.iter().map(|p| p.1).collect();
+        self.images = pairs.iter().map(|p| p.2).collect();
     }
 
     /// The skin of a new list: what lasts [`TARGET_STEPS_PER_BUILD`] calls at the rate the

@@ -16,6 +16,7 @@ mod carry;
 mod contacts;
 mod detector;
 pub mod narrow;
+mod periodic;
 #[cfg(feature = "dim2")]
 #[path = "pose2d.rs"]
 mod pose;
@@ -31,6 +32,7 @@ pub use broad::{BroadPhase, OuterBox};
 pub use contacts::{Contact, ContactKey, ContactSet};
 pub use detector::{Detector, DetectorStats, SKIN_CAP_OVER_SIZE, TARGET_STEPS_PER_BUILD};
 pub use narrow::{collide, ContactPoint, Manifold, MANIFOLD_POINTS};
+pub use periodic::{Image, Lattice, Periodic};
 #[cfg(feature = "dim2")]
 pub use row2d::ContactRow;
 #[cfg(feature = "dim3")]

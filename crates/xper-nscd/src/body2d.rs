@@ -80,6 +80,13 @@ pub fn relative_velocity(row: &ContactRow, vi: &[Real; DOFS], vj: &[Real; DOFS])
     ]
 }
 
+/// A world vector `v` in the frame of `row`: `(v . n, v . t)`.
+#[inline(always)]
+pub fn local_of(row: &ContactRow, v: &Vector) -> Local {
+    let [nx, ny] = row.normal;
+    [nx * v.x + ny * v.y, -ny * v.x + nx * v.y]
+}
+
 /// Adds the local impulse `d` of `row` to the velocities of its two bodies (`-d` on the first).
 #[inline(always)]
 pub fn push_bodies(bodies: &mut [SolverBody], row: &ContactRow, d: Local) {

@@ -145,6 +145,12 @@ pub fn relative_velocity(row: &ContactRow, vi: &[Real; DOFS], vj: &[Real; DOFS])
     row.frame().map(|a| a.dot(&dv))
 }
 
+/// A world vector `v` in the frame of `row`: its components on `(n, t1, t2)`.
+#[inline(always)]
+pub fn local_of(row: &ContactRow, v: &Vector) -> Local {
+    row.frame().map(|a| a.dot(v))
+}
+
 /// Adds the local impulse `d` of `row` to the velocities of its two bodies (`-d` on the first).
 #[inline(always)]
 pub fn push_bodies(bodies: &mut [SolverBody], row: &ContactRow, d: Local) {

@@ -32,6 +32,7 @@
 #![warn(missing_docs)]
 
 mod assemble;
+pub mod cell;
 mod contact_solve;
 #[cfg(feature = "dim2")]
 #[path = "body2d.rs"]
@@ -49,8 +50,9 @@ mod step;
 mod world;
 
 pub use assemble::assemble_problem;
+pub use cell::{CellLoad, PeriodicCell};
 pub use dimension::Local;
-pub use operator::{ContactRow, RigidContactOperator, RigidProblem, SolverBody};
+pub use operator::{CellCoupling, ContactRow, RigidContactOperator, RigidProblem, SolverBody};
 pub use select::{contact_owner_body, is_movable, normal_shift, predicted_gap};
 pub use step::{energy_blown_up, ContactSolve, MoreauJean, StageTimes, StepError, StepReport};
 pub use world::{Detection, EnergyBudget, StepParams, VelocitySolver, World};

@@ -41,6 +41,9 @@ pub enum VolumeSource {
     Walls,
     /// The bounding box of the grains.
     Grains,
+    /// The periodic cell (its edges' diagonal components as the extents, their product, the
+    /// cell's volume for upper-triangular edges, as `V`).
+    Cell,
 }
 
 /// The measures of one state ([`measure`]).
@@ -92,6 +95,8 @@ pub enum MicroError {
         /// The first axis of zero extent.
         axis: usize,
     },
+    /// `V` is the periodic cell's, and there is none.
+    NoCell,
 }
 
 impl std::fmt::Display for MicroError {
@@ -104,8 +109,13 @@ impl std::fmt::Display for MicroError {
                 match source {
                     VolumeSource::Walls => "walls (the bodies that are not free grains)",
                     VolumeSource::Grains => "grains",
+                    VolumeSource::Cell => "periodic cell's edges",
                 },
                 AXIS_NAMES[*axis]
+            ),
+            MicroError::NoCell => write!(
+                f,
+                "the measures' volume is the periodic cell's (`cell`), and the scene has no cell"
             ),
         }
     }
@@ -145,6 +155,14 @@ pub fn volume_box(
     grain: &[bool],
     source: VolumeSource,
 ) -> Result<Vector, MicroError> {
+    if source == VolumeSource::Cell {
+        let cell = world.cell.as_ref().ok_or(MicroError::NoCell)?;
+        let extent = cell.lattice.edges.diagonal();
+        return match extent.iter().position(|e| !(*e > 0.0 && e.is_finite())) {
+            Some(axis) => Err(MicroError::NoVolume { source, axis }),
+            None => Ok(extent),
+        };
+    }
     let b = &world.bodies;
     let (mut lo, mut hi) = (
         Vector::repeat(Real::INFINITY),
@@ -153,7 +171,7 @@ pub fn volume_box(
     for k in (0..b.len()).filter(|&k| grain[k] == (source == VolumeSource::Grains)) {
         let (min, max) = match source {
             VolumeSource::Walls => (b.position[k], b.position[k]),
-            VolumeSource::Grains => {
+            VolumeSource::Grains | VolumeSource::Cell => {
                 let bb = b.shape[k].aabb(&b.position[k], b.rotation[k]);
                 (bb.min, bb.max)
             }

@@ -6,11 +6,11 @@
 //! stores what the two updates need and nothing else.
 
 pub use crate::dimension::SolverBody;
-use crate::dimension::{generalized_impulses, push_bodies, relative_velocity, Local};
+use crate::dimension::{generalized_impulses, local_of, push_bodies, relative_velocity, Local};
 use xper_bodies::BodySet;
 pub use xper_geometry::ContactRow;
 use xper_math::buffer::refill;
-use xper_math::{Real, DOFS};
+use xper_math::{Real, Tensor, Vector, DIM, DOFS};
 use xper_solver::{BlockOf, ContactOperator};
 
 #[cfg(feature = "dim2")]
@@ -42,6 +42,52 @@ pub struct RigidContactOperator {
     pub bodies: Vec<SolverBody>,
     /// One row per contact of the problem.
     pub rows: Vec<ContactRow>,
+    /// In a periodic cell, how its rows move with the cell; `None` otherwise.
+    pub cell: Option<CellCoupling>,
+}
+
+/// A periodic cell's part in the operator (see `crate::cell`): bodies other than walls move
+/// with the cell's homogeneous flow `L (x - o)` besides their own velocity (the one the
+/// operator holds), and the second body of a row may be an image `x_j + H n`, so a row's local
+/// velocity is `U = G^T v + F^T (L d)` with `d` the difference of the two bodies' positions
+/// in the flow (`x_j + H n - x_i`, the branch vector, between two such bodies; a wall's term
+/// is left out: walls do not follow the flow). The components of `L` under an imposed stress
+/// are unknowns of the problem, with an inertia, that the rows' impulses push like a body's
+/// velocity: `L_kl += I_kl^-1 p_k d_l` for the impulse `p` on the second body (M. Parrinello,
+/// A. Rahman, "Polymorphic transitions in single crystals: a new molecular dynamics method",
+/// J. Appl. Phys. 52:7182, 1981, for the cell as a degree of freedom).
+#[derive(Clone, Debug, Default)]
+pub struct CellCoupling {
+    /// Per row, `d`: the second body's position in the flow less the first's (m).
+    pub spans: Vec<Vector>,
+    /// The cell's velocity gradient `L` (1/s): the working one, the end of the step's.
+    pub gradient: Tensor,
+    /// `L` at the beginning of the step (1/s).
+    pub begin: Tensor,
+    /// Inverse inertia of each component of `L` (1 / (kg m^2) per m), 0 where it is imposed.
+    pub inv_inertia: Tensor,
+}
+
+impl CellCoupling {
+    /// Whether some component of `L` is an unknown.
+    #[inline]
+    fn has_free(&self) -> bool {
+        self.inv_inertia.iter().any(|&w| w != 0.0)
+    }
+
+    /// The flow's relative velocity at row `a`, `L d`, in the row's frame.
+    #[inline(always)]
+    fn offset(&self, row: &ContactRow, a: usize, gradient: &Tensor) -> Local {
+        local_of(row, &(gradient * self.spans[a]))
+    }
+
+    /// Adds the row's local impulse `d` to the free components of `L`.
+    #[inline(always)]
+    fn push(&mut self, row: &ContactRow, a: usize, d: Local) {
+        let p = row.world_impulse(d);
+        let d = self.spans[a];
+        self.gradient += self.inv_inertia.component_mul(&(p * d.transpose()));
+    }
 }
 
 impl RigidContactOperator {
@@ -56,11 +102,37 @@ impl RigidContactOperator {
         );
     }
 
-    /// Fills the Delassus blocks of the rows from the inverse masses of the bodies.
+    /// Fills the Delassus blocks of the rows from the inverse masses of the bodies (and, in
+    /// a periodic cell, the inverse inertia of the free components of its gradient: `W_ab +=
+    /// sum_kl I_kl^-1 (e_a)_k (e_b)_k d_l^2` over the frame's axes `e`).
     pub fn refresh_blocks(&mut self) {
         let bodies = &self.bodies;
         for row in &mut self.rows {
             row.refresh_block(|b| bodies[b].inv_mass);
+        }
+        let Some(cell) = self.cell.as_ref().filter(|c| c.has_free()) else {
+            return;
+        };
+        for (row, s) in self.rows.iter_mut().zip(&cell.spans) {
+            if s.iter().all(|&x| x == 0.0) {
+                continue;
+            }
+            let axes: [Vector; DIM] = std::array::from_fn(|a| {
+                row.world_impulse(std::array::from_fn(|k| (k == a) as u8 as Real))
+            });
+            // w_k = sum_l I_kl^-1 d_l^2: the cell's inverse inertia seen along axis k.
+            let w = Vector::from_fn(|k, _| {
+                (0..DIM)
+                    .map(|l| cell.inv_inertia[(k, l)] * s[l] * s[l])
+                    .sum()
+            });
+            let mut block = row.full_block();
+            for (a, ea) in axes.iter().enumerate() {
+                for (b, eb) in axes.iter().enumerate() {
+                    block[a * DIM + b] += ea.component_mul(&w).dot(eb);
+                }
+            }
+            row.set_full_block(block);
         }
     }
 
@@ -72,7 +144,11 @@ impl RigidContactOperator {
         let row = &self.rows[a];
         let vi = set.generalized_velocity(row.bodies[0] as usize);
         let vj = set.generalized_velocity(row.bodies[1] as usize);
-        relative_velocity(row, &vi, &vj)
+        let mut u = relative_velocity(row, &vi, &vj);
+        if let Some(cell) = &self.cell {
+            add(&mut u, cell.offset(row, a, &cell.begin));
+        }
+        u
     }
 
     /// Generalised impulses `(on body i, on body j)` of a local impulse `r` at a row.
@@ -99,12 +175,19 @@ impl ContactOperator for RigidContactOperator {
         let row = &self.rows[a];
         let vi = &self.bodies[row.bodies[0] as usize].velocity;
         let vj = &self.bodies[row.bodies[1] as usize].velocity;
-        relative_velocity(row, vi, vj)
+        let mut u = relative_velocity(row, vi, vj);
+        if let Some(cell) = &self.cell {
+            add(&mut u, cell.offset(row, a, &cell.gradient));
+        }
+        u
     }
 
     #[inline(always)]
     fn apply_impulse(&mut self, a: usize, d: Local) {
         push_bodies(&mut self.bodies, &self.rows[a], d);
+        if let Some(cell) = &mut self.cell {
+            cell.push(&self.rows[a], a, d);
+        }
     }
 
     /// The row and the two bodies' velocities are read once for the local velocity and the
@@ -119,10 +202,25 @@ impl ContactOperator for RigidContactOperator {
         let vi = self.bodies[row.bodies[0] as usize].velocity;
         let vj = self.bodies[row.bodies[1] as usize].velocity;
         let block = row.full_block();
-        let d = solve(&block, relative_velocity(row, &vi, &vj));
+        let mut u = relative_velocity(row, &vi, &vj);
+        if let Some(cell) = &self.cell {
+            add(&mut u, cell.offset(row, a, &cell.gradient));
+        }
+        let d = solve(&block, u);
         if d.iter().any(|&x| x != 0.0) {
             push_bodies(&mut self.bodies, row, d);
+            if let Some(cell) = &mut self.cell {
+                cell.push(row, a, d);
+            }
         }
         (block, d)
+    }
+}
+
+/// `u += v`.
+#[inline(always)]
+fn add(u: &mut Local, v: Local) {
+    for (x, y) in u.iter_mut().zip(v) {
+        *x += y;
     }
 }

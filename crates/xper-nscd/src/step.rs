@@ -18,6 +18,7 @@ use xper_math::buffer::{renew, renew_for};
 use xper_math::{Real, DIM, DOFS};
 use xper_solver::{nlgs, solve, ContactOperator, FrictionProblem, ProblemError, SolveError};
 
+mod periodic;
 mod project;
 
 /// A problem the assembly refused (inconsistent sizes: a bug, never the user's data).
@@ -58,6 +59,11 @@ pub struct MoreauJean {
     /// The bodies' configuration at the beginning of the step while they stand in the
     /// predicted one for the detection ([`Detection::Predicted`]); kept between steps.
     begin: Configuration,
+    /// In a periodic cell, the image of each contact's second body (from the detection).
+    images: Vec<xper_geometry::Image>,
+    /// In a periodic cell, every contact's image shift while the operator holds the active
+    /// ones' (see `all_rows`).
+    all_spans: Vec<xper_math::Vector>,
 }
 
 impl MoreauJean {
@@ -122,6 +128,12 @@ impl MoreauJean {
         shared: Option<&mut dyn ContactSolve<RigidContactOperator>>,
     ) -> Result<StepReport, StepError> {
         self.h = h;
+        if world.cell.is_some() && (shared.is_some() || world.params.solver != VelocitySolver::Nlgs)
+        {
+            return Err(StepError::Solver(SolveError::Unsupported(
+                "a periodic cell is solved by NLGS on one process only".into(),
+            )));
+        }
         world.apply_due_events(t_begin);
         let start = Instant::now();
         let mut report = StepReport {
@@ -199,14 +211,18 @@ impl MoreauJean {
         }
         world.energy.dissipated += dissipated;
         world.energy.external_work += self.driven_work(world, t_begin, t_end) - imposed_work;
+        world.energy.external_work += self.cell_work(world, t_begin, t_end);
 
         // Stage: linearised gaps at the end of the step, while the bodies still hold the
         // velocities at its beginning; the shifts are done with.
         self.shift = Vec::new();
         let deepest = self.end_gaps(world);
 
-        // Stage: update velocities and positions; keep impulses for the warm start.
+        // Stage: update velocities and positions (and, in a periodic cell, the flow's share
+        // and the cell's edges); keep impulses for the warm start.
+        self.carry_by_flow(world);
         self.update(world)?;
+        self.finish_cell(world);
         if self.active_is_subset {
             let impulses = &mut world.contacts.impulses;
             impulses.fill([0.0; DIM]);
@@ -222,6 +238,7 @@ impl MoreauJean {
         (report.projection_iterations, report.max_overlap) =
             self.project(world, deepest, reborrow(&mut shared))?;
         report.times.project = t_project.elapsed().as_secs_f64();
+        world.wrap_into_cell();
         Ok(())
     }
 
@@ -254,6 +271,8 @@ impl MoreauJean {
         self.mu = Vec::new();
         self.shift = Vec::new();
         self.impulses = Vec::new();
+        self.op.cell = None;
+        self.all_spans = Vec::new();
     }
 
     /// What the contact detector has done so far (calls, candidate-list builds, skin).
@@ -324,13 +343,7 @@ impl MoreauJean {
         if detection == Detection::Predicted {
             (world.bodies).advance_explicitly(h * (1.0 - theta), &mut self.begin);
         }
-        let laws = &world.laws;
-        self.detector.detect(
-            &world.bodies,
-            world.params.alert_distance,
-            |a, b| laws.between(a, b),
-            &mut world.contacts,
-        );
+        self.detect_contacts(world);
         if detection == Detection::Predicted {
             world.bodies.restore_configuration(&self.begin);
         }
@@ -353,6 +366,7 @@ impl MoreauJean {
         self.op
             .load_bodies(bodies, |b| bodies.generalized_velocity(b));
         self.op.rows = std::mem::take(&mut world.contacts.rows);
+        self.load_cell(world, t_begin, t_end);
         self.op.refresh_blocks();
 
         // Stage: free velocity.
@@ -407,6 +421,7 @@ impl MoreauJean {
         } else {
             self.impulses = std::mem::take(&mut world.contacts.impulses);
         }
+        self.select_spans();
         report.active = self.impulses.len();
     }
 

@@ -114,6 +114,8 @@ pub struct World {
     pub energy: EnergyBudget,
     /// Changes of drives and laws at given times (a staged test), and how many were made.
     pub events: crate::events::Events,
+    /// The periodic cell the bodies are in, if any (see [`crate::cell`]).
+    pub cell: Option<crate::cell::PeriodicCell>,
 }
 
 impl World {
@@ -133,7 +135,23 @@ impl World {
                 ..Default::default()
             },
             events: Default::default(),
+            cell: None,
         }
+    }
+
+    /// Puts the bodies in a periodic cell: its gradient starts at the imposed one at the
+    /// current time (zero on the components under stress), the bodies are wrapped into it,
+    /// and the energy budget starts afresh.
+    pub fn with_cell(mut self, mut cell: crate::cell::PeriodicCell) -> Self {
+        cell.gradient = cell.imposed_gradient(self.time);
+        cell.wraps = vec![[0; xper_math::DIM]; self.bodies.len()];
+        self.cell = Some(cell);
+        self.wrap_into_cell();
+        self.energy = EnergyBudget {
+            initial: self.kinetic_energy() + self.potential_energy(),
+            ..Default::default()
+        };
+        self
     }
 
     /// The interaction law of a contact between `bodies` (that of their groups), if any.
@@ -144,9 +162,13 @@ impl World {
         Some(*self.laws.law(k))
     }
 
-    /// Kinetic energy (J per m).
+    /// Kinetic energy (J per m), the periodic cell's included.
     pub fn kinetic_energy(&self) -> Real {
-        self.bodies.kinetic_energy()
+        // Without a cell, the bodies' alone (adding 0 would turn a -0 of no bodies into 0).
+        match &self.cell {
+            Some(c) => self.bodies.kinetic_energy() + c.kinetic_energy(),
+            None => self.bodies.kinetic_energy(),
+        }
     }
 
     /// Gravitational potential energy (J per m).

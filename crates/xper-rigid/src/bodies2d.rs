@@ -2,9 +2,11 @@
 
 use super::drive;
 use xper_bodies::{Body, BodySet, ConvexPolygon, Shape};
-use xper_math::{Real, Vector};
+use xper_geometry::Lattice;
+use xper_math::{Real, Tensor, Vector};
 use xper_nscd::events::{Change, Event, Events};
-use xper_scene::{Scene, ShapeDesc};
+use xper_nscd::{CellLoad, PeriodicCell};
+use xper_scene::{CellLoadDesc, Scene, ShapeDesc};
 
 /// The scenes this build runs: 2D rigid scenes.
 pub type RigidScene = Scene;
@@ -56,6 +58,24 @@ pub(super) fn bodies(scene: &Scene) -> (BodySet, Real) {
 /// Whether the scene has `[[events]]`.
 pub(super) fn has_events(scene: &Scene) -> bool {
     !scene.events.is_empty()
+}
+
+/// The scene's `[cell]` as the engine's periodic cell for `bodies` bodies.
+pub(super) fn cell(scene: &Scene, bodies: usize) -> Option<PeriodicCell> {
+    let c = scene.cell.as_ref()?;
+    let lattice = Lattice {
+        origin: Vector::from(c.origin),
+        edges: Tensor::new(c.size[0], 0.0, 0.0, c.size[1]),
+        periodic: c.periodic,
+        relabels: 0,
+    };
+    let loads = c.loads.clone().map(|row| {
+        row.map(|load| match load {
+            CellLoadDesc::Rate(f) => CellLoad::Rate(f),
+            CellLoadDesc::Stress(f) => CellLoad::Stress(f),
+        })
+    });
+    Some(PeriodicCell::new(lattice, loads, c.mass, bodies))
 }
 
 /// The scene's `[[events]]` as the engine's.

@@ -69,3 +69,8 @@ pub(super) fn has_events(_scene: &Scene3) -> bool {
 pub(super) fn events(_scene: &Scene3) -> Events {
     Events::default()
 }
+
+/// A 3D scene has no periodic cell yet.
+pub(super) fn cell(_scene: &Scene3, _bodies: usize) -> Option<xper_nscd::PeriodicCell> {
+    None
+}

@@ -120,9 +120,13 @@ pub fn world_from_scene(scene: &RigidScene) -> World {
         projection_tolerance: (s.position_projection && smallest.is_finite())
             .then_some(PROJECTION_TOLERANCE_RELATIVE * smallest),
     };
+    let count = bodies.len();
     let mut world = World::new(bodies, laws, params);
     world.events = dimension::events(scene);
-    world
+    match dimension::cell(scene, count) {
+        Some(cell) => world.with_cell(cell),
+        None => world,
+    }
 }
 
 /// Gives a world restored from a checkpoint the solver limits of its (possibly edited) scene:
@@ -183,6 +187,11 @@ pub fn add_bodies(
 /// needs it): for a generated scene of a million disks it is as large as the world.
 pub fn release_body_descriptions(scene: &mut RigidScene) {
     scene.bodies = Vec::new();
+}
+
+/// Whether the scene's bodies are in a periodic cell (`[cell]`).
+pub(crate) fn scene_has_cell(scene: &RigidScene) -> bool {
+    dimension::cell(scene, 0).is_some()
 }
 
 /// Whether the scene changes drives or laws during the run (`[[events]]`).

@@ -15,6 +15,7 @@ pub fn volume_source(v: xper_scene::MicroVolume) -> VolumeSource {
     match v {
         xper_scene::MicroVolume::Walls => VolumeSource::Walls,
         xper_scene::MicroVolume::Grains => VolumeSource::Grains,
+        xper_scene::MicroVolume::Cell => VolumeSource::Cell,
     }
 }
 

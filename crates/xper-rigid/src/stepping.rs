@@ -51,6 +51,12 @@ pub fn check_distributable(
             file.display()
         )));
     }
+    if crate::build::scene_has_cell(scene) {
+        return Err(RunError::BadInput(format!(
+            "{}: [cell]: a periodic cell runs on one process only for now",
+            file.display()
+        )));
+    }
     if crate::build::scene_has_events(scene) {
         return Err(RunError::BadInput(format!(
             "{}: [[events]] run on one process only for now",

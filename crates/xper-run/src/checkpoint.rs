@@ -128,10 +128,11 @@ pub fn unseal(mut bytes: Vec<u8>) -> Result<Sealed, String> {
 /// `acceleration`; version 3: `BodySet` keeps the imposed degrees of freedom instead of the
 /// inverse masses; version 4: a contact set holds its contacts' rows, keys, gaps and impulses
 /// as parallel arrays; version 5: `NlgsParams` gained `check` and `StepParams` `detection`;
-/// version 6: `World` gained `events` and `Drive` the pressure). bincode is not
+/// version 6: `World` gained `events` and `Drive` the pressure; version 7: `World` gained the
+/// periodic `cell`). bincode is not
 /// self-describing, so without it a checkpoint of another build could be misread instead of
 /// refused.
-pub const CHECKPOINT_TAG: u32 = 0x5850_0006;
+pub const CHECKPOINT_TAG: u32 = 0x5850_0007;
 
 /// The payload of a rigid or fluid checkpoint: the tag, the scene hash and the state, by
 /// bincode.

@@ -19,6 +19,7 @@ pub mod types;
 pub mod types3d;
 
 mod bodies;
+mod cell;
 mod document;
 mod events;
 mod fluid;
@@ -44,9 +45,9 @@ pub use fracture::types::{
 pub use generators::MAX_GENERATED;
 pub use overlap::MAX_OVERLAP_REPORTS;
 pub use types::{
-    Acceleration, BodyDesc, CheckPass, ConvergenceNorm, Detection, Drive, EventDesc, ExtentDesc,
-    FluidDesc, FluidSideDesc, LawDesc, MicroVolume, OutputSettings, PressureDesc, Scene, ShapeDesc,
-    SolverSettings, TimeFunction, VelocitySolverKind,
+    Acceleration, BodyDesc, CellDesc, CellLoadDesc, CheckPass, ConvergenceNorm, Detection, Drive,
+    EventDesc, ExtentDesc, FluidDesc, FluidSideDesc, LawDesc, MicroVolume, OutputSettings,
+    PressureDesc, Scene, ShapeDesc, SolverSettings, TimeFunction, VelocitySolverKind,
 };
 pub use types3d::{BodyDesc3, Scene3, ShapeDesc3};
 pub use xper_math::SplitMix64;
@@ -67,6 +68,7 @@ const TOP_KEYS: &[&str] = &[
     "walls",
     "generators",
     "events",
+    "cell",
 ];
 
 /// Reads and parses the scene file at `path`. An I/O error is reported as a single
@@ -250,6 +252,29 @@ fn rigid_scene_with(ctx: &mut Ctx, root: &Tbl, header: sections::Header) -> Opti
     let laws = sections::laws(ctx, root, &groups);
     let events = events::events(ctx, root, &groups, &built, &laws);
     let fluid = fluid::fluid(ctx, root, &built).flatten();
+    let cell = cell::cell(ctx, root, &built.bodies).flatten();
+    if let (Some(_), Some(n)) = (&fluid, root.get("cell")) {
+        ctx.err(
+            n.pos,
+            "cell",
+            "a periodic cell holds rigid scenes without `[fluid]`",
+        );
+    }
+    if let (Some(_), Some(t)) = (&cell, root.get("solver")) {
+        if solver.kind != VelocitySolverKind::Nlgs {
+            let pos = (Tbl::of(ctx, t, "solver".into()))
+                .and_then(|t| t.get("kind").map(|n| n.pos))
+                .unwrap_or(t.pos);
+            let why = "a periodic cell is solved by NLGS (`kind = \"nlgs\"`)";
+            ctx.err(pos, "solver.kind", why);
+        }
+    }
+    if let (None, Some(MicroVolume::Cell), Some(t)) = (&cell, output.micro, root.get("output")) {
+        if let Some(n) = (Tbl::of(ctx, t, "output".into())).and_then(|t| t.get("micro")) {
+            let why = "the measures' volume is the periodic cell's, and the scene has no `[cell]`";
+            ctx.err(n.pos, "output.micro", why);
+        }
+    }
     if let (Some(_), Some(n)) = (&fluid, root.get("events")) {
         let why = "events change rigid scenes without `[fluid]`";
         ctx.err(n.pos, "events", why);
@@ -281,6 +306,7 @@ fn rigid_scene_with(ctx: &mut Ctx, root: &Tbl, header: sections::Header) -> Opti
         bodies: built.bodies,
         fluid,
         events,
+        cell,
     };
     Some(scene)
 }

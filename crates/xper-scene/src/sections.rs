@@ -363,6 +363,7 @@ pub(crate) fn output(ctx: &mut Ctx, root: &Tbl, steps: Option<u64>) -> Output {
     let volumes = [
         ("walls", crate::types::MicroVolume::Walls),
         ("grains", crate::types::MicroVolume::Grains),
+        ("cell", crate::types::MicroVolume::Cell),
     ];
     let micro = match t.string(ctx, "micro") {
         Got::Absent => None,

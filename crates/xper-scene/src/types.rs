@@ -33,6 +33,39 @@ pub struct Scene {
     pub fluid: Option<FluidDesc>,
     /// `[[events]]` by increasing time.
     pub events: Vec<EventDesc>,
+    /// The periodic cell the bodies are in (`[cell]`), if any.
+    pub cell: Option<CellDesc>,
+}
+
+/// A periodic cell (`[cell]`, see `cell.rs`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CellDesc {
+    /// Lower left corner (m).
+    pub origin: [f64; 2],
+    /// Sides along x and y (m).
+    pub size: [f64; 2],
+    /// The axes along which bodies repeat.
+    pub periodic: [bool; 2],
+    /// Mass of the cell (kg per m of thickness), the inertia of components under stress (0
+    /// when there is none).
+    pub mass: f64,
+    /// Control of the velocity gradient's components `[[xx, xy], [yx, yy]]`.
+    pub loads: [[CellLoadDesc; 2]; 2],
+}
+
+/// How a component of a periodic cell's velocity gradient is controlled.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub enum CellLoadDesc {
+    /// Imposed (1/s).
+    Rate(TimeFunction),
+    /// Following an imposed stress (Pa, compression positive).
+    Stress(TimeFunction),
+}
+
+impl Default for CellLoadDesc {
+    fn default() -> Self {
+        CellLoadDesc::Rate(TimeFunction::Constant(0.0))
+    }
 }
 
 /// Which contact solver to use for the velocity problem of each step.
@@ -152,6 +185,8 @@ pub enum MicroVolume {
     Walls,
     /// The bounding box of the grains.
     Grains,
+    /// The periodic cell (`[cell]`).
+    Cell,
 }
 
 /// A Signorini-Coulomb law between two groups.

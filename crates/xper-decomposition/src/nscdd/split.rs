@@ -36,6 +36,7 @@ impl LocalProblem {
         let mut op = RigidContactOperator {
             bodies: self.problem.bodies.clone(),
             rows: self.problem.rows.clone(),
+            cell: None,
         };
         split_masses(interface, &mut op.bodies);
         op.refresh_blocks();

@@ -20,6 +20,7 @@ impl MoreauJean {
         if self.active_is_subset {
             std::mem::swap(&mut self.op.rows, &mut self.all_rows);
         }
+        self.exchange_spans();
     }
 
     /// Replaces the gap of every contact by its linearised gap at the end of the step, and

@@ -1,0 +1,89 @@
+//! `[cell]`: the periodic cell of a rigid scene: what a valid section holds, and every refusal
+//! with its field, line and reason.
+
+mod common;
+use common::*;
+use xper_scene::{CellLoadDesc, MicroVolume, TimeFunction};
+
+const DISKS: &str = r#"
+[[laws]]
+between = ["g", "g"]
+kind = "signorini_coulomb"
+friction = 0.4
+
+[[generators]]
+kind = "box_of_disks"
+count = 20
+radius = [0.01, 0.01]
+box = [[0.0, 0.0], [0.2, 0.2]]
+placement = "random"
+seed = 1
+material = "glass"
+group = "g"
+"#;
+
+fn scene(cell: &str) -> String {
+    with_header(&format!("{DISKS}\n[cell]\n{cell}\n"))
+}
+
+#[test]
+fn a_cell_holds_its_size_axes_mass_and_loads() {
+    let s = ok(&scene(
+        "origin = [0.0, 0.0]\nsize = [0.2, 0.2]\nmass = 0.5\nxy = { rate = 2.0 }\n\
+         yy = { stress = [[0.0, 0.0], [1.0, 1e4]] }",
+    ));
+    let c = s.cell.unwrap();
+    assert_eq!(c.size, [0.2, 0.2]);
+    assert_eq!(c.periodic, [true, true]);
+    assert_eq!(c.mass, 0.5);
+    assert_eq!(
+        c.loads[0][1],
+        CellLoadDesc::Rate(TimeFunction::Constant(2.0))
+    );
+    assert_eq!(
+        c.loads[1][1],
+        CellLoadDesc::Stress(TimeFunction::Table(vec![(0.0, 0.0), (1.0, 1e4)]))
+    );
+    assert_eq!(
+        c.loads[0][0],
+        CellLoadDesc::Rate(TimeFunction::Constant(0.0))
+    );
+    let s = ok(&scene("size = [0.2, 0.2]\nperiodic = [\"x\"]"));
+    assert_eq!(s.cell.unwrap().periodic, [true, false]);
+    let text = format!(
+        "{}\n[output]\nmicro = \"cell\"\n",
+        scene("size = [0.2, 0.2]")
+    );
+    assert_eq!(ok(&text).output.micro, Some(MicroVolume::Cell));
+}
+
+#[test]
+fn refused_cells_name_the_field_and_the_reason() {
+    let t = scene("size = [0.2, -0.2]");
+    expect_error(&t, "cell.size", "size", "must be > 0 m");
+    let t = scene("origin = [0.0, 0.0]");
+    expect_error(&t, "cell.size", "[cell]", "missing");
+    let t = scene("size = [0.2, 0.07]");
+    expect_error(&t, "cell.size", "size", "four times the largest body");
+    let t = scene("size = [0.2, 0.2]\nyx = { rate = 1.0 }");
+    expect_error(&t, "cell.yx", "yx", "upper triangular");
+    let t = scene("size = [0.2, 0.2]\nyy = { stress = 1e4 }");
+    expect_error(&t, "cell.mass", "yy", "needs the cell's `mass`");
+    let t = scene("size = [0.2, 0.2]\nmass = 0.0\nyy = { stress = 1e4 }");
+    expect_error(&t, "cell.mass", "mass", "> 0 kg/m");
+    let t = scene("size = [0.2, 0.2]\nxx = { rate = 1.0, stress = 2.0 }");
+    expect_error(&t, "cell.xx", "xx", "either `rate`");
+    let t = scene("size = [0.2, 0.2]\nperiodic = [\"x\"]\nyy = { rate = 1.0 }");
+    expect_error(&t, "cell.yy", "yy", "not periodic along y");
+    let t = scene("size = [0.2, 0.2]\nperiodic = [\"z\"]");
+    expect_error(&t, "cell.periodic", "periodic", "unknown axis");
+    let t = scene("size = [0.2, 0.2]\nspeed = 1.0");
+    expect_error(&t, "cell.speed", "speed", "unknown");
+    let t = format!(
+        "{}\n[solver]\nkind = \"newton\"\n",
+        scene("size = [0.2, 0.2]")
+    );
+    expect_error(&t, "solver.kind", "kind = \"newton\"", "solved by NLGS");
+    let t = with_header(&format!("{DISKS}\n[output]\nmicro = \"cell\"\n"));
+    expect_error(&t, "output.micro", "micro", "has no `[cell]`");
+}
