@@ -83,9 +83,10 @@ enum Command {
         /// Where to write (default: <run>/post).
         #[arg(long)]
         out: Option<PathBuf>,
-        /// The volume of the measures: the box of the walls' positions, or the grains'
-        /// bounding box (default: the scene's `[output] micro`, else `walls`).
-        #[arg(long, value_parser = ["walls", "grains"])]
+        /// The volume of the measures: the box of the walls' positions, the grains'
+        /// bounding box, or the periodic cell (default: the scene's `[output] micro`, else
+        /// `walls`).
+        #[arg(long, value_parser = ["walls", "grains", "cell"])]
         volume: Option<String>,
     },
     /// Run benchmark scenes without outputs; print figures, save JSON and regenerate BENCHMARKS.md.
@@ -167,6 +168,7 @@ fn main() -> ExitCode {
         Command::Post { run, out, volume } => {
             let volume = volume.map(|v| match v.as_str() {
                 "grains" => xper_scene::MicroVolume::Grains,
+                "cell" => xper_scene::MicroVolume::Cell,
                 _ => xper_scene::MicroVolume::Walls,
             });
             xper_simulation::post::post(&run, out.as_deref(), volume)

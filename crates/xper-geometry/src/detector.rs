@@ -414,17 +414,38 @@ impl Detector {
                 _ => {}
             }
         }
-        pairs.sort_unstable();
-        pairs.dedup();
-        refill(&mut self.first_start, std::iter::repeat_n(0, n + 1));
+        // A counting sort by first body, then each first body's few (second, image) sorted
+        // and deduplicated in place (a pair of bodies near two sides is found twice).
+        let mut start = vec![0u32; n + 1];
         for &(i, _, _) in &pairs {
-            self.first_start[i as usize + 1] += 1;
+            start[i as usize + 1] += 1;
         }
         for b in 0..n {
-            self.first_start[b + 1] += self.first_start[b];
+            start[b + 1] += start[b];
         }
-        self.seconds = pairs.iter().map(|p| p.1).collect();
-        self.images = pairs.iter().map(|p| p.2).collect();
+        let mut grouped = vec![(0u32, [0i32; DIM]); pairs.len()];
+        let mut cursor = start.clone();
+        for &(i, j, m) in &pairs {
+            grouped[cursor[i as usize] as usize] = (j, m);
+            cursor[i as usize] += 1;
+        }
+        drop(pairs);
+        refill(&mut self.first_start, std::iter::repeat_n(0, n + 1));
+        let mut kept = 0;
+        for b in 0..n {
+            let group = &mut grouped[start[b] as usize..start[b + 1] as usize];
+            group.sort_unstable();
+            let mut last = None;
+            for &g in group.iter() {
+                if last != Some(g) {
+                    last = Some(g);
+                    self.seconds.push(g.0);
+                    self.images.push(g.1);
+                    kept += 1;
+                }
+            }
+            self.first_start[b + 1] = kept;
+        }
     }
 
     /// The skin of a new list: what lasts [`TARGET_STEPS_PER_BUILD`] calls at the rate the

@@ -60,33 +60,44 @@ pub struct RigidContactOperator {
 pub struct CellCoupling {
     /// Per row, `d`: the second body's position in the flow less the first's (m).
     pub spans: Vec<Vector>,
+    /// Per row, `F^T (L d)` when every component of `L` is imposed (`L` at the end of the
+    /// step, m/s): constant during the solve; empty when some component is under stress.
+    pub offsets: Vec<Local>,
     /// The cell's velocity gradient `L` (1/s): the working one, the end of the step's.
     pub gradient: Tensor,
     /// `L` at the beginning of the step (1/s).
     pub begin: Tensor,
     /// Inverse inertia of each component of `L` (1 / (kg m^2) per m), 0 where it is imposed.
     pub inv_inertia: Tensor,
+    /// Whether some component of `L` is under stress (an unknown).
+    pub free: bool,
 }
 
 impl CellCoupling {
     /// Whether some component of `L` is an unknown.
     #[inline]
     fn has_free(&self) -> bool {
-        self.inv_inertia.iter().any(|&w| w != 0.0)
+        self.free
     }
 
-    /// The flow's relative velocity at row `a`, `L d`, in the row's frame.
+    /// The flow's relative velocity at row `a`, `F^T (L d)`, with the working `L`.
     #[inline(always)]
-    fn offset(&self, row: &ContactRow, a: usize, gradient: &Tensor) -> Local {
-        local_of(row, &(gradient * self.spans[a]))
+    fn offset(&self, row: &ContactRow, a: usize) -> Local {
+        if self.free {
+            local_of(row, &(self.gradient * self.spans[a]))
+        } else {
+            self.offsets[a]
+        }
     }
 
     /// Adds the row's local impulse `d` to the free components of `L`.
     #[inline(always)]
     fn push(&mut self, row: &ContactRow, a: usize, d: Local) {
-        let p = row.world_impulse(d);
-        let d = self.spans[a];
-        self.gradient += self.inv_inertia.component_mul(&(p * d.transpose()));
+        if self.free {
+            let p = row.world_impulse(d);
+            let s = self.spans[a];
+            self.gradient += self.inv_inertia.component_mul(&(p * s.transpose()));
+        }
     }
 }
 
@@ -146,7 +157,7 @@ impl RigidContactOperator {
         let vj = set.generalized_velocity(row.bodies[1] as usize);
         let mut u = relative_velocity(row, &vi, &vj);
         if let Some(cell) = &self.cell {
-            add(&mut u, cell.offset(row, a, &cell.begin));
+            add(&mut u, local_of(row, &(cell.begin * cell.spans[a])));
         }
         u
     }
@@ -177,7 +188,7 @@ impl ContactOperator for RigidContactOperator {
         let vj = &self.bodies[row.bodies[1] as usize].velocity;
         let mut u = relative_velocity(row, vi, vj);
         if let Some(cell) = &self.cell {
-            add(&mut u, cell.offset(row, a, &cell.gradient));
+            add(&mut u, cell.offset(row, a));
         }
         u
     }
@@ -204,7 +215,7 @@ impl ContactOperator for RigidContactOperator {
         let block = row.full_block();
         let mut u = relative_velocity(row, &vi, &vj);
         if let Some(cell) = &self.cell {
-            add(&mut u, cell.offset(row, a, &cell.gradient));
+            add(&mut u, cell.offset(row, a));
         }
         let d = solve(&block, u);
         if d.iter().any(|&x| x != 0.0) {

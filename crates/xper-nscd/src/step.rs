@@ -64,6 +64,8 @@ pub struct MoreauJean {
     /// In a periodic cell, every contact's image shift while the operator holds the active
     /// ones' (see `all_rows`).
     all_spans: Vec<xper_math::Vector>,
+    /// The same for the rows' offsets of the imposed flow.
+    all_offsets: Vec<crate::dimension::Local>,
 }
 
 impl MoreauJean {
@@ -273,6 +275,7 @@ impl MoreauJean {
         self.impulses = Vec::new();
         self.op.cell = None;
         self.all_spans = Vec::new();
+        self.all_offsets = Vec::new();
     }
 
     /// What the contact detector has done so far (calls, candidate-list builds, skin).

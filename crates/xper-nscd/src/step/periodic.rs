@@ -3,6 +3,7 @@
 //! and the advance of the edges.
 
 use super::MoreauJean;
+use crate::dimension::local_of;
 use crate::operator::CellCoupling;
 use crate::world::World;
 use xper_geometry::Periodic;
@@ -53,6 +54,7 @@ impl MoreauJean {
     /// velocities, `- h L v` (see [`flow_acceleration`]).
     pub(super) fn load_cell(&mut self, world: &World, t_begin: Real, t_end: Real) {
         self.all_spans = Vec::new();
+        self.all_offsets = Vec::new();
         let Some(cell) = &world.cell else {
             self.op.cell = None;
             return;
@@ -62,7 +64,7 @@ impl MoreauJean {
             let x = bodies.position[b] - lattice.origin;
             (!bodies.shape[b].is_wall()).then_some(x)
         };
-        let spans = (self.op.rows.iter().zip(&self.images))
+        let spans: Vec<Vector> = (self.op.rows.iter().zip(&self.images))
             .map(|(row, n)| {
                 let [i, j] = row.bodies.map(|b| b as usize);
                 let mut d = Vector::zeros();
@@ -97,11 +99,21 @@ impl MoreauJean {
                 }
             }
         }
+        let free = inv_inertia.iter().any(|&w| w != 0.0);
+        let offsets = if free {
+            Vec::new()
+        } else {
+            (self.op.rows.iter().zip(&spans))
+                .map(|(row, d)| local_of(row, &(imposed * d)))
+                .collect()
+        };
         self.op.cell = Some(CellCoupling {
             spans,
+            offsets,
             gradient,
             begin: cell.gradient,
             inv_inertia,
+            free,
         });
     }
 
@@ -110,8 +122,12 @@ impl MoreauJean {
     pub(super) fn select_spans(&mut self) {
         if let (true, Some(cell)) = (self.active_is_subset, &mut self.op.cell) {
             self.all_spans = std::mem::take(&mut cell.spans);
-            let all = &self.all_spans;
-            cell.spans = self.active.iter().map(|&a| all[a as usize]).collect();
+            self.all_offsets = std::mem::take(&mut cell.offsets);
+            let (spans, offsets) = (&self.all_spans, &self.all_offsets);
+            cell.spans = self.active.iter().map(|&a| spans[a as usize]).collect();
+            if !offsets.is_empty() {
+                cell.offsets = self.active.iter().map(|&a| offsets[a as usize]).collect();
+            }
         }
     }
 
@@ -120,6 +136,7 @@ impl MoreauJean {
     pub(super) fn exchange_spans(&mut self) {
         if let (true, Some(cell)) = (self.active_is_subset, &mut self.op.cell) {
             std::mem::swap(&mut cell.spans, &mut self.all_spans);
+            std::mem::swap(&mut cell.offsets, &mut self.all_offsets);
         }
     }
 
