@@ -20,8 +20,8 @@
 //! under extreme conditions", J. Phys. C 5:1921, 1972): when the shear of an edge exceeds half
 //! the edge it leans on, the edge is reduced by that edge, which relabels the images without
 //! moving them. A component under stress is a degree of freedom of inertia `I_kl` pushed by
-//! the contacts with images and by the imposed stress (M. Parrinello, A. Rahman, J. Appl.
-//! Phys. 52:7182, 1981); `sum_c p_c (x) d_c` is `h V sigma` (sigma the granular stress of
+//! every contact (through its span `d`) and by the imposed stress (M. Parrinello, A. Rahman,
+//! J. Appl. Phys. 52:7182, 1981); `sum_c p_c (x) d_c` is `h V sigma` (sigma the granular stress of
 //! `crate::micro`, compression positive, Love-Weber), so the cell comes to rest where the
 //! granular stress equals the imposed one. It is solved implicitly with the contacts (see
 //! `crate::CellCoupling`). Bodies other than walls follow the flow: a cell that deforms

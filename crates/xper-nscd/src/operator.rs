@@ -138,9 +138,14 @@ impl RigidContactOperator {
                     .sum()
             });
             let mut block = row.full_block();
+            // The upper triangle, mirrored: the block stays exactly symmetric.
             for (a, ea) in axes.iter().enumerate() {
-                for (b, eb) in axes.iter().enumerate() {
-                    block[a * DIM + b] += ea.component_mul(&w).dot(eb);
+                for (b, eb) in axes.iter().enumerate().skip(a) {
+                    let added = ea.component_mul(&w).dot(eb);
+                    block[a * DIM + b] += added;
+                    if b != a {
+                        block[b * DIM + a] += added;
+                    }
                 }
             }
             row.set_full_block(block);

@@ -83,6 +83,25 @@ fn a_disk_leaving_a_side_re_enters_with_the_same_velocity() {
     assert!(world.energy_error().abs() < 1e-12);
 }
 
+#[test]
+fn a_cell_periodic_along_x_only_wraps_along_x_only() {
+    let mut bodies = BodySet::new();
+    let v = Vector::new(2.0, 0.5);
+    bodies.insert(Body::disk(0.05, 1000.0, Vector::new(0.5, 0.4)).with_velocity(v));
+    let mut lattice = lattice(1.0, 0.5);
+    lattice.periodic = [true, false];
+    let cell = PeriodicCell::new(lattice, at_rest(), 1.0, 1);
+    let mut world = World::new(bodies, laws(0.3, 0.0), params(1e-3)).with_cell(cell);
+    let mut stepper = MoreauJean::new();
+    for _ in 0..300 {
+        stepper.step(&mut world).unwrap();
+    }
+    // At 0.3 s: x = 0.5 + 0.6 wrapped to 0.1; y = 0.55, past the top, not wrapped.
+    let p = world.bodies.position[0];
+    assert!((p - Vector::new(0.1, 0.55)).norm() < 1e-12, "{p:?}");
+    assert_eq!(world.cell.as_ref().unwrap().wraps[0], [1, 0]);
+}
+
 /// `n x n` disks on a square lattice of spacing `a` with random velocities, radius below
 /// `a / 2`: they collide in pairs.
 fn gas(n: usize, a: Real, seed: u64) -> Vec<(Vector, Vector)> {

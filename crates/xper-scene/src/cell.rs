@@ -74,9 +74,8 @@ pub(crate) fn cell(ctx: &mut Ctx, root: &Tbl, bodies: &[BodyDesc]) -> Option<Opt
             }
         };
         if let (Some(load), Some(p)) = (load, periodic) {
-            if !p[l]
-                && !matches!(&load, CellLoadDesc::Rate(xper_bodies::TimeFunction::Constant(v)) if *v == 0.0)
-            {
+            let still = CellLoadDesc::Rate(xper_bodies::TimeFunction::Constant(0.0));
+            if !p[l] && load != still {
                 let why = format!(
                     "the cell is not periodic along {}: its edge along that axis cannot deform",
                     ["x", "y"][l]
