@@ -102,6 +102,26 @@ fn a_cell_periodic_along_x_only_wraps_along_x_only() {
     assert_eq!(world.cell.as_ref().unwrap().wraps[0], [1, 0]);
 }
 
+#[test]
+fn bodies_added_between_steps_join_the_cell() {
+    let bodies = random_disks(30, 1.0, 0.04, 5);
+    let cell = PeriodicCell::new(lattice(1.0, 1.0), at_rest(), 1.0, 30);
+    let mut world = World::new(bodies, laws(0.3, 0.0), params(1e-3)).with_cell(cell);
+    let mut stepper = MoreauJean::new();
+    stepper.step(&mut world).unwrap();
+    // Near a side, moving out of the cell: it meets the images and is wrapped.
+    let v = Vector::new(-1.0, 0.0);
+    world
+        .bodies
+        .insert(Body::disk(0.03, 1000.0, Vector::new(0.001, 0.5)).with_velocity(v));
+    for _ in 0..10 {
+        stepper.step(&mut world).unwrap();
+    }
+    let last = world.bodies.len() - 1;
+    assert_eq!(world.cell.as_ref().unwrap().wraps[last], [-1, 0]);
+    assert!(world.bodies.position[last].x > 0.9);
+}
+
 /// `n x n` disks on a square lattice of spacing `a` with random velocities, radius below
 /// `a / 2`: they collide in pairs.
 fn gas(n: usize, a: Real, seed: u64) -> Vec<(Vector, Vector)> {

@@ -32,6 +32,10 @@ impl MoreauJean {
     /// Stage detect: the contacts of the configuration the bodies are in, with the images of
     /// the periodic cell if there is one.
     pub(super) fn detect_contacts(&mut self, world: &mut World) {
+        if let Some(cell) = &mut world.cell {
+            // Bodies added since the last step (e.g. from Python) have not been wrapped yet.
+            cell.wraps.resize(world.bodies.len(), [0; DIM]);
+        }
         let laws = &world.laws;
         let periodic = world.cell.as_ref().map(|cell| Periodic {
             lattice: &cell.lattice,
