@@ -4,7 +4,9 @@
 //! checkpoint over the cell as the run's last frame does.
 
 mod common;
-use common::{assert_success, run_scene, shipped_scene, temp_dir, xper};
+use common::{
+    assert_post_matches_last_row, assert_success, run_scene, shipped_scene, temp_dir, xper,
+};
 use xper_io::SeriesTable;
 
 #[test]
@@ -43,14 +45,5 @@ fn a_sheared_cell_resumes_exactly_holds_its_pressure_and_post_agrees() {
 
     let post = xper(&["post", straight.to_str().unwrap(), "--volume", "cell"]);
     assert_success(&post);
-    let text = std::fs::read_to_string(straight.join("post/micro.json")).unwrap();
-    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
-    let last = micro.rows.last().unwrap();
-    for (name, value) in micro.columns.iter().zip(last) {
-        let got = json[name].as_f64().unwrap();
-        assert!(
-            (got - value).abs() <= 1e-14 * value.abs(),
-            "{name}: {got} {value}"
-        );
-    }
+    assert_post_matches_last_row(&straight.join("post"), &micro);
 }

@@ -344,6 +344,7 @@ impl Detector {
             bodies.len(),
             &mut self.first_start,
             &mut self.seconds,
+            false,
         );
     }
 
@@ -396,56 +397,30 @@ impl Detector {
             reach,
             &mut found,
         );
-        let mut pairs: Vec<(u32, u32, Image)> = Vec::with_capacity(found.len());
+        let mut pairs: Vec<(u32, (u32, Image))> = Vec::with_capacity(found.len());
         for (a, b) in found {
             let (a, b) = (a as usize, b as usize);
             match (a.checked_sub(n), b.checked_sub(n)) {
-                (None, None) => pairs.push((a as u32, b as u32, [0; DIM])),
+                (None, None) => pairs.push((a as u32, (b as u32, [0; DIM]))),
                 // Walls meet bodies, never their images (a wall is not repeated).
                 (None, Some(p)) | (Some(p), None) if !bodies.shape[a.min(b)].is_wall() => {
                     let real = a.min(b) as u32;
                     let (body, m) = proxies[p];
                     if body > real {
-                        pairs.push((real, body, m));
+                        pairs.push((real, (body, m)));
                     } else if body < real {
-                        pairs.push((body, real, m.map(|x| -x)));
+                        pairs.push((body, (real, m.map(|x| -x))));
                     }
                 }
                 _ => {}
             }
         }
-        // A counting sort by first body, then each first body's few (second, image) sorted
-        // and deduplicated in place (a pair of bodies near two sides is found twice).
-        let mut start = vec![0u32; n + 1];
-        for &(i, _, _) in &pairs {
-            start[i as usize + 1] += 1;
-        }
-        for b in 0..n {
-            start[b + 1] += start[b];
-        }
-        let mut grouped = vec![(0u32, [0i32; DIM]); pairs.len()];
-        let mut cursor = start.clone();
-        for &(i, j, m) in &pairs {
-            grouped[cursor[i as usize] as usize] = (j, m);
-            cursor[i as usize] += 1;
-        }
+        // A pair of bodies near two sides is found twice (each body with the other's image).
+        let mut sorted = Vec::new();
+        sort_pairs(&pairs, n, &mut self.first_start, &mut sorted, true);
         drop(pairs);
-        refill(&mut self.first_start, std::iter::repeat_n(0, n + 1));
-        let mut kept = 0;
-        for b in 0..n {
-            let group = &mut grouped[start[b] as usize..start[b + 1] as usize];
-            group.sort_unstable();
-            let mut last = None;
-            for &g in group.iter() {
-                if last != Some(g) {
-                    last = Some(g);
-                    self.seconds.push(g.0);
-                    self.images.push(g.1);
-                    kept += 1;
-                }
-            }
-            self.first_start[b + 1] = kept;
-        }
+        self.seconds = sorted.iter().map(|p| p.0).collect();
+        self.images = sorted.iter().map(|p| p.1).collect();
     }
 
     /// The skin of a new list: what lasts [`TARGET_STEPS_PER_BUILD`] calls at the rate the
@@ -465,10 +440,17 @@ impl Detector {
     }
 }
 
-/// `pairs` (each `(i, j)` with `i < j`) in ascending order, compressed: `seconds` the second
-/// bodies, `start[i]..start[i + 1]` those of first body `i`. A counting sort by first body,
-/// then the few second bodies of each first body sorted in place.
-fn sort_pairs(pairs: &[(u32, u32)], n_bodies: usize, start: &mut Vec<u32>, seconds: &mut Vec<u32>) {
+/// `pairs` (each `(i, j)` with `i < j`, `j` a second body, or a second body and its image)
+/// in ascending order, compressed: `seconds` the second bodies, `start[i]..start[i + 1]` those
+/// of first body `i`. A counting sort by first body, then the few second bodies of each first
+/// body sorted in place; with `dedup`, each group's repeated entries are then kept once.
+fn sort_pairs<T: Copy + Ord + Default>(
+    pairs: &[(u32, T)],
+    n_bodies: usize,
+    start: &mut Vec<u32>,
+    seconds: &mut Vec<T>,
+    dedup: bool,
+) {
     refill(start, std::iter::repeat_n(0, n_bodies + 1));
     for &(i, _) in pairs {
         start[i as usize + 1] += 1;
@@ -476,7 +458,7 @@ fn sort_pairs(pairs: &[(u32, u32)], n_bodies: usize, start: &mut Vec<u32>, secon
     for b in 0..n_bodies {
         start[b + 1] += start[b];
     }
-    refill(seconds, std::iter::repeat_n(0, pairs.len()));
+    refill(seconds, std::iter::repeat_n(T::default(), pairs.len()));
     // `start[i]` serves as the cursor of group `i`, then moves back to its beginning.
     for &(i, j) in pairs {
         let slot = &mut start[i as usize];
@@ -489,6 +471,22 @@ fn sort_pairs(pairs: &[(u32, u32)], n_bodies: usize, start: &mut Vec<u32>, secon
     start[0] = 0;
     for b in 0..n_bodies {
         seconds[start[b] as usize..start[b + 1] as usize].sort_unstable();
+    }
+    if dedup {
+        // Groups move down over the entries dropped before them.
+        let mut kept = 0;
+        for b in 0..n_bodies {
+            let (from, to) = (start[b] as usize, start[b + 1] as usize);
+            start[b] = kept as u32;
+            for k in from..to {
+                if k == from || seconds[k] != seconds[k - 1] {
+                    seconds[kept] = seconds[k];
+                    kept += 1;
+                }
+            }
+        }
+        start[n_bodies] = kept as u32;
+        seconds.truncate(kept);
     }
 }
 

@@ -101,6 +101,12 @@ impl PeriodicCell {
         })
     }
 
+    /// The imposed stress over a step from `t_begin` to `t_end`, `(1 - theta) S(t_begin) +
+    /// theta S(t_end)` (Pa).
+    pub fn step_stress(&self, t_begin: Real, t_end: Real, theta: Real) -> Tensor {
+        self.imposed_stress(t_begin) * (1.0 - theta) + self.imposed_stress(t_end) * theta
+    }
+
     /// The inverse inertia of each component of `L`: `1 / (m |H e_l|^2)` under stress, 0
     /// where imposed.
     pub fn inverse_inertia(&self) -> Tensor {

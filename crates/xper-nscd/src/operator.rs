@@ -74,12 +74,6 @@ pub struct CellCoupling {
 }
 
 impl CellCoupling {
-    /// Whether some component of `L` is an unknown.
-    #[inline]
-    fn has_free(&self) -> bool {
-        self.free
-    }
-
     /// The flow's relative velocity at row `a`, `F^T (L d)`, with the working `L`.
     #[inline(always)]
     fn offset(&self, row: &ContactRow, a: usize) -> Local {
@@ -121,7 +115,7 @@ impl RigidContactOperator {
         for row in &mut self.rows {
             row.refresh_block(|b| bodies[b].inv_mass);
         }
-        let Some(cell) = self.cell.as_ref().filter(|c| c.has_free()) else {
+        let Some(cell) = self.cell.as_ref().filter(|c| c.free) else {
             return;
         };
         for (row, s) in self.rows.iter_mut().zip(&cell.spans) {

@@ -60,6 +60,11 @@ pub(super) fn has_events(scene: &Scene) -> bool {
     !scene.events.is_empty()
 }
 
+/// Whether the scene has a periodic cell (`[cell]`).
+pub(super) fn has_cell(scene: &Scene) -> bool {
+    scene.cell.is_some()
+}
+
 /// The scene's `[cell]` as the engine's periodic cell for `bodies` bodies.
 pub(super) fn cell(scene: &Scene, bodies: usize) -> Option<PeriodicCell> {
     let c = scene.cell.as_ref()?;

@@ -71,6 +71,11 @@ pub(super) fn events(_scene: &Scene3) -> Events {
 }
 
 /// A 3D scene has no periodic cell yet.
+pub(super) fn has_cell(_scene: &Scene3) -> bool {
+    false
+}
+
+/// A 3D scene has no periodic cell yet.
 pub(super) fn cell(_scene: &Scene3, _bodies: usize) -> Option<xper_nscd::PeriodicCell> {
     None
 }

@@ -191,7 +191,7 @@ pub fn release_body_descriptions(scene: &mut RigidScene) {
 
 /// Whether the scene's bodies are in a periodic cell (`[cell]`).
 pub(crate) fn scene_has_cell(scene: &RigidScene) -> bool {
-    dimension::cell(scene, 0).is_some()
+    dimension::has_cell(scene)
 }
 
 /// Whether the scene changes drives or laws during the run (`[[events]]`).

@@ -59,26 +59,62 @@ fn a_cell_holds_its_size_axes_mass_and_loads() {
 
 #[test]
 fn refused_cells_name_the_field_and_the_reason() {
-    let t = scene("size = [0.2, -0.2]");
-    expect_error(&t, "cell.size", "size", "must be > 0 m");
-    let t = scene("origin = [0.0, 0.0]");
-    expect_error(&t, "cell.size", "[cell]", "missing");
-    let t = scene("size = [0.2, 0.07]");
-    expect_error(&t, "cell.size", "size", "four times the largest body");
-    let t = scene("size = [0.2, 0.2]\nyx = { rate = 1.0 }");
-    expect_error(&t, "cell.yx", "yx", "upper triangular");
-    let t = scene("size = [0.2, 0.2]\nyy = { stress = 1e4 }");
-    expect_error(&t, "cell.mass", "yy", "needs the cell's `mass`");
-    let t = scene("size = [0.2, 0.2]\nmass = 0.0\nyy = { stress = 1e4 }");
-    expect_error(&t, "cell.mass", "mass", "> 0 kg/m");
-    let t = scene("size = [0.2, 0.2]\nxx = { rate = 1.0, stress = 2.0 }");
-    expect_error(&t, "cell.xx", "xx", "either `rate`");
-    let t = scene("size = [0.2, 0.2]\nperiodic = [\"x\"]\nyy = { rate = 1.0 }");
-    expect_error(&t, "cell.yy", "yy", "not periodic along y");
-    let t = scene("size = [0.2, 0.2]\nperiodic = [\"z\"]");
-    expect_error(&t, "cell.periodic", "periodic", "unknown axis");
-    let t = scene("size = [0.2, 0.2]\nspeed = 1.0");
-    expect_error(&t, "cell.speed", "speed", "unknown");
+    // (the `[cell]` lines, the field, a marker on the error's line, a part of its message)
+    let cases = [
+        ("size = [0.2, -0.2]", "cell.size", "size", "must be > 0 m"),
+        ("origin = [0.0, 0.0]", "cell.size", "[cell]", "missing"),
+        (
+            "size = [0.2, 0.07]",
+            "cell.size",
+            "size",
+            "four times the largest body",
+        ),
+        (
+            "size = [0.2, 0.2]\nyx = { rate = 1.0 }",
+            "cell.yx",
+            "yx",
+            "upper triangular",
+        ),
+        (
+            "size = [0.2, 0.2]\nyy = { stress = 1e4 }",
+            "cell.mass",
+            "yy",
+            "needs the cell's `mass`",
+        ),
+        (
+            "size = [0.2, 0.2]\nmass = 0.0\nyy = { stress = 1e4 }",
+            "cell.mass",
+            "mass",
+            "> 0 kg/m",
+        ),
+        (
+            "size = [0.2, 0.2]\nxx = { rate = 1.0, stress = 2.0 }",
+            "cell.xx",
+            "xx",
+            "either `rate`",
+        ),
+        (
+            "size = [0.2, 0.2]\nperiodic = [\"x\"]\nyy = { rate = 1.0 }",
+            "cell.yy",
+            "yy",
+            "not periodic along y",
+        ),
+        (
+            "size = [0.2, 0.2]\nperiodic = [\"z\"]",
+            "cell.periodic",
+            "periodic",
+            "unknown axis",
+        ),
+        (
+            "size = [0.2, 0.2]\nspeed = 1.0",
+            "cell.speed",
+            "speed",
+            "unknown",
+        ),
+    ];
+    for (cell, field, marker, needle) in cases {
+        expect_error(&scene(cell), field, marker, needle);
+    }
     let t = format!(
         "{}\n[solver]\nkind = \"newton\"\n",
         scene("size = [0.2, 0.2]")

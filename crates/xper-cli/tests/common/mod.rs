@@ -128,3 +128,19 @@ pub fn python_with_vtk() -> Option<&'static str> {
             .is_ok_and(|o| o.status.success())
     })
 }
+
+/// Asserts that `xper post`'s `micro.json` in `post_dir` holds the last row of the run's
+/// `micro.csv` (`table`), equal up to serde_json's parsing of decimals (not always correctly
+/// rounded).
+pub fn assert_post_matches_last_row(post_dir: &Path, table: &xper_io::SeriesTable) {
+    let text = std::fs::read_to_string(post_dir.join("micro.json")).unwrap();
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let last = table.rows.last().unwrap();
+    for (name, value) in table.columns.iter().zip(last) {
+        let got = json[name].as_f64().unwrap();
+        assert!(
+            (got - value).abs() <= 1e-14 * value.abs(),
+            "{name}: {got} {value}"
+        );
+    }
+}

@@ -83,8 +83,7 @@ impl MoreauJean {
             .collect();
         let (h, theta) = (self.h, world.params.theta);
         let inv_inertia = cell.inverse_inertia();
-        let stress =
-            cell.imposed_stress(t_begin) * (1.0 - theta) + cell.imposed_stress(t_end) * theta;
+        let stress = cell.step_stress(t_begin, t_end, theta);
         let pushed = cell.gradient - inv_inertia.component_mul(&stress) * (h * cell.volume());
         let imposed = cell.imposed_gradient(t_end);
         let gradient = Tensor::from_fn(|k, l| {
@@ -157,8 +156,7 @@ impl MoreauJean {
         };
         let (h, theta) = (self.h, world.params.theta);
         let mean = (coupling.begin + coupling.gradient) / 2.0;
-        let stress =
-            cell.imposed_stress(t_begin) * (1.0 - theta) + cell.imposed_stress(t_end) * theta;
+        let stress = cell.step_stress(t_begin, t_end, theta);
         let free = Tensor::from_fn(|k, l| {
             if coupling.inv_inertia[(k, l)] != 0.0 {
                 mean[(k, l)]
