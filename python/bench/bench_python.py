@@ -1,6 +1,6 @@
 """Benchmarks of the Python module (figures, not tests): what stepping from Python costs
-against `xper run`, and how long reading a million bodies' positions takes. Saves
-bench-results/python.json; `xper bench --report-only` puts it in BENCHMARKS.md.
+against `xper run`, and how long reading a million bodies' positions takes (a copy, and a view
+in place). Saves bench-results/python.json; `xper bench --report-only` puts it in BENCHMARKS.md.
 
 Run from the repository's root, with the module installed and the release binary built
 (`cargo build --release -p xper-cli`):
@@ -65,17 +65,24 @@ def python_run(scene, out, steps):
 
 
 def reading(scene_name, repeats):
+    """Seconds per read of the positions as a copy (`sim.bodies.position`) and as a view in
+    place (`sim.view`), alternated."""
     with tempfile.TemporaryDirectory() as tmp:
         sim = xper.Simulation.from_file(cut(scene_name, 1, tmp), out=Path(tmp) / "out")
         n = len(sim.bodies.id)
-        times = []
+        copies, views = [], []
         for _ in range(repeats):
             start = time.perf_counter()
             p = sim.bodies.position
-            times.append(time.perf_counter() - start)
+            copies.append(time.perf_counter() - start)
+            start = time.perf_counter()
+            v = sim.view("bodies.position")
+            views.append(time.perf_counter() - start)
+            assert np.array_equal(p, v)
+            del v
         assert p.shape == (n, 2)
         sim.finish()
-    return n, times
+    return n, copies, views
 
 
 def call_cost(calls):
@@ -132,10 +139,12 @@ def main():
     step0, read = call_cost(100_000)
     print(f"a call of step(0): {1e6 * step0:.2f} us; reading sim.time: {1e6 * read:.2f} us; "
           f"{a.steps} calls of step(1) pay {1e3 * a.steps * step0:.2f} ms for the calls")
-    n, times = reading(a.million, 20)
+    n, times, views = reading(a.million, 20)
     median_ms = 1e3 * float(np.median(times))
+    view_ms = 1e3 * float(np.median(views))
     print(f"reading the positions of {n:,} bodies: median {median_ms:.2f} ms over 20 reads "
-          f"(min {1e3 * min(times):.2f}, max {1e3 * max(times):.2f})")
+          f"(min {1e3 * min(times):.2f}, max {1e3 * max(times):.2f}); in place: median "
+          f"{1e3 * view_ms:.1f} us")
     result = {
         "machine": machine(),
         "scene": a.scene,
@@ -145,7 +154,7 @@ def main():
         "call_seconds": step0,
         "time_read_seconds": read,
         "reading": {"scene": a.million, "bodies": n, "seconds": times,
-                    "median_ms": median_ms},
+                    "median_ms": median_ms, "view_seconds": views, "view_median_ms": view_ms},
     }
     path = Path(a.json)
     partial = path.with_suffix(".json.partial")

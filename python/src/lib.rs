@@ -7,13 +7,16 @@
 //! ([`SceneError`] for bad input, [`RunError`] for a run that cannot go on), and a panic, a bug,
 //! becomes an [`XperError`] naming it.
 
-use numpy::{PyArray1, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
+use numpy::ndarray::{ArrayView, IxDyn};
+use numpy::{PyArray1, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArrayMethods};
 use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
+use std::cell::Cell;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
+use std::rc::Rc;
 use xper_simulation::state::{ArrayData, StateArray};
 use xper_simulation::{Run, RunOptions, Simulation};
 
@@ -63,6 +66,33 @@ pub struct PySimulation {
     summary: Option<serde_json::Value>,
     scene: PathBuf,
     out: PathBuf,
+    /// Views from [`PySimulation::view`] still alive: while there are any, nothing may move
+    /// the storage they read ([`PySimulation::add_bodies`] is refused).
+    views: Rc<Cell<usize>>,
+}
+
+/// The owner (NumPy's `base`) of a view into a simulation's state: it keeps the simulation
+/// alive and counts itself among its live views until NumPy drops it.
+#[pyclass(module = "xper._xper", unsendable)]
+struct ViewOwner {
+    _simulation: Py<PySimulation>,
+    views: Rc<Cell<usize>>,
+}
+
+impl ViewOwner {
+    fn new(simulation: Py<PySimulation>, views: Rc<Cell<usize>>) -> Self {
+        views.set(views.get() + 1);
+        ViewOwner {
+            _simulation: simulation,
+            views,
+        }
+    }
+}
+
+impl Drop for ViewOwner {
+    fn drop(&mut self) {
+        self.views.set(self.views.get() - 1);
+    }
 }
 
 impl PySimulation {
@@ -135,6 +165,7 @@ impl PySimulation {
                 summary: None,
                 scene,
                 out,
+                views: Rc::new(Cell::new(0)),
             })
         })
     }
@@ -246,6 +277,7 @@ impl PySimulation {
             d.set_item("dtype", a.dtype)?;
             d.set_item("unit", a.unit)?;
             d.set_item("writable", a.writable)?;
+            d.set_item("view", self.sim.view(a.name).is_some())?;
             d.set_item("about", a.about)?;
             list.append(d)?;
         }
@@ -273,6 +305,39 @@ impl PySimulation {
         })
     }
 
+    /// The array `name` read in place: a read-only NumPy view of the simulation's own memory,
+    /// no copy, whose values follow the steps and writes. Only arrays kept as contiguous reals
+    /// have one (`array_info()`'s `view`); the view keeps the simulation alive, and
+    /// `add_bodies` is refused while any view lives.
+    fn view<'py>(slf: Bound<'py, Self>, name: &str) -> PyResult<Bound<'py, PyAny>> {
+        let py = slf.py();
+        let this = slf.borrow();
+        let view = guard(|| {
+            this.sim.view(name).ok_or_else(|| {
+                let names: Vec<&str> = (this.sim.arrays().iter())
+                    .filter(|a| this.sim.view(a.name).is_some())
+                    .map(|a| a.name)
+                    .collect();
+                SceneError::new_err(format!(
+                    "{name:?} cannot be read in place (it is computed, rebuilt every step, or \
+                     not an array of this simulation): read a copy with array({name:?}); the \
+                     arrays with a view: {}",
+                    names.join(", ")
+                ))
+            })
+        })?;
+        let owner = Bound::new(py, ViewOwner::new(slf.clone().unbind(), this.views.clone()))?;
+        // SAFETY: `view.data` holds the shape's product of f64s of the simulation, which
+        // `owner` keeps alive for as long as NumPy keeps the array; `add_bodies`, the only
+        // call that can reallocate them, is refused while an owner lives.
+        let array = unsafe {
+            let values = ArrayView::from_shape_ptr(IxDyn(&view.shape), view.data);
+            PyArrayDyn::borrow_from_array(&values, owner.into_any())
+        };
+        array.getattr("flags")?.setattr("writeable", false)?;
+        Ok(array.into_any())
+    }
+
     /// Writes `values` (the shape `array(name)` has) into the writable array `name`; the
     /// next step starts from them.
     fn set_array(&mut self, name: &str, values: PyReadonlyArrayDyn<'_, f64>) -> PyResult<()> {
@@ -289,6 +354,14 @@ impl PySimulation {
     fn add_bodies(&mut self, text: &str) -> PyResult<Vec<usize>> {
         guard(|| {
             self.running()?;
+            if self.views.get() > 0 {
+                return Err(SceneError::new_err(format!(
+                    "add_bodies: {} view(s) from view() read the bodies' arrays in place, and \
+                     adding bodies may move them; delete the views (and arrays sliced from \
+                     them) or read copies with array() first",
+                    self.views.get()
+                )));
+            }
             self.sim.add_bodies(text).map_err(SceneError::new_err)
         })
     }

@@ -9,6 +9,7 @@ summary, bit for bit, whether the steps are taken by the command or from Python.
 >>> sim = xper.Simulation.from_file("scenes/drop", out="out/drop")
 >>> sim.run(until=0.5)                       # s
 >>> sim.bodies.position                      # (n, 2) in 2D, (n, 3) in 3D, m
+>>> x = sim.view("bodies.position")          # the same, read in place: no copy, kept current
 >>> sim.finish()["status"]
 'stopped'
 
@@ -219,13 +220,27 @@ class Simulation:
 
     def array_info(self) -> List[Dict[str, Any]]:
         """Every array of the state: ``name``, ``shape`` (``n`` counts bodies or contacts),
-        ``dtype``, ``unit``, ``writable`` and ``about``."""
+        ``dtype``, ``unit``, ``writable``, ``view`` (whether :meth:`view` reads it in place)
+        and ``about``."""
         return self._sim.array_info()
 
     def array(self, name: str) -> np.ndarray:
         """The array ``name`` (``array_info()`` lists them) of the current state: a new,
-        read-only array."""
+        read-only array (a copy, which the next steps leave as it is). The attributes of
+        ``bodies``, ``contacts``, ``laws`` and ``world`` read it this way."""
         return self._sim.array(name)
+
+    def view(self, name: str) -> np.ndarray:
+        """The array ``name`` read in place: a read-only NumPy view of the simulation's
+        own memory, no copy, whose values are the current ones after every step and write
+        (``np.array(v)`` keeps a snapshot). Offered where the simulation keeps the array as
+        contiguous float64 rows: the bodies' ``position``, ``velocity``,
+        ``angular_velocity``, ``mass``, and in 2D ``orientation`` (``array_info()``'s
+        ``view``); contacts are rebuilt every step and other arrays are computed, so those
+        are read with :meth:`array`. A view keeps the simulation alive, and
+        :meth:`add_bodies`, which may move the bodies' memory, raises while any view (or an
+        array sliced from one) lives."""
+        return self._sim.view(name)
 
     def set_array(self, name: str, values: Any) -> None:
         """Writes ``values`` (the shape ``array(name)`` has) into a writable array; the next
@@ -240,7 +255,7 @@ class Simulation:
         ``[[materials]]`` they name. They are read and checked as a scene's (errors name
         ``added bodies``, the line, the field and the reason); their groups must be the
         scene's, whose laws apply. Their energy counts in the budget's initial energy.
-        Returns their indices in the bodies' arrays."""
+        Refused while a :meth:`view` lives. Returns their indices in the bodies' arrays."""
         from .scene import Scene
         dim = self.bodies.position.shape[1]
         s = Scene(name="added", dt=1.0, duration=1.0, **({"dimension": 3} if dim == 3 else {}))

@@ -213,6 +213,10 @@ impl Simulation for RigidSimulation<'_> {
     fn array(&self, name: &str) -> Option<xper_run::state::StateArray> {
         state::array(self.world()?, name)
     }
+    fn view(&self, name: &str) -> Option<xper_run::state::StateView> {
+        // The world stepped on one process; a gathered copy is replaced at every output.
+        state::view(self.run.whole()?, name)
+    }
     fn set_array(&mut self, name: &str, shape: &[usize], values: &[f64]) -> Result<(), String> {
         let world = (self.run.whole_mut()).ok_or("arrays are set only in a run on one process")?;
         state::set_array(world, name, shape, values)

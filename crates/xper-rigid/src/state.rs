@@ -8,7 +8,7 @@ use xper_laws::InteractionLaw;
 use xper_math::{angular_coords, angular_from_coords, rotation_coords, Vector};
 use xper_math::{ANGULAR_DIM, DIM, DOFS, ROTATION_COORDS};
 use xper_nscd::World;
-use xper_run::state::{check_shape, ArrayInfo, StateArray};
+use xper_run::state::{check_shape, ArrayInfo, StateArray, StateView};
 
 #[cfg(feature = "dim2")]
 mod shapes {
@@ -270,6 +270,28 @@ pub fn array(world: &World, name: &str) -> Option<StateArray> {
         }
         _ => return None,
     })
+}
+
+/// The array `name` of `world` read in place, for the bodies' reals kept as rows of
+/// `f64`s: position, velocity, angular velocity, mass, and in 2D the angle (a 3D quaternion is
+/// kept as (x, y, z, w), not the array's (w, x, y, z)). Contacts are rebuilt every step, and
+/// the other arrays are computed or of another type: those are copied by [`array`].
+pub fn view(world: &World, name: &str) -> Option<StateView> {
+    let b = &world.bodies;
+    let n = b.len();
+    // SAFETY: `Vector` and `AngVector` are nalgebra vectors of f64 (or f64 itself in 2D),
+    // `Real` is f64: each is made of f64s without padding.
+    unsafe {
+        match name {
+            "bodies.position" => StateView::of(&[n, DIM], &b.position),
+            "bodies.velocity" => StateView::of(&[n, DIM], &b.velocity),
+            "bodies.angular_velocity" => StateView::of(&[n, ANGULAR_DIM], &b.angular_velocity),
+            "bodies.mass" => StateView::of(&[n], &b.mass),
+            #[cfg(feature = "dim2")]
+            "bodies.orientation" => StateView::of(&[n, ROTATION_COORDS], &b.rotation),
+            _ => None,
+        }
+    }
 }
 
 /// Writes `values` into the writable array `name` of `world`. What this changes of the

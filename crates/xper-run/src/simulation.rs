@@ -9,7 +9,7 @@
 
 use crate::comparison::SerialComparison;
 use crate::ranks::RankSummary;
-use crate::state::{ArrayInfo, StateArray};
+use crate::state::{ArrayInfo, StateArray, StateView};
 use crate::RunError;
 use std::path::{Path, PathBuf};
 use xper_io::{PvdCollection, SeriesTable};
@@ -144,6 +144,12 @@ pub trait Simulation {
     /// The array `name` of the state on the writing process, as of the last
     /// [`Simulation::sync`] (`None` when this physics has no such array).
     fn array(&self, _name: &str) -> Option<StateArray> {
+        None
+    }
+    /// The array `name` read in place, when the simulation keeps it as contiguous reals of
+    /// [`Simulation::array`]'s layout in a run on one process (`None` otherwise). Its address
+    /// holds across steps and [`Simulation::set_array`]; [`Simulation::add_bodies`] may move it.
+    fn view(&self, _name: &str) -> Option<StateView> {
         None
     }
     /// Writes `values` (row-major, of shape `shape`, which must be the one

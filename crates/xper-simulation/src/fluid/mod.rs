@@ -272,6 +272,13 @@ impl Simulation for FluidSimulation<'_> {
     fn array(&self, name: &str) -> Option<xper_run::state::StateArray> {
         state::array(&self.state, name)
     }
+    fn view(&self, name: &str) -> Option<xper_run::state::StateView> {
+        // The fluid's fields are computed from the grid (copies); the grains are read in place.
+        match self.runner.processes() {
+            1 => crate::rigid::state::view(&self.state.world, name),
+            _ => None,
+        }
+    }
     fn set_array(&mut self, name: &str, shape: &[usize], values: &[f64]) -> Result<(), String> {
         if self.runner.processes() > 1 {
             return Err("arrays are set only in a run on one process".into());
