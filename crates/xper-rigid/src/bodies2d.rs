@@ -2,11 +2,9 @@
 
 use super::drive;
 use xper_bodies::{Body, BodySet, ConvexPolygon, Shape};
-use xper_geometry::Lattice;
-use xper_math::{Real, Tensor, Vector};
+use xper_math::{Real, Vector};
 use xper_nscd::events::{Change, Event, Events};
-use xper_nscd::{CellLoad, PeriodicCell};
-use xper_scene::{CellLoadDesc, Scene, ShapeDesc};
+use xper_scene::{CellDesc, Scene, ShapeDesc};
 
 /// The scenes this build runs: 2D rigid scenes.
 pub type RigidScene = Scene;
@@ -60,27 +58,9 @@ pub(super) fn has_events(scene: &Scene) -> bool {
     !scene.events.is_empty()
 }
 
-/// Whether the scene has a periodic cell (`[cell]`).
-pub(super) fn has_cell(scene: &Scene) -> bool {
-    scene.cell.is_some()
-}
-
-/// The scene's `[cell]` as the engine's periodic cell for `bodies` bodies.
-pub(super) fn cell(scene: &Scene, bodies: usize) -> Option<PeriodicCell> {
-    let c = scene.cell.as_ref()?;
-    let lattice = Lattice {
-        origin: Vector::from(c.origin),
-        edges: Tensor::new(c.size[0], 0.0, 0.0, c.size[1]),
-        periodic: c.periodic,
-        relabels: 0,
-    };
-    let loads = c.loads.clone().map(|row| {
-        row.map(|load| match load {
-            CellLoadDesc::Rate(f) => CellLoad::Rate(f),
-            CellLoadDesc::Stress(f) => CellLoad::Stress(f),
-        })
-    });
-    Some(PeriodicCell::new(lattice, loads, c.mass, bodies))
+/// The scene's periodic cell (`[cell]`), if any.
+pub(super) fn cell(scene: &Scene) -> Option<&CellDesc<2>> {
+    scene.cell.as_ref()
 }
 
 /// The scene's `[[events]]` as the engine's.

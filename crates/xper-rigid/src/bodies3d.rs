@@ -70,12 +70,7 @@ pub(super) fn events(_scene: &Scene3) -> Events {
     Events::default()
 }
 
-/// A 3D scene has no periodic cell yet.
-pub(super) fn has_cell(_scene: &Scene3) -> bool {
-    false
-}
-
-/// A 3D scene has no periodic cell yet.
-pub(super) fn cell(_scene: &Scene3, _bodies: usize) -> Option<xper_nscd::PeriodicCell> {
-    None
+/// The scene's periodic cell (`[cell]`), if any.
+pub(super) fn cell(scene: &Scene3) -> Option<&xper_scene::CellDesc<3>> {
+    scene.cell.as_ref()
 }

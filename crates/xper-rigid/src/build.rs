@@ -10,9 +10,10 @@ mod dimension;
 
 pub use dimension::RigidScene;
 use xper_bodies::{Drive, ExtentFactor, PressureDrive, TimeFunction};
+use xper_geometry::Lattice;
 use xper_laws::{InteractionLaw, LawTable, SignoriniCoulomb};
-use xper_math::{Real, Vector};
-use xper_nscd::{Detection, StepParams, VelocitySolver, World};
+use xper_math::{Real, Tensor, Vector, DIM};
+use xper_nscd::{CellLoad, Detection, PeriodicCell, StepParams, VelocitySolver, World};
 use xper_solver::{ConvergenceNorm, ErrorScaling, NlgsParams, SolverKind, SolverParams};
 
 /// Overlap allowed before the position projection runs, relative to the smallest body size.
@@ -123,10 +124,27 @@ pub fn world_from_scene(scene: &RigidScene) -> World {
     let count = bodies.len();
     let mut world = World::new(bodies, laws, params);
     world.events = dimension::events(scene);
-    match dimension::cell(scene, count) {
-        Some(cell) => world.with_cell(cell),
+    match dimension::cell(scene) {
+        Some(cell) => world.with_cell(periodic_cell(cell, count)),
         None => world,
     }
+}
+
+/// The scene's `[cell]` as the engine's periodic cell for `bodies` bodies: edges along the axes.
+fn periodic_cell(c: &xper_scene::CellDesc<DIM>, bodies: usize) -> PeriodicCell {
+    let lattice = Lattice {
+        origin: Vector::from(c.origin),
+        edges: Tensor::from_diagonal(&Vector::from(c.size)),
+        periodic: c.periodic,
+        relabels: 0,
+    };
+    let loads = c.loads.each_ref().map(|row| {
+        row.each_ref().map(|load| match load {
+            xper_scene::CellLoadDesc::Rate(f) => CellLoad::Rate(time_function(f)),
+            xper_scene::CellLoadDesc::Stress(f) => CellLoad::Stress(time_function(f)),
+        })
+    });
+    PeriodicCell::new(lattice, loads, c.mass, bodies)
 }
 
 /// Gives a world restored from a checkpoint the solver limits of its (possibly edited) scene:
@@ -191,7 +209,7 @@ pub fn release_body_descriptions(scene: &mut RigidScene) {
 
 /// Whether the scene's bodies are in a periodic cell (`[cell]`).
 pub(crate) fn scene_has_cell(scene: &RigidScene) -> bool {
-    dimension::has_cell(scene)
+    dimension::cell(scene).is_some()
 }
 
 /// Whether the scene changes drives or laws during the run (`[[events]]`).

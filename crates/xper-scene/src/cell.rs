@@ -1,4 +1,4 @@
-//! `[cell]`: a periodic cell for the rigid bodies of a 2D scene. Bodies leaving it through a
+//! `[cell]`: a periodic cell for the rigid bodies of a 2D or 3D scene. Bodies leaving it through a
 //! side re-enter through the opposite one, contacts across the sides are found, and the cell
 //! deforms homogeneously with a velocity gradient whose components are imposed (`rate`, 1/s)
 //! or follow an imposed stress (`stress`, Pa, compression positive). For a simple shear at
@@ -16,44 +16,63 @@
 //! `xx`, `yy` and `xy` are the components `L_xx`, `L_yy`, `L_xy = dv_x/dy` of the gradient,
 //! `rate = 0` when absent; `yx` stays zero (the cell's edges stay upper triangular).
 //! `periodic = ["x"]` makes the cell periodic along x only (walls bound it along y).
+//! In 3D the vectors have three entries, the components are `xx`, `yy`, `zz`, `xy`, `xz` and
+//! `yz` (`yx`, `zx`, `zy` stay zero), and `mass` is in kg.
 
 use crate::bodies::time_function;
 use crate::read::{Ctx, Got, Tbl};
 use crate::tree::Pos;
-use crate::types::{BodyDesc, CellDesc, CellLoadDesc, ShapeDesc};
+use crate::types::{BodyDesc, CellDesc, CellLoadDesc, MicroVolume, ShapeDesc, VelocitySolverKind};
+use crate::types3d::{BodyDesc3, ShapeDesc3};
 
-const KEYS: &[&str] = &["origin", "size", "periodic", "mass", "xx", "yy", "xy", "yx"];
+/// The axes' names.
+const AXES: [&str; 3] = ["x", "y", "z"];
+/// The gradient's components `L_kl` by `3 k + l`.
+const COMPONENTS: [&str; 9] = ["xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"];
 
-/// Reads `[cell]`: `Some(None)` when absent, `None` when invalid.
-pub(crate) fn cell(ctx: &mut Ctx, root: &Tbl, bodies: &[BodyDesc]) -> Option<Option<CellDesc>> {
+/// Reads `[cell]` of a scene of dimension `D` whose largest body (not a wall) is `largest` m
+/// across: `Some(None)` when absent, `None` when invalid.
+pub(crate) fn cell<const D: usize>(
+    ctx: &mut Ctx,
+    root: &Tbl,
+    largest: f64,
+) -> Option<Option<CellDesc<D>>> {
     let t = match root.table(ctx, "cell") {
         Got::Absent => return Some(None),
         Got::Bad => return None,
         Got::Val(t, _) => t,
     };
     let before = ctx.errors.len();
-    t.check_keys(ctx, KEYS);
-    if let Some(n) = t.get("yx") {
-        let why = "dv_y/dx stays zero: the cell's edges stay upper triangular (shear with `xy`)";
-        ctx.err(n.pos, &t.field("yx"), why);
+    let mut keys = vec!["origin", "size", "periodic", "mass"];
+    keys.extend((0..D).flat_map(|k| (0..D).map(move |l| COMPONENTS[3 * k + l])));
+    t.check_keys(ctx, &keys);
+    for (k, l) in (0..D).flat_map(|k| (0..k).map(move |l| (k, l))) {
+        if let Some(n) = t.get(COMPONENTS[3 * k + l]) {
+            let why = format!(
+                "d{}/d{} stays zero: the cell's edges stay upper triangular (shear with `{}`)",
+                AXES[k],
+                AXES[l],
+                COMPONENTS[3 * l + k]
+            );
+            ctx.err(n.pos, &t.field(COMPONENTS[3 * k + l]), why);
+        }
     }
-    let origin = t.vec2(ctx, "origin").or([0.0, 0.0]);
-    let size = match t.vec2(ctx, "size").req(ctx, &t, "size") {
+    let origin = t.vector::<D>(ctx, "origin").or([0.0; D]);
+    let size = match t.vector::<D>(ctx, "size").req(ctx, &t, "size") {
         Some((s, _)) if s.iter().all(|&x| x > 0.0) => Some(s),
         Some((s, pos)) => {
-            ctx.err(
-                pos,
-                &t.field("size"),
-                format!("both sides must be > 0 m, got {s:?}"),
-            );
+            let why = format!("every side must be > 0 m, got {s:?}");
+            ctx.err(pos, &t.field("size"), why);
             None
         }
         None => None,
     };
-    let periodic = periodic_axes(ctx, &t);
-    let mut loads: [[CellLoadDesc; 2]; 2] = Default::default();
+    let periodic = periodic_axes::<D>(ctx, &t);
+    let mut loads: [[CellLoadDesc; D]; D] =
+        std::array::from_fn(|_| std::array::from_fn(|_| CellLoadDesc::default()));
     let mut stressed = None;
-    for (key, k, l) in [("xx", 0, 0), ("yy", 1, 1), ("xy", 0, 1)] {
+    for (k, l) in (0..D).flat_map(|k| (k..D).map(move |l| (k, l))) {
+        let key = COMPONENTS[3 * k + l];
         let Some(n) = t.get(key) else {
             continue;
         };
@@ -78,24 +97,32 @@ pub(crate) fn cell(ctx: &mut Ctx, root: &Tbl, bodies: &[BodyDesc]) -> Option<Opt
             if !p[l] && load != still {
                 let why = format!(
                     "the cell is not periodic along {}: its edge along that axis cannot deform",
-                    ["x", "y"][l]
+                    AXES[l]
                 );
                 ctx.err(n.pos, &field, why);
             }
             loads[k][l] = load;
         }
     }
+    let unit = if D == 3 {
+        "kg"
+    } else {
+        "kg per m of thickness"
+    };
     let mass = match (t.num(ctx, "mass"), stressed) {
         (Got::Absent, None) => Some(0.0),
         (Got::Absent, Some(pos)) => {
-            let why = "a component under `stress` needs the cell's `mass` (kg per m of thickness)";
+            let why = format!("a component under `stress` needs the cell's `mass` ({unit})");
             ctx.err(pos, &t.field("mass"), why);
             None
         }
-        (g, _) => crate::read::ensure(ctx, g.ok(), &t.field("mass"), |v| v > 0.0, "> 0 kg/m"),
+        (g, _) => {
+            let what = format!("> 0 {}", if D == 3 { "kg" } else { "kg/m" });
+            crate::read::ensure(ctx, g.ok(), &t.field("mass"), |v| v > 0.0, &what)
+        }
     };
     if let (Some(size), Some(periodic)) = (size, periodic) {
-        check_size(ctx, &t, size, periodic, bodies);
+        check_size(ctx, &t, size, periodic, largest);
     }
     if ctx.errors.len() > before {
         return None;
@@ -109,10 +136,36 @@ pub(crate) fn cell(ctx: &mut Ctx, root: &Tbl, bodies: &[BodyDesc]) -> Option<Opt
     }))
 }
 
-/// `periodic = ["x", "y"]` (the default) or a part of it.
-fn periodic_axes(ctx: &mut Ctx, t: &Tbl) -> Option<[bool; 2]> {
+/// What a periodic cell asks of the rest of the scene: the NLGS solver, and measures over the
+/// cell's volume (`[output] micro = "cell"`) only with a cell.
+pub(crate) fn check_scene(
+    ctx: &mut Ctx,
+    root: &Tbl,
+    has_cell: bool,
+    solver: VelocitySolverKind,
+    micro: Option<MicroVolume>,
+) {
+    if let (true, Some(t)) = (has_cell, root.get("solver")) {
+        if solver != VelocitySolverKind::Nlgs {
+            let pos = (Tbl::of(ctx, t, "solver".into()))
+                .and_then(|t| t.get("kind").map(|n| n.pos))
+                .unwrap_or(t.pos);
+            let why = "a periodic cell is solved by NLGS (`kind = \"nlgs\"`)";
+            ctx.err(pos, "solver.kind", why);
+        }
+    }
+    if let (false, Some(MicroVolume::Cell), Some(t)) = (has_cell, micro, root.get("output")) {
+        if let Some(n) = (Tbl::of(ctx, t, "output".into())).and_then(|t| t.get("micro")) {
+            let why = "the measures' volume is the periodic cell's, and the scene has no `[cell]`";
+            ctx.err(n.pos, "output.micro", why);
+        }
+    }
+}
+
+/// `periodic = ["x", "y"]` (the default: every axis) or a part of it.
+fn periodic_axes<const D: usize>(ctx: &mut Ctx, t: &Tbl) -> Option<[bool; D]> {
     let Some(n) = t.get("periodic") else {
-        return Some([true, true]);
+        return Some([true; D]);
     };
     let field = t.field("periodic");
     let names = match &n.kind {
@@ -126,27 +179,21 @@ fn periodic_axes(ctx: &mut Ctx, t: &Tbl) -> Option<[bool; 2]> {
         _ => None,
     };
     let Some(names) = names else {
-        ctx.expected(
-            n,
-            &field,
-            "a non-empty array of axis names, e.g. [\"x\", \"y\"]",
-        );
+        let what = format!("a non-empty array of axis names, e.g. {:?}", &AXES[..D]);
+        ctx.expected(n, &field, &what);
         return None;
     };
-    let mut axes = [false; 2];
+    let mut axes = [false; D];
     for name in names {
-        match ["x", "y"].iter().position(|&a| a == name) {
+        match AXES[..D].iter().position(|&a| a == name) {
             Some(k) if !axes[k] => axes[k] = true,
             Some(_) => {
                 ctx.err(n.pos, &field, format!("axis \"{name}\" given twice"));
                 return None;
             }
             None => {
-                ctx.err(
-                    n.pos,
-                    &field,
-                    format!("unknown axis \"{name}\" (\"x\" or \"y\")"),
-                );
+                let why = format!("unknown axis \"{name}\" (one of {:?})", &AXES[..D]);
+                ctx.err(n.pos, &field, why);
                 return None;
             }
         }
@@ -154,10 +201,32 @@ fn periodic_axes(ctx: &mut Ctx, t: &Tbl) -> Option<[bool; 2]> {
     Some(axes)
 }
 
-/// The cell must be at least four of its largest body's diameters wide along each periodic
-/// axis: then a body meets at most one image of another (the detector relies on it).
-fn check_size(ctx: &mut Ctx, t: &Tbl, size: [f64; 2], periodic: [bool; 2], bodies: &[BodyDesc]) {
-    let largest = (bodies.iter())
+/// The cell must be at least four of its largest body's diameters (`largest`, m) wide along
+/// each periodic axis: then a body meets at most one image of another (the detector relies
+/// on it).
+fn check_size<const D: usize>(
+    ctx: &mut Ctx,
+    t: &Tbl,
+    size: [f64; D],
+    periodic: [bool; D],
+    largest: f64,
+) {
+    for k in (0..D).filter(|&k| periodic[k]) {
+        if size[k] < 4.0 * largest {
+            let pos = t.get("size").map_or(Pos::START, |n| n.pos);
+            let why = format!(
+                "the cell is {} m along {}, less than four times the largest body's diameter \
+                 ({largest} m): a body could touch two images of another",
+                size[k], AXES[k]
+            );
+            ctx.err(pos, &t.field("size"), why);
+        }
+    }
+}
+
+/// The largest diameter of the bodies of a 2D scene that are not walls (m; 0 without any).
+pub(crate) fn largest_2d(bodies: &[BodyDesc]) -> f64 {
+    (bodies.iter())
         .map(|b| match &b.shape {
             ShapeDesc::Disk { radius } => 2.0 * radius,
             ShapeDesc::Polygon { vertices } => {
@@ -167,17 +236,20 @@ fn check_size(ctx: &mut Ctx, t: &Tbl, size: [f64; 2], periodic: [bool; 2], bodie
             }
             ShapeDesc::Segment { .. } => 0.0,
         })
-        .fold(0.0, f64::max);
-    for k in (0..2).filter(|&k| periodic[k]) {
-        if size[k] < 4.0 * largest {
-            let pos = t.get("size").map_or(Pos::START, |n| n.pos);
-            let why = format!(
-                "the cell is {} m along {}, less than four times the largest body's diameter \
-                 ({largest} m): a body could touch two images of another",
-                size[k],
-                ["x", "y"][k]
-            );
-            ctx.err(pos, &t.field("size"), why);
-        }
-    }
+        .fold(0.0, f64::max)
+}
+
+/// The largest diameter of the bodies of a 3D scene that are not walls (m; 0 without any).
+pub(crate) fn largest_3d(bodies: &[BodyDesc3]) -> f64 {
+    (bodies.iter())
+        .map(|b| match &b.shape {
+            ShapeDesc3::Sphere { radius } => 2.0 * radius,
+            ShapeDesc3::Polyhedron { vertices } => {
+                2.0 * (vertices.iter())
+                    .map(|v| v.iter().map(|x| x * x).sum::<f64>().sqrt())
+                    .fold(0.0, f64::max)
+            }
+            ShapeDesc3::Plane { .. } => 0.0,
+        })
+        .fold(0.0, f64::max)
 }

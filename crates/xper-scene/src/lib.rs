@@ -252,7 +252,7 @@ fn rigid_scene_with(ctx: &mut Ctx, root: &Tbl, header: sections::Header) -> Opti
     let laws = sections::laws(ctx, root, &groups);
     let events = events::events(ctx, root, &groups, &built, &laws);
     let fluid = fluid::fluid(ctx, root, &built).flatten();
-    let cell = cell::cell(ctx, root, &built.bodies).flatten();
+    let cell = cell::cell::<2>(ctx, root, cell::largest_2d(&built.bodies)).flatten();
     if let (Some(_), Some(n)) = (&fluid, root.get("cell")) {
         ctx.err(
             n.pos,
@@ -260,21 +260,7 @@ fn rigid_scene_with(ctx: &mut Ctx, root: &Tbl, header: sections::Header) -> Opti
             "a periodic cell holds rigid scenes without `[fluid]`",
         );
     }
-    if let (Some(_), Some(t)) = (&cell, root.get("solver")) {
-        if solver.kind != VelocitySolverKind::Nlgs {
-            let pos = (Tbl::of(ctx, t, "solver".into()))
-                .and_then(|t| t.get("kind").map(|n| n.pos))
-                .unwrap_or(t.pos);
-            let why = "a periodic cell is solved by NLGS (`kind = \"nlgs\"`)";
-            ctx.err(pos, "solver.kind", why);
-        }
-    }
-    if let (None, Some(MicroVolume::Cell), Some(t)) = (&cell, output.micro, root.get("output")) {
-        if let Some(n) = (Tbl::of(ctx, t, "output".into())).and_then(|t| t.get("micro")) {
-            let why = "the measures' volume is the periodic cell's, and the scene has no `[cell]`";
-            ctx.err(n.pos, "output.micro", why);
-        }
-    }
+    cell::check_scene(ctx, root, cell.is_some(), solver.kind, output.micro);
     if let (Some(_), Some(n)) = (&fluid, root.get("events")) {
         let why = "events change rigid scenes without `[fluid]`";
         ctx.err(n.pos, "events", why);

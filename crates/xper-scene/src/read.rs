@@ -220,6 +220,12 @@ impl<'a> Tbl<'a> {
         self.typed(key, |n| as_vec3(ctx, n, &field))
     }
 
+    /// `D` (2 or 3) finite numbers.
+    pub fn vector<const D: usize>(&self, ctx: &mut Ctx, key: &str) -> Got<[f64; D]> {
+        let field = self.field(key);
+        self.typed(key, |n| as_vector(ctx, n, &field))
+    }
+
     /// A sub-table.
     pub fn table(&self, ctx: &mut Ctx, key: &str) -> Got<Tbl<'a>> {
         let field = self.field(key);
@@ -265,30 +271,30 @@ pub(crate) fn as_num(ctx: &mut Ctx, n: &Node, field: &str) -> Option<f64> {
 
 /// A pair of finite numbers.
 pub(crate) fn as_vec2(ctx: &mut Ctx, n: &Node, field: &str) -> Option<[f64; 2]> {
-    match &n.kind {
-        Kind::Array(a) if a.len() == 2 => {
-            let x = as_num(ctx, &a[0], &format!("{field}[0]"));
-            let y = as_num(ctx, &a[1], &format!("{field}[1]"));
-            Some([x?, y?])
-        }
-        _ => {
-            ctx.expected(n, field, "a pair of numbers [x, y]");
-            None
-        }
-    }
+    as_vector(ctx, n, field)
 }
 
 /// A triple of finite numbers `[x, y, z]`.
 pub(crate) fn as_vec3(ctx: &mut Ctx, n: &Node, field: &str) -> Option<[f64; 3]> {
+    as_vector(ctx, n, field)
+}
+
+/// `D` (2 or 3) finite numbers `[x, y]` or `[x, y, z]`; every element is checked.
+pub(crate) fn as_vector<const D: usize>(ctx: &mut Ctx, n: &Node, field: &str) -> Option<[f64; D]> {
     match &n.kind {
-        Kind::Array(a) if a.len() == 3 => {
-            let x = as_num(ctx, &a[0], &format!("{field}[0]"));
-            let y = as_num(ctx, &a[1], &format!("{field}[1]"));
-            let z = as_num(ctx, &a[2], &format!("{field}[2]"));
-            Some([x?, y?, z?])
+        Kind::Array(a) if a.len() == D => {
+            let values: Vec<Option<f64>> = (a.iter().enumerate())
+                .map(|(k, e)| as_num(ctx, e, &format!("{field}[{k}]")))
+                .collect();
+            let values: Vec<f64> = values.into_iter().collect::<Option<_>>()?;
+            Some(std::array::from_fn(|k| values[k]))
         }
         _ => {
-            ctx.expected(n, field, "a triple of numbers [x, y, z]");
+            let what = match D {
+                2 => "a pair of numbers [x, y]",
+                _ => "a triple of numbers [x, y, z]",
+            };
+            ctx.expected(n, field, what);
             None
         }
     }

@@ -34,23 +34,25 @@ pub struct Scene {
     /// `[[events]]` by increasing time.
     pub events: Vec<EventDesc>,
     /// The periodic cell the bodies are in (`[cell]`), if any.
-    pub cell: Option<CellDesc>,
+    pub cell: Option<CellDesc<2>>,
 }
 
-/// A periodic cell (`[cell]`, see `cell.rs`).
+/// A periodic cell (`[cell]`, see `cell.rs`) of a scene of dimension `D` (2 or 3).
 #[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct CellDesc {
-    /// Lower left corner (m).
-    pub origin: [f64; 2],
-    /// Sides along x and y (m).
-    pub size: [f64; 2],
+#[serde(bound(serialize = "[f64; D]: Serialize, [bool; D]: Serialize, \
+                           [[CellLoadDesc; D]; D]: Serialize"))]
+pub struct CellDesc<const D: usize> {
+    /// Lower corner (m).
+    pub origin: [f64; D],
+    /// Sides along each axis (m).
+    pub size: [f64; D],
     /// The axes along which bodies repeat.
-    pub periodic: [bool; 2],
-    /// Mass of the cell (kg per m of thickness), the inertia of components under stress (0
-    /// when there is none).
+    pub periodic: [bool; D],
+    /// Mass of the cell (2D: kg per m of thickness; 3D: kg), the inertia of components under
+    /// stress (0 when there is none).
     pub mass: f64,
-    /// Control of the velocity gradient's components `[[xx, xy], [yx, yy]]`.
-    pub loads: [[CellLoadDesc; 2]; 2],
+    /// Control of the velocity gradient's components `L_kl = dv_k/dx_l`, by row `k`.
+    pub loads: [[CellLoadDesc; D]; D],
 }
 
 /// How a component of a periodic cell's velocity gradient is controlled.

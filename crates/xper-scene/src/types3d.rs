@@ -31,6 +31,8 @@ pub struct Scene3 {
     pub laws: Vec<LawDesc>,
     /// All bodies: `[[bodies]]`, then `[[walls]]`, then generated bodies, each in file order.
     pub bodies: Vec<BodyDesc3>,
+    /// The periodic cell the bodies are in (`[cell]`), if any.
+    pub cell: Option<crate::types::CellDesc<3>>,
 }
 
 /// The shape of a 3D body in its body frame (centred on the centre of mass).

@@ -346,3 +346,108 @@ fn polyhedra_overlaps_are_errors_with_their_depth() {
     let e = parse3(&format!("{HEADER3}\n{}", turned.replace("[1.4,", "[1.2,"))).unwrap_err();
     assert!(depth_of(&e, "bodies[1]") > 0.0, "{e}");
 }
+
+const SPHERES: &str = r#"
+[[laws]]
+between = ["g", "g"]
+kind = "signorini_coulomb"
+friction = 0.4
+
+[[generators]]
+kind = "box_of_spheres"
+count = 20
+radius = [0.01, 0.01]
+box = [[0.0, 0.0, 0.0], [0.2, 0.2, 0.2]]
+placement = "random"
+seed = 1
+material = "glass"
+group = "g"
+"#;
+
+/// `[cell]` in 3D: three axes, six components, the mass in kg; refusals as in 2D with the
+/// third axis.
+#[test]
+fn a_3d_cell_has_three_axes_and_six_components() {
+    let s = ok3(&format!(
+        "{SPHERES}\n[cell]\nsize = [0.2, 0.2, 0.3]\nmass = 0.5\nxz = {{ rate = 2.0 }}\n\
+         zz = {{ stress = 1e4 }}\nperiodic = [\"x\", \"z\"]\n"
+    ));
+    let c = s.cell.unwrap();
+    assert_eq!((c.origin, c.size), ([0.0; 3], [0.2, 0.2, 0.3]));
+    assert_eq!(c.periodic, [true, false, true]);
+    use xper_scene::{CellLoadDesc, TimeFunction};
+    assert_eq!(
+        c.loads[0][2],
+        CellLoadDesc::Rate(TimeFunction::Constant(2.0))
+    );
+    assert_eq!(
+        c.loads[2][2],
+        CellLoadDesc::Stress(TimeFunction::Constant(1e4))
+    );
+    assert_eq!(
+        c.loads[1][2],
+        CellLoadDesc::Rate(TimeFunction::Constant(0.0))
+    );
+    let cases = [
+        (
+            "size = [0.2, 0.2]",
+            "cell.size",
+            "size",
+            "a triple of numbers",
+        ),
+        (
+            "size = [0.2, 0.2, 0.07]",
+            "cell.size",
+            "size",
+            "along z, less than four times",
+        ),
+        (
+            "size = [0.2, 0.2, 0.2]\nzx = { rate = 1.0 }",
+            "cell.zx",
+            "zx",
+            "dz/dx stays zero",
+        ),
+        (
+            "size = [0.2, 0.2, 0.2]\nzy = { rate = 1.0 }",
+            "cell.zy",
+            "zy",
+            "shear with `yz`",
+        ),
+        (
+            "size = [0.2, 0.2, 0.2]\nzz = { stress = 1e4 }",
+            "cell.mass",
+            "zz",
+            "(kg)",
+        ),
+        (
+            "size = [0.2, 0.2, 0.2]\nperiodic = [\"w\"]",
+            "cell.periodic",
+            "periodic",
+            "\"z\"]",
+        ),
+        (
+            "size = [0.2, 0.2, 0.2]\nperiodic = [\"x\", \"y\"]\nyz = { rate = 1.0 }",
+            "cell.yz",
+            "yz",
+            "not periodic along z",
+        ),
+    ];
+    for (cell, field, marker, needle) in cases {
+        error3(
+            &format!("{SPHERES}\n[cell]\n{cell}\n"),
+            field,
+            marker,
+            needle,
+        );
+    }
+    let newton =
+        format!("{SPHERES}\n[solver]\nkind = \"newton\"\n[cell]\nsize = [0.2, 0.2, 0.2]\n");
+    error3(
+        &newton,
+        "solver.kind",
+        "kind = \"newton\"",
+        "solved by NLGS",
+    );
+    let micro = format!("{SPHERES}\n[output]\nmicro = \"cell\"\n");
+    error3(&micro, "output.micro", "micro", "has no `[cell]`");
+}

@@ -22,6 +22,7 @@ const TOP_KEYS: &[&str] = &[
     "bodies",
     "walls",
     "generators",
+    "cell",
 ];
 
 /// Reads the rest of a 3D rigid scene whose `[scene]` table gave `header`.
@@ -44,6 +45,8 @@ pub(crate) fn rigid_scene3(ctx: &mut Ctx, root: &Tbl, header: Header) -> Option<
         overlaps::overlaps(ctx, &built);
     }
     let laws = sections::laws(ctx, root, &groups);
+    let cell = crate::cell::cell::<3>(ctx, root, crate::cell::largest_3d(&built.bodies)).flatten();
+    crate::cell::check_scene(ctx, root, cell.is_some(), solver.kind, output.micro);
     let steps = header.steps.unwrap_or(1);
     let alert_distance = header
         .alert_distance
@@ -62,6 +65,7 @@ pub(crate) fn rigid_scene3(ctx: &mut Ctx, root: &Tbl, header: Header) -> Option<
         groups: groups.names,
         laws,
         bodies: built.bodies,
+        cell,
     })
 }
 
