@@ -285,6 +285,12 @@ class Simulation:
         return _Part(self, "laws")
 
     @property
+    def cell(self) -> _Part:
+        """The periodic cell's arrays, in a scene with ``[cell]``: ``origin``, ``edges``,
+        ``gradient``, ``wraps``."""
+        return _Part(self, "cell")
+
+    @property
     def group_names(self) -> List[str]:
         """Group names, in the order ``bodies.group`` and ``laws.groups`` index them."""
         return self._sim.group_names

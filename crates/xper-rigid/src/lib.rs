@@ -205,7 +205,7 @@ impl Simulation for RigidSimulation<'_> {
         self.run.rank_summaries(wall)
     }
     fn arrays(&self) -> Vec<xper_run::state::ArrayInfo> {
-        state::ARRAYS.to_vec()
+        self.world().map_or(state::ARRAYS.to_vec(), state::arrays)
     }
     fn group_names(&self) -> Vec<String> {
         self.scene.groups.clone()

@@ -20,6 +20,7 @@ mod shapes {
     pub const TANGENTIAL: &str = "(n, 1)";
     pub const GRAVITY: &str = "(2,)";
     pub const DOFS: &str = "(n, 3)";
+    pub const TENSOR: &str = "(2, 2)";
 }
 #[cfg(feature = "dim3")]
 mod shapes {
@@ -31,6 +32,7 @@ mod shapes {
     pub const TANGENTIAL: &str = "(n, 2)";
     pub const GRAVITY: &str = "(3,)";
     pub const DOFS: &str = "(n, 6)";
+    pub const TENSOR: &str = "(3, 3)";
 }
 use shapes::*;
 
@@ -180,8 +182,63 @@ pub const ARRAYS: [ArrayInfo; 23] = [
     ),
 ];
 
+/// The arrays of a periodic cell (`[cell]`), in a world that has one.
+pub const CELL_ARRAYS: [ArrayInfo; 4] = [
+    ArrayInfo::read_only("cell.origin", GRAVITY, "float64", "m", "the cell's lower corner"),
+    ArrayInfo::read_only(
+        "cell.edges",
+        TENSOR,
+        "float64",
+        "m",
+        "the edges H (upper triangular): column l is edge l, the cell is origin + H s, s in [0, 1)^d",
+    ),
+    ArrayInfo::read_only(
+        "cell.gradient",
+        TENSOR,
+        "float64",
+        "1/s",
+        "the velocity gradient L of the last step, L[k, l] = dv_k/dx_l (imposed or under stress)",
+    ),
+    ArrayInfo::read_only(
+        "cell.wraps",
+        VECTOR,
+        "int64",
+        "1",
+        "per body, how many of each edge it was moved back by on leaving the cell (with fixed edges, its unwrapped position is position + H wraps)",
+    ),
+];
+
+/// The arrays of `world`: [`ARRAYS`], and [`CELL_ARRAYS`] when it has a periodic cell.
+pub fn arrays(world: &World) -> Vec<ArrayInfo> {
+    let cell = world.cell.as_ref().map_or(&[][..], |_| &CELL_ARRAYS[..]);
+    ARRAYS.iter().chain(cell).copied().collect()
+}
+
+/// A tensor's components row by row.
+fn row_major(t: &xper_math::Tensor) -> Vec<f64> {
+    (0..DIM)
+        .flat_map(|k| (0..DIM).map(move |l| t[(k, l)]))
+        .collect()
+}
+
 /// The array `name` of `world`.
 pub fn array(world: &World, name: &str) -> Option<StateArray> {
+    if let Some(part) = name.strip_prefix("cell.") {
+        let cell = world.cell.as_ref()?;
+        return Some(match part {
+            "origin" => StateArray::reals(&[DIM], cell.lattice.origin.iter().copied().collect()),
+            "edges" => StateArray::reals(&[DIM, DIM], row_major(&cell.lattice.edges)),
+            "gradient" => StateArray::reals(&[DIM, DIM], row_major(&cell.gradient)),
+            "wraps" => {
+                // Bodies added since the last step have not left the cell yet.
+                let n = world.bodies.len();
+                let row = |b: usize| cell.wraps.get(b).copied().unwrap_or([0; DIM]);
+                let values = (0..n).flat_map(|b| row(b).map(i64::from)).collect();
+                StateArray::integers(&[n, DIM], values)
+            }
+            _ => return None,
+        });
+    }
     let b = &world.bodies;
     let n = b.len();
     let c = &world.contacts;
@@ -353,7 +410,7 @@ fn write_array(
             world.params.gravity = Vector::from_column_slice(values);
         }
         _ => {
-            return Err(match ARRAYS.iter().find(|a| a.name == name) {
+            return Err(match arrays(world).iter().find(|a| a.name == name) {
                 Some(_) => {
                     let writable: Vec<&str> = (ARRAYS.iter().filter(|a| a.writable))
                         .map(|a| a.name)
