@@ -10,7 +10,7 @@
 //! motion         v_free = v_i + h (M^-1 F - L v_i)        (SLLOD, see `step/periodic.rs`)
 //!                x_i+1 = x_i + h (v_theta + L_theta (x_i - o))
 //! edges          H_i+1 = H_i + h L_theta H_i
-//! stress control I_kl (L_kl,i+1 - L_kl,i) = sum_c p_c,k d_c,l - h V S_kl
+//! stress control I_kl (L_kl,i+1 - L_kl,i) = sum_c p_c,k d_c,l - h V S_kl - h I_kl (L_i L_i)_kl
 //!                I_kl = m |H e_l|^2, S the imposed stress (Pa, compression positive)
 //! wrap           s_k >= 1 or < 0 on a periodic axis: x -= H n, v unchanged
 //! ```
@@ -23,7 +23,10 @@
 //! every contact (through its span `d`) and by the imposed stress (M. Parrinello, A. Rahman,
 //! J. Appl. Phys. 52:7182, 1981); `sum_c p_c (x) d_c` is `h V sigma` (sigma the granular stress of
 //! `crate::micro`, compression positive, Love-Weber), so the cell comes to rest where the
-//! granular stress equals the imposed one. It is solved implicitly with the contacts (see
+//! granular stress equals the imposed one. The cell's momentum is that of its edges, `m dH/dt
+//! = m L H`: from `m d2H/dt2 = F`, `dL/dt = F H^-1 / m - L^2`, whose `L^2` term (explicit,
+//! from the beginning of the step) keeps the energy `m |dH/dt|^2 / 2` consistent while the
+//! edges, and with them the inertia, change. It is solved implicitly with the contacts (see
 //! `crate::CellCoupling`). Bodies other than walls follow the flow: a cell that deforms
 //! carries them homogeneously, and their velocities (in outputs too) are relative to the
 //! flow; walls keep velocities in the world and are not carried.

@@ -264,30 +264,45 @@ fn a_cell_under_pressure_compacts_until_the_granular_stress_equals_it() {
     let initial = world.kinetic_energy();
     let mut stepper = MoreauJean::new();
     let mut held = Vec::new();
-    for step in 0..2800 {
+    for step in 0..3000 {
         stepper.step(&mut world).unwrap();
-        if step >= 2500 && step % 50 == 0 {
+        if step >= 2400 && step % 50 == 0 {
             let m = measure(&world, VolumeSource::Cell).unwrap();
             held.push((m.stress, m.solid_fraction));
         }
     }
+    // Local rearrangements of the resting packing move a normal stress by up to 5 % for a
+    // few steps (measured); over the last 600 steps each stays within 1 % on average. The
+    // solver's 1e-5 alone scatters them by 1 % (at 1e-6 by 0.01 %, but jammed steps then
+    // take 10,000 sweeps).
+    let frames = held.len() as Real;
+    for k in 0..3 {
+        let mean = held.iter().map(|(s, _)| s[(k, k)]).sum::<Real>() / frames;
+        assert!(
+            (mean - pressure).abs() < 0.01 * pressure,
+            "mean sigma_{k}{k} {mean} Pa"
+        );
+    }
     for (stress, phi) in held {
         for k in 0..3 {
             let s = stress[(k, k)];
-            // At the solver's 1e-5 the stress of a step scatters by 1 % about the imposed one
-            // (at 1e-6 by 0.01 %, but jammed steps then take 10,000 sweeps).
-            assert!(
-                (s - pressure).abs() < 0.02 * pressure,
-                "sigma {stress} Pa against {pressure} Pa"
-            );
+            assert!((s - pressure).abs() < 0.06 * pressure, "sigma {stress} Pa");
         }
-        // Random close packing of frictional spheres is about 0.55-0.64.
+        // Random loose packing of frictional spheres is about 0.55-0.6.
         assert!(phi > 0.5, "solid fraction {phi}");
     }
     assert!(
         world.kinetic_energy() < 0.01 * initial,
         "{} J left of {initial} J",
         world.kinetic_energy()
+    );
+    // The imposed stress's work went into dissipation, to within the first-order error of
+    // the cell's explicit `L^2` term (5e-5 of it, measured; without the term, 40 %).
+    let work = world.energy.external_work;
+    assert!(
+        world.energy_error().abs() < 2e-4 * work,
+        "energy error {:e} J of {work:e} J of work",
+        world.energy_error()
     );
     let momentum: Vector = (0..world.bodies.len())
         .map(|b| world.bodies.velocity[b] * world.bodies.mass[b])

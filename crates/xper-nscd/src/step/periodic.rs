@@ -54,7 +54,7 @@ impl MoreauJean {
     /// Puts the periodic cell, if any, in the operator for the step from `t_begin` to
     /// `t_end`, before the blocks are filled: each row's span `d`, `L` at the beginning, and
     /// its free value `L_free` (the imposed components at `t_end`, the others pushed by the
-    /// imposed stress: `- h V S_theta / I`); and the flow's inertial term in the bodies' free
+    /// imposed stress and the edges' momentum: `- h V S_theta / I - h L^2`); and the flow's inertial term in the bodies' free
     /// velocities, `- h L v` (see [`flow_acceleration`]).
     pub(super) fn load_cell(&mut self, world: &World, t_begin: Real, t_end: Real) {
         self.all_spans = Vec::new();
@@ -84,7 +84,9 @@ impl MoreauJean {
         let (h, theta) = (self.h, world.params.theta);
         let inv_inertia = cell.inverse_inertia();
         let stress = cell.step_stress(t_begin, t_end, theta);
-        let pushed = cell.gradient - inv_inertia.component_mul(&stress) * (h * cell.volume());
+        let pushed = cell.gradient
+            - inv_inertia.component_mul(&stress) * (h * cell.volume())
+            - cell.gradient * cell.gradient * h;
         let imposed = cell.imposed_gradient(t_end);
         let gradient = Tensor::from_fn(|k, l| {
             if inv_inertia[(k, l)] != 0.0 {
