@@ -22,8 +22,12 @@
 use crate::bodies::time_function;
 use crate::read::{Ctx, Got, Tbl};
 use crate::tree::Pos;
-use crate::types::{BodyDesc, CellDesc, CellLoadDesc, MicroVolume, ShapeDesc, VelocitySolverKind};
-use crate::types3d::{BodyDesc3, ShapeDesc3};
+#[cfg(doc)]
+use crate::types::ShapeDesc;
+use crate::types::{BodyDesc, CellDesc, CellLoadDesc, MicroVolume, VelocitySolverKind};
+use crate::types3d::BodyDesc3;
+#[cfg(doc)]
+use crate::types3d::ShapeDesc3;
 
 /// The axes' names.
 const AXES: [&str; 3] = ["x", "y", "z"];
@@ -104,10 +108,10 @@ pub(crate) fn cell<const D: usize>(
             loads[k][l] = load;
         }
     }
-    let unit = if D == 3 {
-        "kg"
-    } else {
-        "kg per m of thickness"
+    // The cell's mass: per m of thickness in 2D.
+    let (unit, short) = match D {
+        3 => ("kg", "kg"),
+        _ => ("kg per m of thickness", "kg/m"),
     };
     let mass = match (t.num(ctx, "mass"), stressed) {
         (Got::Absent, None) => Some(0.0),
@@ -117,7 +121,7 @@ pub(crate) fn cell<const D: usize>(
             None
         }
         (g, _) => {
-            let what = format!("> 0 {}", if D == 3 { "kg" } else { "kg/m" });
+            let what = format!("> 0 {short}");
             crate::read::ensure(ctx, g.ok(), &t.field("mass"), |v| v > 0.0, &what)
         }
     };
@@ -224,32 +228,14 @@ fn check_size<const D: usize>(
     }
 }
 
-/// The largest diameter of the bodies of a 2D scene that are not walls (m; 0 without any).
+/// The largest size ([`ShapeDesc::size`]) of the bodies of a 2D scene that are not walls
+/// (m; 0 without any).
 pub(crate) fn largest_2d(bodies: &[BodyDesc]) -> f64 {
-    (bodies.iter())
-        .map(|b| match &b.shape {
-            ShapeDesc::Disk { radius } => 2.0 * radius,
-            ShapeDesc::Polygon { vertices } => {
-                2.0 * (vertices.iter())
-                    .map(|v| v[0].hypot(v[1]))
-                    .fold(0.0, f64::max)
-            }
-            ShapeDesc::Segment { .. } => 0.0,
-        })
-        .fold(0.0, f64::max)
+    (bodies.iter().filter_map(|b| b.shape.size())).fold(0.0, f64::max)
 }
 
-/// The largest diameter of the bodies of a 3D scene that are not walls (m; 0 without any).
+/// The largest size ([`ShapeDesc3::size`]) of the bodies of a 3D scene that are not walls
+/// (m; 0 without any).
 pub(crate) fn largest_3d(bodies: &[BodyDesc3]) -> f64 {
-    (bodies.iter())
-        .map(|b| match &b.shape {
-            ShapeDesc3::Sphere { radius } => 2.0 * radius,
-            ShapeDesc3::Polyhedron { vertices } => {
-                2.0 * (vertices.iter())
-                    .map(|v| v.iter().map(|x| x * x).sum::<f64>().sqrt())
-                    .fold(0.0, f64::max)
-            }
-            ShapeDesc3::Plane { .. } => 0.0,
-        })
-        .fold(0.0, f64::max)
+    (bodies.iter().filter_map(|b| b.shape.size())).fold(0.0, f64::max)
 }

@@ -34,7 +34,7 @@ fn item(shape: &ShapeDesc, p: V2, angle: f64) -> Item {
         ShapeDesc::Polygon { vertices } => {
             let v: Vec<V2> = vertices.iter().map(|q| add(p, rotate(*q, angle))).collect();
             let (lo, hi) = bounds(&v);
-            let size = 2.0 * vertices.iter().map(|q| norm(*q)).fold(0.0, f64::max);
+            let size = 2.0 * crate::geometry::circumradius(vertices);
             Item {
                 geo: Geo::Poly { v },
                 lo,

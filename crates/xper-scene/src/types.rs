@@ -223,6 +223,18 @@ pub enum ShapeDesc {
     },
 }
 
+impl ShapeDesc {
+    /// Twice the largest distance from the centroid to the shape (m): the diameter of a disk;
+    /// `None` for a wall.
+    pub(crate) fn size(&self) -> Option<f64> {
+        match self {
+            ShapeDesc::Disk { radius } => Some(2.0 * radius),
+            ShapeDesc::Polygon { vertices } => Some(2.0 * crate::geometry::circumradius(vertices)),
+            ShapeDesc::Segment { .. } => None,
+        }
+    }
+}
+
 /// One body of the resolved scene.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BodyDesc {

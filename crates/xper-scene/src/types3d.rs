@@ -56,6 +56,22 @@ pub enum ShapeDesc3 {
     },
 }
 
+impl ShapeDesc3 {
+    /// Twice the largest distance from the centroid to the shape (m): the diameter of a
+    /// sphere; `None` for a wall.
+    pub(crate) fn size(&self) -> Option<f64> {
+        match self {
+            ShapeDesc3::Sphere { radius } => Some(2.0 * radius),
+            ShapeDesc3::Polyhedron { vertices } => Some(
+                2.0 * (vertices.iter())
+                    .map(|v| v.iter().map(|x| x * x).sum::<f64>().sqrt())
+                    .fold(0.0, f64::max),
+            ),
+            ShapeDesc3::Plane { .. } => None,
+        }
+    }
+}
+
 /// One body of the resolved 3D scene.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BodyDesc3 {

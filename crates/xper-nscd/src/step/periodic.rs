@@ -54,8 +54,8 @@ impl MoreauJean {
     /// Puts the periodic cell, if any, in the operator for the step from `t_begin` to
     /// `t_end`, before the blocks are filled: each row's span `d`, `L` at the beginning, and
     /// its free value `L_free` (the imposed components at `t_end`, the others pushed by the
-    /// imposed stress and the edges' momentum: `- h V S_theta / I - h L^2`); and the flow's inertial term in the bodies' free
-    /// velocities, `- h L v` (see [`flow_acceleration`]).
+    /// imposed stress and the edges' momentum: `- h V S_theta / I - h L^2`); and the flow's
+    /// inertial term in the bodies' free velocities, `- h L v` (see [`flow_acceleration`]).
     pub(super) fn load_cell(&mut self, world: &World, t_begin: Real, t_end: Real) {
         self.all_spans = Vec::new();
         self.all_offsets = Vec::new();

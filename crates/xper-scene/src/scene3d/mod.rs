@@ -10,7 +10,6 @@ use crate::read::{Ctx, Tbl};
 use crate::sections::{self, Header};
 use crate::shared::{Built3, Groups};
 use crate::types3d::{Scene3, ShapeDesc3};
-use xper_math3d::Vector;
 
 /// Top-level keys of a 3D scene.
 const TOP_KEYS: &[&str] = &[
@@ -85,11 +84,7 @@ fn default_alert_distance(built: &Built3) -> f64 {
         return 0.1 * r;
     }
     let size = smallest(&|s| match s {
-        ShapeDesc3::Polyhedron { vertices } => Some(
-            2.0 * (vertices.iter())
-                .map(|v| Vector::from(*v).norm())
-                .fold(0.0, f64::max),
-        ),
+        ShapeDesc3::Polyhedron { .. } => s.size(),
         _ => None,
     });
     if size.is_finite() {
