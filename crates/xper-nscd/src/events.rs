@@ -1,8 +1,10 @@
-//! Events of a run: changes of drives and friction coefficients at given times, the stages
-//! of a staged test (a sample compacted without friction, then sheared with it; a wall held
-//! by a pressure, then moved at a strain rate), applied at the beginning of the first step
+//! Events of a run: changes of drives, friction coefficients and the periodic cell's controls
+//! at given times, the stages of a staged test (a sample compacted without friction, then
+//! sheared with it; a wall held by a pressure, then moved at a strain rate; a cell compacted
+//! under an isotropic stress, then strained along one axis), applied at the beginning of the first step
 //! that starts at or after their time, as Basilisk's events are in its time loop.
 
+use crate::cell::CellLoad;
 use crate::World;
 use serde::{Deserialize, Serialize};
 use xper_bodies::Drive;
@@ -27,6 +29,15 @@ pub enum Change {
         groups: [u16; 2],
         /// Coulomb's coefficient, >= 0.
         friction: Real,
+    },
+    /// The control of component `L_kl` of the periodic cell's velocity gradient (`k <= l`).
+    /// The gradient itself carries on: a component put under stress starts from its current
+    /// rate, one given a rate takes it at the next step.
+    Cell {
+        /// `[k, l]`.
+        component: [usize; 2],
+        /// Its new control.
+        load: CellLoad,
     },
 }
 
@@ -67,6 +78,11 @@ impl World {
                         if let Some(k) = self.laws.between(a, b) {
                             let InteractionLaw::SignoriniCoulomb(law) = self.laws.law_mut(k);
                             law.friction = friction;
+                        }
+                    }
+                    Change::Cell { component, load } => {
+                        if let Some(cell) = &mut self.cell {
+                            cell.loads[component[0]][component[1]] = load;
                         }
                     }
                 }

@@ -2,7 +2,8 @@
 //! or an independent simulation, as the 2D build's tests: a sphere crossing the three pairs of
 //! sides, a lattice in a cell against the same lattice tiled into a larger free block, the
 //! energy budget and edge reduction of a cell sheared along x over z, a sphere crossing the top
-//! of that cell, and a cell under an isotropic pressure against the granular stress.
+//! of that cell, a cell under an isotropic pressure against the granular stress, and an event
+//! that switches a side from stress to an imposed rate (a triaxial test's second stage).
 
 mod common;
 
@@ -310,5 +311,62 @@ fn a_cell_under_pressure_compacts_until_the_granular_stress_equals_it() {
     assert!(
         momentum.norm() < 1e-9,
         "momentum relative to the flow {momentum:?}"
+    );
+}
+
+/// A triaxial test's switch: an event puts `L_zz` at an imposed rate while `xx` and `yy` stay
+/// under stress. Spheres apart (no contact, nothing pushes the cell): before the event the
+/// cell stays put; from the second step after it the edge along z shrinks by exactly `1 - h
+/// |L_zz|` per step (the first step after it takes the theta-mean of the old and new rates),
+/// the other edges do not move, and a checkpointed world keeps the event as applied.
+#[test]
+fn an_event_puts_a_side_under_stress_at_an_imposed_rate() {
+    use xper_nscd3d::events::{Change, Event};
+    let mut bodies = BodySet::new();
+    for k in 0..8 {
+        let at = Vector::new(
+            0.25 + 0.5 * (k & 1) as Real,
+            0.25 + 0.25 * (k >> 1 & 1) as Real,
+            0.25 + 0.5 * (k >> 2) as Real,
+        );
+        bodies.insert(Body::sphere(0.05, 1000.0, at));
+    }
+    let mut loads = at_rest();
+    for (k, row) in loads.iter_mut().enumerate() {
+        row[k] = CellLoad::Stress(TimeFunction::Constant(0.0));
+    }
+    let cell = PeriodicCell::new(lattice(Vector::repeat(1.0)), loads, 1.0, 8);
+    let h = 1e-3;
+    let mut world = world_in(bodies, cell, 0.5, h);
+    world.events.list = vec![Event {
+        time: 0.01,
+        changes: vec![Change::Cell {
+            component: [2, 2],
+            load: CellLoad::Rate(TimeFunction::Constant(-2.0)),
+        }],
+    }];
+    let mut stepper = MoreauJean::new();
+    let edges = |w: &World| w.cell.as_ref().unwrap().lattice.edges;
+    for _ in 0..10 {
+        stepper.step(&mut world).unwrap();
+    }
+    assert_eq!(edges(&world), Tensor::identity());
+    stepper.step(&mut world).unwrap();
+    assert_eq!(world.events.applied, 1);
+    let first = edges(&world)[(2, 2)];
+    assert!((first - (1.0 - 0.5 * 2.0 * h)).abs() < 1e-15, "{first}");
+    let mut before = first;
+    for _ in 0..20 {
+        stepper.step(&mut world).unwrap();
+        let e = edges(&world);
+        assert!((e[(2, 2)] / before - (1.0 - 2.0 * h)).abs() < 1e-14, "{e}");
+        assert_eq!((e[(0, 0)], e[(1, 1)]), (1.0, 1.0));
+        before = e[(2, 2)];
+    }
+    let again = World::from_bytes(&world.to_bytes()).unwrap();
+    assert_eq!(again.events.applied, 1);
+    assert_eq!(
+        again.cell.as_ref().unwrap().loads[2][2],
+        CellLoad::Rate(TimeFunction::Constant(-2.0))
     );
 }

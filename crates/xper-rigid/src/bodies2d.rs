@@ -3,7 +3,7 @@
 use super::drive;
 use xper_bodies::{Body, BodySet, ConvexPolygon, Shape};
 use xper_math::{Real, Vector};
-use xper_nscd::events::{Change, Event, Events};
+use xper_nscd::events::Events;
 use xper_scene::{CellDesc, Scene, ShapeDesc};
 
 /// The scenes this build runs: 2D rigid scenes.
@@ -65,21 +65,5 @@ pub(super) fn cell(scene: &Scene) -> Option<&CellDesc<2>> {
 
 /// The scene's `[[events]]` as the engine's.
 pub(super) fn events(scene: &Scene) -> Events {
-    let list = (scene.events.iter())
-        .map(|e| Event {
-            time: e.time,
-            changes: (e.frictions.iter())
-                .map(|&(groups, friction)| Change::Friction {
-                    groups: groups.map(|g| g as u16),
-                    friction,
-                })
-                .chain(e.drives.iter().map(|(body, dof, d)| Change::Drive {
-                    body: *body as u32,
-                    dof: *dof,
-                    drive: drive(d),
-                }))
-                .collect(),
-        })
-        .collect();
-    Events { list, applied: 0 }
+    super::events(&scene.events)
 }

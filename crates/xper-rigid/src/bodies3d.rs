@@ -60,14 +60,14 @@ pub(super) fn bodies(scene: &Scene3) -> (BodySet, Real) {
     (bodies, smallest)
 }
 
-/// A 3D scene has no `[[events]]` yet.
-pub(super) fn has_events(_scene: &Scene3) -> bool {
-    false
+/// Whether the scene has `[[events]]`.
+pub(super) fn has_events(scene: &Scene3) -> bool {
+    !scene.events.is_empty()
 }
 
-/// A 3D scene has no `[[events]]` yet.
-pub(super) fn events(_scene: &Scene3) -> Events {
-    Events::default()
+/// The scene's `[[events]]` as the engine's.
+pub(super) fn events(scene: &Scene3) -> Events {
+    super::events(&scene.events)
 }
 
 /// The scene's periodic cell (`[cell]`), if any.

@@ -13,6 +13,7 @@ use xper_bodies::{Drive, ExtentFactor, PressureDrive, TimeFunction};
 use xper_geometry::Lattice;
 use xper_laws::{InteractionLaw, LawTable, SignoriniCoulomb};
 use xper_math::{Real, Tensor, Vector, DIM};
+use xper_nscd::events::{Change, Event, Events};
 use xper_nscd::{CellLoad, Detection, PeriodicCell, StepParams, VelocitySolver, World};
 use xper_solver::{ConvergenceNorm, ErrorScaling, NlgsParams, SolverKind, SolverParams};
 
@@ -138,13 +139,41 @@ fn periodic_cell(c: &xper_scene::CellDesc<DIM>, bodies: usize) -> PeriodicCell {
         periodic: c.periodic,
         relabels: 0,
     };
-    let loads = c.loads.each_ref().map(|row| {
-        row.each_ref().map(|load| match load {
-            xper_scene::CellLoadDesc::Rate(f) => CellLoad::Rate(time_function(f)),
-            xper_scene::CellLoadDesc::Stress(f) => CellLoad::Stress(time_function(f)),
-        })
-    });
+    let loads = (c.loads.each_ref()).map(|row| row.each_ref().map(cell_load));
     PeriodicCell::new(lattice, loads, c.mass, bodies)
+}
+
+/// A control of a cell component as the engine's.
+fn cell_load(load: &xper_scene::CellLoadDesc) -> CellLoad {
+    match load {
+        xper_scene::CellLoadDesc::Rate(f) => CellLoad::Rate(time_function(f)),
+        xper_scene::CellLoadDesc::Stress(f) => CellLoad::Stress(time_function(f)),
+    }
+}
+
+/// A scene's `[[events]]` (2D or 3D) as the engine's.
+fn events(list: &[xper_scene::EventDesc]) -> Events {
+    let list = (list.iter())
+        .map(|e| Event {
+            time: e.time,
+            changes: (e.frictions.iter())
+                .map(|&(groups, friction)| Change::Friction {
+                    groups: groups.map(|g| g as u16),
+                    friction,
+                })
+                .chain(e.drives.iter().map(|(body, dof, d)| Change::Drive {
+                    body: *body as u32,
+                    dof: *dof,
+                    drive: drive(d),
+                }))
+                .chain(e.cell.iter().map(|(component, load)| Change::Cell {
+                    component: *component,
+                    load: cell_load(load),
+                }))
+                .collect(),
+        })
+        .collect();
+    Events { list, applied: 0 }
 }
 
 /// Gives a world restored from a checkpoint the solver limits of its (possibly edited) scene:

@@ -21,7 +21,7 @@
 
 use crate::bodies::time_function;
 use crate::read::{Ctx, Got, Tbl};
-use crate::tree::Pos;
+use crate::tree::{Node, Pos};
 #[cfg(doc)]
 use crate::types::ShapeDesc;
 use crate::types::{BodyDesc, CellDesc, CellLoadDesc, MicroVolume, VelocitySolverKind};
@@ -50,17 +50,7 @@ pub(crate) fn cell<const D: usize>(
     let mut keys = vec!["origin", "size", "periodic", "mass"];
     keys.extend((0..D).flat_map(|k| (0..D).map(move |l| COMPONENTS[3 * k + l])));
     t.check_keys(ctx, &keys);
-    for (k, l) in (0..D).flat_map(|k| (0..k).map(move |l| (k, l))) {
-        if let Some(n) = t.get(COMPONENTS[3 * k + l]) {
-            let why = format!(
-                "d{}/d{} stays zero: the cell's edges stay upper triangular (shear with `{}`)",
-                AXES[k],
-                AXES[l],
-                COMPONENTS[3 * l + k]
-            );
-            ctx.err(n.pos, &t.field(COMPONENTS[3 * k + l]), why);
-        }
-    }
+    refuse_lower::<D>(ctx, &t);
     let origin = t.vector::<D>(ctx, "origin").or([0.0; D]);
     let size = match t.vector::<D>(ctx, "size").req(ctx, &t, "size") {
         Some((s, _)) if s.iter().all(|&x| x > 0.0) => Some(s),
@@ -80,31 +70,14 @@ pub(crate) fn cell<const D: usize>(
         let Some(n) = t.get(key) else {
             continue;
         };
-        let field = t.field(key);
-        let Some(e) = Tbl::of(ctx, n, field.clone()) else {
+        let Some((load, pos)) = component_load(ctx, n, &t.field(key)) else {
             continue;
         };
-        e.check_keys(ctx, &["rate", "stress"]);
-        let load = match (e.get("rate"), e.get("stress")) {
-            (Some(r), None) => time_function(ctx, r, &e.field("rate")).map(CellLoadDesc::Rate),
-            (None, Some(s)) => {
-                stressed.get_or_insert(s.pos);
-                time_function(ctx, s, &e.field("stress")).map(CellLoadDesc::Stress)
-            }
-            _ => {
-                ctx.err(n.pos, &field, "give either `rate` (1/s) or `stress` (Pa)");
-                None
-            }
-        };
-        if let (Some(load), Some(p)) = (load, periodic) {
-            let still = CellLoadDesc::Rate(xper_bodies::TimeFunction::Constant(0.0));
-            if !p[l] && load != still {
-                let why = format!(
-                    "the cell is not periodic along {}: its edge along that axis cannot deform",
-                    AXES[l]
-                );
-                ctx.err(n.pos, &field, why);
-            }
+        if matches!(load, CellLoadDesc::Stress(_)) {
+            stressed.get_or_insert(pos);
+        }
+        if let Some(p) = periodic {
+            check_deforms(ctx, (n.pos, &t.field(key)), &load, l, p[l]);
             loads[k][l] = load;
         }
     }
@@ -138,6 +111,96 @@ pub(crate) fn cell<const D: usize>(
         mass: mass?,
         loads,
     }))
+}
+
+/// Refuses the components below the diagonal (`yx`, `zx`, `zy`) in `t`.
+fn refuse_lower<const D: usize>(ctx: &mut Ctx, t: &Tbl) {
+    for (k, l) in (0..D).flat_map(|k| (0..k).map(move |l| (k, l))) {
+        if let Some(n) = t.get(COMPONENTS[3 * k + l]) {
+            let why = format!(
+                "d{}/d{} stays zero: the cell's edges stay upper triangular (shear with `{}`)",
+                AXES[k],
+                AXES[l],
+                COMPONENTS[3 * l + k]
+            );
+            ctx.err(n.pos, &t.field(COMPONENTS[3 * k + l]), why);
+        }
+    }
+}
+
+/// One component's control, `{ rate = ... }` (1/s) or `{ stress = ... }` (Pa), with the
+/// position of its value.
+fn component_load(ctx: &mut Ctx, n: &Node, field: &str) -> Option<(CellLoadDesc, Pos)> {
+    let e = Tbl::of(ctx, n, field.to_string())?;
+    e.check_keys(ctx, &["rate", "stress"]);
+    match (e.get("rate"), e.get("stress")) {
+        (Some(r), None) => {
+            time_function(ctx, r, &e.field("rate")).map(|f| (CellLoadDesc::Rate(f), r.pos))
+        }
+        (None, Some(s)) => {
+            time_function(ctx, s, &e.field("stress")).map(|f| (CellLoadDesc::Stress(f), s.pos))
+        }
+        _ => {
+            ctx.err(n.pos, field, "give either `rate` (1/s) or `stress` (Pa)");
+            None
+        }
+    }
+}
+
+/// A component `L_kl` may deform the cell only along an axis `l` the cell is periodic along.
+fn check_deforms(ctx: &mut Ctx, at: (Pos, &str), load: &CellLoadDesc, l: usize, periodic: bool) {
+    let still = CellLoadDesc::Rate(xper_bodies::TimeFunction::Constant(0.0));
+    if !periodic && *load != still {
+        let why = format!(
+            "the cell is not periodic along {}: its edge along that axis cannot deform",
+            AXES[l]
+        );
+        ctx.err(at.0, at.1, why);
+    }
+}
+
+/// An `[[events]]` entry's `cell = { zz = { rate = ... }, xx = { stress = ... } }`: the new
+/// control of the components given, from the event on (the others keep theirs). A component
+/// under stress needs the cell's `mass`; the scene must have a `[cell]`.
+pub(crate) fn event_loads<const D: usize>(
+    ctx: &mut Ctx,
+    e: &Tbl,
+    cell: Option<&CellDesc<D>>,
+) -> Option<Vec<([usize; 2], CellLoadDesc)>> {
+    let t = match e.table(ctx, "cell") {
+        Got::Absent => return Some(Vec::new()),
+        Got::Bad => return None,
+        Got::Val(t, _) => t,
+    };
+    let before = ctx.errors.len();
+    let Some(cell) = cell else {
+        ctx.err(
+            t.pos,
+            &e.field("cell"),
+            "the scene has no `[cell]` to change",
+        );
+        return None;
+    };
+    let keys: Vec<&str> = (0..D)
+        .flat_map(|k| (0..D).map(move |l| COMPONENTS[3 * k + l]))
+        .collect();
+    t.check_keys(ctx, &keys);
+    refuse_lower::<D>(ctx, &t);
+    let mut out = Vec::new();
+    for (k, l) in (0..D).flat_map(|k| (k..D).map(move |l| (k, l))) {
+        let key = COMPONENTS[3 * k + l];
+        let Some(n) = t.get(key) else { continue };
+        let Some((load, pos)) = component_load(ctx, n, &t.field(key)) else {
+            continue;
+        };
+        check_deforms(ctx, (n.pos, &t.field(key)), &load, l, cell.periodic[l]);
+        if matches!(load, CellLoadDesc::Stress(_)) && cell.mass == 0.0 {
+            let why = "a component under `stress` needs the cell's `mass` in `[cell]`";
+            ctx.err(pos, &t.field(key), why);
+        }
+        out.push(([k, l], load));
+    }
+    (ctx.errors.len() == before).then_some(out)
 }
 
 /// What a periodic cell asks of the rest of the scene: the NLGS solver, and measures over the

@@ -8,25 +8,72 @@
 //! friction = [{ between = ["grains", "grains"], value = 0.5 }]
 //! drives = [{ group = "top", drive = { y = { velocity = -0.02 } } }]
 //! ```
+//!
+//! In 3D scenes the drives' degrees of freedom are `x`, `y`, `z`, `rx`, `ry`, `rz`. In a scene
+//! with a `[cell]`, `cell = { zz = { rate = -0.05 } }` changes the control of the cell's
+//! components given (`rate` in 1/s or `stress` in Pa, as in `[cell]`): a triaxial test
+//! compacts the cell under an isotropic stress, then imposes the axial strain rate.
 
 use crate::bodies::{drives_of, Driven};
 use crate::read::{as_num, Ctx, Got, Tbl};
 use crate::sections::between;
 use crate::shared::{Built, Groups};
 use crate::tree::Kind;
-use crate::types::{Drive, EventDesc, LawDesc};
+use crate::types::{BodyDesc, CellDesc, Drive, EventDesc, LawDesc};
+use crate::types3d::BodyDesc3;
+
+/// What an event needs to know of a body: its group and its mass.
+pub(crate) trait EventBody {
+    /// Index of the body's group.
+    fn group(&self) -> usize;
+    /// Mass in kg (kg per m in 2D), infinite for walls without one.
+    fn mass(&self) -> f64;
+}
+
+impl EventBody for BodyDesc {
+    fn group(&self) -> usize {
+        self.group
+    }
+    fn mass(&self) -> f64 {
+        self.mass
+    }
+}
+
+impl EventBody for BodyDesc3 {
+    fn group(&self) -> usize {
+        self.group
+    }
+    fn mass(&self) -> f64 {
+        self.mass
+    }
+}
+
+/// The scene an event changes: its groups, bodies, laws, drives' degrees of freedom (`N`
+/// names) and periodic cell of dimension `D`.
+pub(crate) struct EventScene<'a, const D: usize, const N: usize, B> {
+    pub groups: &'a Groups,
+    pub built: &'a Built<B>,
+    pub laws: &'a [LawDesc],
+    pub dofs: [&'static str; N],
+    pub cell: Option<&'a CellDesc<D>>,
+}
 
 /// Reads `[[events]]`, sorted by time (stable: events at the same time keep their order).
-pub(crate) fn events(
+pub(crate) fn events<const D: usize, const N: usize, B: EventBody>(
     ctx: &mut Ctx,
     root: &Tbl,
-    groups: &Groups,
-    built: &Built,
-    laws: &[LawDesc],
+    scene: EventScene<D, N, B>,
 ) -> Vec<EventDesc> {
+    let EventScene {
+        groups,
+        built,
+        laws,
+        dofs,
+        cell,
+    } = scene;
     let mut out = Vec::new();
     for (_, t) in root.tables(ctx, "events") {
-        t.check_keys(ctx, &["time", "friction", "drives"]);
+        t.check_keys(ctx, &["time", "friction", "drives", "cell"]);
         let time = match t.num(ctx, "time").req(ctx, &t, "time") {
             Some((v, _)) if v >= 0.0 => Some(v),
             Some((v, pos)) => {
@@ -36,12 +83,16 @@ pub(crate) fn events(
             None => None,
         };
         let frictions = frictions(ctx, &t, groups, laws);
-        let drives = drives(ctx, &t, groups, built);
-        if let (Some(time), Some(frictions), Some(drives)) = (time, frictions, drives) {
+        let drives = drives(ctx, &t, groups, built, dofs);
+        let cell = crate::cell::event_loads(ctx, &t, cell);
+        if let (Some(time), Some(frictions), Some(drives), Some(cell)) =
+            (time, frictions, drives, cell)
+        {
             out.push(EventDesc {
                 time,
                 frictions,
                 drives,
+                cell,
             });
         }
     }
@@ -108,11 +159,12 @@ fn frictions(
 
 /// `drives = [{ group = g, drive = { x = {...}, ... } }, ...]`: every body of `g` gets the
 /// drives given (velocity, or force on bodies of finite mass).
-fn drives(
+fn drives<const N: usize, B: EventBody>(
     ctx: &mut Ctx,
     t: &Tbl,
     groups: &Groups,
-    built: &Built,
+    built: &Built<B>,
+    dofs: [&str; N],
 ) -> Option<Vec<(usize, usize, Drive)>> {
     let mut out = Vec::new();
     let mut ok = true;
@@ -129,7 +181,7 @@ fn drives(
             None => None,
         };
         let drive = match e.table(ctx, "drive") {
-            Got::Val(d, _) => drives_of(ctx, &d, Driven::Event, ["x", "y", "rotation"], None),
+            Got::Val(d, _) => drives_of(ctx, &d, Driven::Event, dofs, None),
             Got::Absent => {
                 e.missing(ctx, "drive");
                 None
@@ -140,10 +192,10 @@ fn drives(
             ok = false;
             continue;
         };
-        for (b, body) in (built.bodies.iter().enumerate()).filter(|(_, b)| b.group == group) {
+        for (b, body) in (built.bodies.iter().enumerate()).filter(|(_, b)| b.group() == group) {
             for (dof, d) in drive.iter().enumerate() {
                 let Some(d) = d else { continue };
-                if matches!(d, Drive::Force(_)) && !body.mass.is_finite() {
+                if matches!(d, Drive::Force(_)) && !body.mass().is_finite() {
                     let why = format!(
                         "group `{}` holds a wall without a `mass`: a force cannot move it",
                         groups.names[group]

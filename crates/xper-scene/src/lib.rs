@@ -250,9 +250,16 @@ fn rigid_scene_with(ctx: &mut Ctx, root: &Tbl, header: sections::Header) -> Opti
         overlap::check(ctx, &built);
     }
     let laws = sections::laws(ctx, root, &groups);
-    let events = events::events(ctx, root, &groups, &built, &laws);
     let fluid = fluid::fluid(ctx, root, &built).flatten();
     let cell = cell::cell::<2>(ctx, root, cell::largest_2d(&built.bodies)).flatten();
+    let event_scene = events::EventScene {
+        groups: &groups,
+        built: &built,
+        laws: &laws,
+        dofs: ["x", "y", "rotation"],
+        cell: cell.as_ref(),
+    };
+    let events = events::events(ctx, root, event_scene);
     if let (Some(_), Some(n)) = (&fluid, root.get("cell")) {
         ctx.err(
             n.pos,

@@ -281,8 +281,10 @@ pub struct EventDesc {
     /// New friction coefficients of the laws between pairs of groups (indices into
     /// [`Scene::groups`]).
     pub frictions: Vec<([usize; 2], f64)>,
-    /// New drives: `(body, degree of freedom, drive)`, bodies indexing [`Scene::bodies`].
+    /// New drives: `(body, degree of freedom, drive)`, bodies indexing the scene's bodies.
     pub drives: Vec<(usize, usize, Drive)>,
+    /// New controls of components `[k, l]` of the periodic cell's velocity gradient.
+    pub cell: Vec<([usize; 2], CellLoadDesc)>,
 }
 
 /// A pressure drive of a wall: a servo wall at constant confining pressure.

@@ -33,6 +33,8 @@ pub struct Scene3 {
     pub bodies: Vec<BodyDesc3>,
     /// The periodic cell the bodies are in (`[cell]`), if any.
     pub cell: Option<crate::types::CellDesc<3>>,
+    /// `[[events]]` by increasing time.
+    pub events: Vec<crate::types::EventDesc>,
 }
 
 /// The shape of a 3D body in its body frame (centred on the centre of mass).

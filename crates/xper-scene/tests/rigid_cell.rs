@@ -123,3 +123,33 @@ fn refused_cells_name_the_field_and_the_reason() {
     let t = with_header(&format!("{DISKS}\n[output]\nmicro = \"cell\"\n"));
     expect_error(&t, "output.micro", "micro", "has no `[cell]`");
 }
+
+/// An `[[events]]` entry's `cell` table in 2D: the components given change their control;
+/// the components of 3D cells and those below the diagonal are refused.
+#[test]
+fn events_change_the_control_of_cell_components() {
+    let cell = "size = [0.2, 0.2]\nmass = 0.5\nxx = { stress = 1e4 }\nyy = { stress = 1e4 }\n\
+                [[events]]\ntime = 0.3\n";
+    let s = ok(&scene(&format!(
+        "{cell}cell = {{ yy = {{ rate = [[0.3, 0.0], [0.4, -0.5]] }} }}"
+    )));
+    assert_eq!(
+        s.events[0].cell,
+        vec![(
+            [1, 1],
+            CellLoadDesc::Rate(TimeFunction::Table(vec![(0.3, 0.0), (0.4, -0.5)]))
+        )]
+    );
+    expect_error(
+        &scene(&format!("{cell}cell = {{ zz = {{ rate = 1.0 }} }}")),
+        "events[0].cell.zz",
+        "cell = {",
+        "unknown key",
+    );
+    expect_error(
+        &scene(&format!("{cell}cell = {{ yx = {{ rate = 1.0 }} }}")),
+        "events[0].cell.yx",
+        "cell = {",
+        "upper triangular",
+    );
+}

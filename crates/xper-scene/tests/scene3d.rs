@@ -451,3 +451,92 @@ fn a_3d_cell_has_three_axes_and_six_components() {
     let micro = format!("{SPHERES}\n[output]\nmicro = \"cell\"\n");
     error3(&micro, "output.micro", "micro", "has no `[cell]`");
 }
+
+/// `[[events]]` in 3D: friction, drives of the six degrees of freedom, and the cell's
+/// components (a triaxial test's stages); refusals with their field and reason.
+#[test]
+fn events_in_3d_change_friction_drives_and_the_cell() {
+    use xper_scene::{CellLoadDesc, Drive, TimeFunction};
+    let cell = "[cell]\nsize = [0.2, 0.2, 0.2]\nmass = 0.5\nxx = { stress = 1e4 }\n\
+                yy = { stress = 1e4 }\nzz = { stress = 1e4 }\n";
+    let s = ok3(&format!(
+        "{SPHERES}\n{cell}\n[[events]]\ntime = 0.5\n\
+         friction = [{{ between = [\"g\", \"g\"], value = 0.5 }}]\n\
+         cell = {{ zz = {{ rate = -0.1 }}, xz = {{ rate = 1.0 }} }}\n\
+         [[events]]\ntime = 0.2\ndrives = [{{ group = \"g\", drive = {{ z = {{ velocity = 1.0 }}, rz = {{ force = 2.0 }} }} }}]\n"
+    ));
+    assert_eq!(s.events.len(), 2);
+    let (first, second) = (&s.events[0], &s.events[1]);
+    assert_eq!(first.time, 0.2);
+    assert_eq!(first.drives.len(), 40);
+    assert_eq!(
+        first.drives[0],
+        (0, 2, Drive::Velocity(TimeFunction::Constant(1.0)))
+    );
+    assert_eq!(
+        first.drives[1],
+        (0, 5, Drive::Force(TimeFunction::Constant(2.0)))
+    );
+    assert_eq!(second.frictions, vec![([0, 0], 0.5)]);
+    assert_eq!(
+        second.cell,
+        vec![
+            ([0, 2], CellLoadDesc::Rate(TimeFunction::Constant(1.0))),
+            ([2, 2], CellLoadDesc::Rate(TimeFunction::Constant(-0.1))),
+        ]
+    );
+    let event = |body: &str| format!("{SPHERES}\n{cell}\n[[events]]\ntime = 0.1\n{body}\n");
+    let cases = [
+        (
+            event("cell = { zx = { rate = 1.0 } }"),
+            "events[0].cell.zx",
+            "zx",
+            "dz/dx stays zero",
+        ),
+        (
+            event("cell = { zz = { rate = 1.0, stress = 2.0 } }"),
+            "events[0].cell.zz",
+            "cell = {",
+            "either `rate` (1/s) or `stress` (Pa)",
+        ),
+        (
+            event("cell = { ww = { rate = 1.0 } }"),
+            "events[0].cell.ww",
+            "ww",
+            "unknown key",
+        ),
+        (
+            event("drives = [{ group = \"g\", drive = { rotation = { velocity = 1.0 } } }]"),
+            "events[0].drives[0].drive.rotation",
+            "rotation",
+            "unknown key",
+        ),
+        (
+            format!(
+                "{SPHERES}\n[cell]\nsize = [0.2, 0.2, 0.2]\n[[events]]\ntime = 0.1\n\
+                 cell = {{ zz = {{ stress = 1e4 }} }}\n"
+            ),
+            "events[0].cell.zz",
+            "cell = {",
+            "needs the cell's `mass`",
+        ),
+        (
+            format!(
+                "{SPHERES}\n[cell]\nsize = [0.2, 0.2, 0.2]\nperiodic = [\"x\", \"y\"]\n\
+                 [[events]]\ntime = 0.1\ncell = {{ zz = {{ rate = -1.0 }} }}\n"
+            ),
+            "events[0].cell.zz",
+            "cell = {",
+            "not periodic along z",
+        ),
+        (
+            format!("{SPHERES}\n[[events]]\ntime = 0.1\ncell = {{ zz = {{ rate = -1.0 }} }}\n"),
+            "events[0].cell",
+            "cell = {",
+            "no `[cell]` to change",
+        ),
+    ];
+    for (text, field, marker, needle) in cases {
+        error3(&text, field, marker, needle);
+    }
+}

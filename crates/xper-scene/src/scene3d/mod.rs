@@ -22,6 +22,7 @@ const TOP_KEYS: &[&str] = &[
     "walls",
     "generators",
     "cell",
+    "events",
 ];
 
 /// Reads the rest of a 3D rigid scene whose `[scene]` table gave `header`.
@@ -46,6 +47,14 @@ pub(crate) fn rigid_scene3(ctx: &mut Ctx, root: &Tbl, header: Header) -> Option<
     let laws = sections::laws(ctx, root, &groups);
     let cell = crate::cell::cell::<3>(ctx, root, crate::cell::largest_3d(&built.bodies)).flatten();
     crate::cell::check_scene(ctx, root, cell.is_some(), solver.kind, output.micro);
+    let event_scene = crate::events::EventScene {
+        groups: &groups,
+        built: &built,
+        laws: &laws,
+        dofs: bodies::DOFS3,
+        cell: cell.as_ref(),
+    };
+    let events = crate::events::events(ctx, root, event_scene);
     let steps = header.steps.unwrap_or(1);
     let alert_distance = header
         .alert_distance
@@ -65,6 +74,7 @@ pub(crate) fn rigid_scene3(ctx: &mut Ctx, root: &Tbl, header: Header) -> Option<
         laws,
         bodies: built.bodies,
         cell,
+        events,
     })
 }
 
