@@ -8,6 +8,7 @@ mod common;
 use common::{
     assert_post_matches_last_row, assert_success, run_scene, shipped_scene, temp_dir, xper,
 };
+use std::path::{Path, PathBuf};
 use xper_io::SeriesTable;
 
 #[test]
@@ -33,18 +34,7 @@ fn sheared_cell(scene: &str, steps: u64, settled: f64, axis: &str, height: f64, 
     let mut doc: toml::Table = text.parse().unwrap();
     doc["laws"][0]["friction"] = toml::Value::Float(friction);
     std::fs::write(&scene, toml::to_string(&doc).unwrap()).unwrap();
-    let (straight, split) = (dir.join("straight"), dir.join("split"));
-    assert_success(&run_scene(&scene, &straight, &["--quiet"]));
-    let stop = (steps * 5 / 12).to_string();
-    assert_success(&run_scene(
-        &scene,
-        &split,
-        &["--quiet", "--stop-at-step", &stop],
-    ));
-    assert_success(&run_scene(&scene, &split, &["--quiet", "--resume"]));
-    let a = std::fs::read(straight.join("checkpoint.bin")).unwrap();
-    let b = std::fs::read(split.join("checkpoint.bin")).unwrap();
-    assert!(a == b, "the resumed run ends in another state");
+    let straight = runs_resume_exactly(&scene, &dir, steps * 5 / 12);
 
     // Once the loose packing has compacted, sigma along `axis` within 5 % of the imposed
     // 10 kPa at every frame, and the cell's height what the pressure made it.
@@ -87,17 +77,7 @@ fn a_triaxial_cell_switches_its_axis_from_stress_to_rate_at_the_event() {
     cell.insert("mass".into(), toml::Value::Float(0.004));
     doc["events"][0]["time"] = toml::Value::Float(0.25);
     std::fs::write(&scene, toml::to_string(&doc).unwrap()).unwrap();
-    let (straight, split) = (dir.join("straight"), dir.join("split"));
-    assert_success(&run_scene(&scene, &straight, &["--quiet"]));
-    assert_success(&run_scene(
-        &scene,
-        &split,
-        &["--quiet", "--stop-at-step", "2000"],
-    ));
-    assert_success(&run_scene(&scene, &split, &["--quiet", "--resume"]));
-    let a = std::fs::read(straight.join("checkpoint.bin")).unwrap();
-    let b = std::fs::read(split.join("checkpoint.bin")).unwrap();
-    assert!(a == b, "the resumed run ends in another state");
+    let straight = runs_resume_exactly(&scene, &dir, 2000);
 
     let micro = SeriesTable::read_csv(&straight.join("micro.csv")).unwrap();
     let col = |name: &str| micro.column(name).unwrap();
@@ -155,3 +135,21 @@ fn a_triaxial_cell_switches_its_axis_from_stress_to_rate_at_the_event() {
 }
 
 const AXES: [&str; 3] = ["x", "y", "z"];
+
+/// Runs `scene` into `dir/straight`, and into `dir/split` stopped at step `stop` and resumed:
+/// both must end in the same checkpoint, byte for byte. Returns the straight run's folder.
+fn runs_resume_exactly(scene: &Path, dir: &Path, stop: u64) -> PathBuf {
+    let (straight, split) = (dir.join("straight"), dir.join("split"));
+    assert_success(&run_scene(scene, &straight, &["--quiet"]));
+    let stop = stop.to_string();
+    assert_success(&run_scene(
+        scene,
+        &split,
+        &["--quiet", "--stop-at-step", &stop],
+    ));
+    assert_success(&run_scene(scene, &split, &["--quiet", "--resume"]));
+    let a = std::fs::read(straight.join("checkpoint.bin")).unwrap();
+    let b = std::fs::read(split.join("checkpoint.bin")).unwrap();
+    assert!(a == b, "the resumed run ends in another state");
+    straight
+}
