@@ -174,20 +174,42 @@ def test_one_output_directory_holds_one_run(tmp_path, fresh):
 
 
 def test_a_step_that_fails_raises_and_ends_the_run(fresh):
-    # A plate whose sideways motion and rotation are imposed, pressed against a wall by
-    # gravity along x: the contact's normal is along the plate's imposed degree of freedom,
-    # so W_nn = 0 and the contact solver refuses the step.
-    s = xper.Scene(name="blows_up", dt=1e-3, duration=0.1, gravity=[-9.81, 0.0])
+    # Two disks falling under a gravity of 1e200 m/s^2: their kinetic energy overflows in the
+    # first steps, and the energy check refuses the step.
+    s = xper.Scene(name="blows_up", dt=1e-3, duration=0.1, gravity=[0.0, -1e200])
     s.add("materials", name="steel", density=7800.0)
-    s.add("laws", between=["plate", "wall"], kind="signorini_coulomb", friction=0.3)
-    s.add("bodies", shape="rectangle", center=[0.0101, 0.0], size=[0.02, 0.1],
-          material="steel", group="plate",
-          drive={"x": {"velocity": -0.5}, "rotation": {"velocity": 0.0}})
-    s.add("walls", from_=[0.0, -1.0], to=[0.0, 1.0], group="wall")
+    s.add("laws", between=["disk", "disk"], kind="signorini_coulomb", friction=0.3)
+    for x in (0.0, 0.1):
+        s.add("bodies", shape="disk", center=[x, 0.0], radius=0.01, material="steel",
+              group="disk")
     sim = xper.Simulation.from_scene(s, out=fresh("blows_up"))
-    with pytest.raises(xper.RunError, match=r"step \d+ \(t = .* s\): contact solver: .*W_nn"):
+    with pytest.raises(xper.RunError, match=r"step \d+ \(t = .* s\): energy blow-up"):
         sim.run()
     assert sim.is_finished and sim.summary is None
     with pytest.raises(xper.RunError, match="is finished"):
         sim.step()
     assert sim.bodies.position.shape == (2, 2)          # the state is still there to read
+
+
+def test_a_held_body_against_a_wall_makes_no_contact(fresh):
+    # A plate whose sideways motion and rotation are imposed (held still), pressed against a
+    # wall by gravity along x, beside a free disk on the same wall: no impulse could move the
+    # plate along the wall's normal (W_nn = 0), so that pair makes no contact (as in LMGC90)
+    # and the run goes on; the disk rests on the wall with its weight.
+    s = xper.Scene(name="held", dt=1e-3, duration=0.05, gravity=[-9.81, 0.0])
+    s.add("materials", name="steel", density=7800.0)
+    s.add("laws", between=["plate", "wall"], kind="signorini_coulomb", friction=0.3)
+    s.add("laws", between=["disk", "wall"], kind="signorini_coulomb", friction=0.3)
+    s.add("bodies", shape="rectangle", center=[0.0101, 0.0], size=[0.02, 0.1],
+          material="steel", group="plate",
+          drive={"x": {"velocity": 0.0}, "rotation": {"velocity": 0.0}})
+    s.add("bodies", shape="disk", center=[0.01, 0.5], radius=0.01, material="steel",
+          group="disk")
+    s.add("walls", from_=[0.0, -1.0], to=[0.0, 1.0], group="wall")
+    sim = xper.Simulation.from_scene(s, out=fresh("held"))
+    sim.run()
+    assert sim.is_finished and sim.summary["status"] == "completed"
+    assert sim.contacts.bodies.tolist() == [[1, 2]]
+    weight = 7800.0 * np.pi * 0.01**2 * 9.81 * 1e-3      # N s per step
+    assert abs(sim.contacts.normal_impulse[0] - weight) < 1e-9 * weight
+    assert sim.bodies.position[0].tolist() == [0.0101, 0.0]

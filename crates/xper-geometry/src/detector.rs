@@ -158,6 +158,10 @@ impl Detector {
         self.calls_since_build += 1;
         let mut merge = CarryOver::new(contacts);
         let immobile = |b: usize| !bodies.is_movable(b);
+        // A body whose translations are free and whose mass is finite moves along any normal.
+        let pushed = |b: usize| {
+            bodies.imposed[b] & TRANSLATIONS == 0 && bodies.is_dynamic(b) && bodies.mass[b] > 0.0
+        };
         let built_wraps = &self.built_wraps;
         let mut pair = |i: u32, j: u32, built_image: Option<&Image>| {
             let (a, b) = (i as usize, j as usize);
@@ -198,8 +202,12 @@ impl Detector {
                 return;
             }
             let (previous, count) = merge.previous_of([i, j]);
+            let probe = !pushed(a) && !pushed(b);
             for p in m.as_slice() {
                 let row = ContactRow::new([i, j], &p.point, &p.normal, pa, pb);
+                if probe && !moves_along_normal(&row, bodies) {
+                    continue;
+                }
                 let impulse = (previous[..count].iter())
                     .find(|c| c.0 == p.feature)
                     .map_or([0.0; DIM], |c| row.carry_in(c.1));
@@ -440,6 +448,20 @@ impl Detector {
     }
 }
 
+/// The bits of [`BodySet::imposed`] of the translations.
+const TRANSLATIONS: u8 = (1 << DIM) - 1;
+
+/// Whether an impulse along the normal of `row` moves one of its bodies (`W_NN > 0`). A
+/// contact between two bodies that cannot move along its normal (a body whose motion is
+/// imposed, against a wall or another such body) is left out by the detection, as LMGC90
+/// leaves it out: no impulse of it could change a velocity, and its local problem has no
+/// solution once it closes.
+fn moves_along_normal(row: &ContactRow, bodies: &BodySet) -> bool {
+    let mut probe = *row;
+    probe.refresh_block(|b| bodies.inv_mass(b));
+    probe.full_block()[0] > 0.0
+}
+
 /// `pairs` (each `(i, j)` with `i < j`, `j` a second body, or a second body and its image)
 /// in ascending order, compressed: `seconds` the second bodies, `start[i]..start[i + 1]` those
 /// of first body `i`. A counting sort by first body, then the few second bodies of each first
@@ -521,6 +543,31 @@ mod tests_3d {
     use super::*;
     use xper_bodies::Body;
     use xper_math::{Rotation, SplitMix64, Vector};
+
+    /// Three spheres touching a floor: free; held along the floor's normal (no impulse could
+    /// move it: `W_NN = 0`); held along the floor only (free along the normal). The held one
+    /// makes no contact, the other two do; so do the held one and a free sphere on it.
+    #[test]
+    fn a_body_held_along_the_normal_makes_no_contact_with_a_wall() {
+        use xper_bodies::{Drive, TimeFunction};
+        let held = |dofs: &[usize], at: Vector| {
+            let mut b = Body::sphere(0.1, 1000.0, at);
+            for &k in dofs {
+                b.drives[k] = Drive::Velocity(TimeFunction::Constant(0.0));
+            }
+            b
+        };
+        let mut set = BodySet::new();
+        set.insert(Body::plane(Vector::zeros(), Vector::z(), [4.0, 4.0]));
+        set.insert(held(&[], Vector::new(0.0, 0.0, 0.1)));
+        set.insert(held(&[2, 3, 4, 5], Vector::new(1.0, 0.0, 0.1)));
+        set.insert(held(&[0, 1, 3, 4, 5], Vector::new(2.0, 0.0, 0.1)));
+        set.insert(held(&[], Vector::new(1.0, 0.0, 0.3)));
+        let mut contacts = ContactSet::default();
+        Detector::new().detect(&set, 0.01, |_, _| Some(0), &mut contacts);
+        let pairs: Vec<[u32; 2]> = contacts.rows.iter().map(|r| r.bodies).collect();
+        assert_eq!(pairs, vec![[0, 1], [0, 3], [2, 4]]);
+    }
 
     #[test]
     fn kept_candidates_give_the_contacts_of_a_fresh_detection_in_3d() {
