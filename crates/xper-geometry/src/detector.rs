@@ -124,7 +124,9 @@ impl Detector {
     ///
     /// `law_of(group_a, group_b)` is `None` when two groups do not interact (a law table's
     /// `between`): their pairs are skipped, as are pairs of bodies that contacts cannot move
-    /// (all inverse masses zero). Impulses of contacts present before (same bodies and features) are kept.
+    /// (all inverse masses zero) and contacts whose normal neither body can move along
+    /// (`W_NN = 0`: a body held along it against a wall). Impulses of contacts present before
+    /// (same bodies and features) are kept.
     pub fn detect(
         &mut self,
         bodies: &BodySet,

@@ -1,8 +1,8 @@
 //! Events of a run: changes of drives, friction coefficients and the periodic cell's controls
 //! at given times, the stages of a staged test (a sample compacted without friction, then
 //! sheared with it; a wall held by a pressure, then moved at a strain rate; a cell compacted
-//! under an isotropic stress, then strained along one axis), applied at the beginning of the first step
-//! that starts at or after their time, as Basilisk's events are in its time loop.
+//! under an isotropic stress, then strained along one axis), applied at the beginning of the
+//! first step that starts at or after their time, as Basilisk's events are in its time loop.
 
 use crate::cell::CellLoad;
 use crate::World;

@@ -3,7 +3,6 @@
 use super::drive;
 use xper_bodies::{Body, BodySet, ConvexPolygon, Shape};
 use xper_math::{Real, Vector};
-use xper_nscd::events::Events;
 use xper_scene::{CellDesc, Scene, ShapeDesc};
 
 /// The scenes this build runs: 2D rigid scenes.
@@ -53,17 +52,12 @@ pub(super) fn bodies(scene: &Scene) -> (BodySet, Real) {
     (bodies, smallest)
 }
 
-/// Whether the scene has `[[events]]`.
-pub(super) fn has_events(scene: &Scene) -> bool {
-    !scene.events.is_empty()
-}
-
 /// The scene's periodic cell (`[cell]`), if any.
 pub(super) fn cell(scene: &Scene) -> Option<&CellDesc<2>> {
     scene.cell.as_ref()
 }
 
-/// The scene's `[[events]]` as the engine's.
-pub(super) fn events(scene: &Scene) -> Events {
-    super::events(&scene.events)
+/// The scene's `[[events]]`.
+pub(super) fn events(scene: &Scene) -> &[xper_scene::EventDesc] {
+    &scene.events
 }

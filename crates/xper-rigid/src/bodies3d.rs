@@ -3,7 +3,6 @@
 use super::drive;
 use xper_bodies::{Body, BodySet, ConvexPolyhedron, Shape};
 use xper_math::{AngMatrix, AngVector, Real, Rotation, Vector};
-use xper_nscd::events::Events;
 use xper_scene::{Scene3, ShapeDesc3};
 
 /// The scenes this build runs: 3D rigid scenes.
@@ -60,14 +59,9 @@ pub(super) fn bodies(scene: &Scene3) -> (BodySet, Real) {
     (bodies, smallest)
 }
 
-/// Whether the scene has `[[events]]`.
-pub(super) fn has_events(scene: &Scene3) -> bool {
-    !scene.events.is_empty()
-}
-
-/// The scene's `[[events]]` as the engine's.
-pub(super) fn events(scene: &Scene3) -> Events {
-    super::events(&scene.events)
+/// The scene's `[[events]]`.
+pub(super) fn events(scene: &Scene3) -> &[xper_scene::EventDesc] {
+    &scene.events
 }
 
 /// The scene's periodic cell (`[cell]`), if any.

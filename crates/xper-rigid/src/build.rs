@@ -124,7 +124,7 @@ pub fn world_from_scene(scene: &RigidScene) -> World {
     };
     let count = bodies.len();
     let mut world = World::new(bodies, laws, params);
-    world.events = dimension::events(scene);
+    world.events = events(dimension::events(scene));
     match dimension::cell(scene) {
         Some(cell) => world.with_cell(periodic_cell(cell, count)),
         None => world,
@@ -243,5 +243,5 @@ pub(crate) fn scene_has_cell(scene: &RigidScene) -> bool {
 
 /// Whether the scene changes drives or laws during the run (`[[events]]`).
 pub(crate) fn scene_has_events(scene: &RigidScene) -> bool {
-    dimension::has_events(scene)
+    !dimension::events(scene).is_empty()
 }

@@ -309,7 +309,7 @@ pub(crate) fn drives_of<const N: usize>(
                 }
                 (Driven::Event, _) => {
                     let why = "an event sets velocity or force drives; give a pressure in the \
-                               wall's own `drive`";
+                               wall's own `drive` (2D walls with a `mass`)";
                     ctx.err(p.pos, &e.field("pressure"), why);
                     None
                 }

@@ -48,7 +48,7 @@ pub(crate) fn cell<const D: usize>(
     };
     let before = ctx.errors.len();
     let mut keys = vec!["origin", "size", "periodic", "mass"];
-    keys.extend((0..D).flat_map(|k| (0..D).map(move |l| COMPONENTS[3 * k + l])));
+    keys.extend(component_keys::<D>());
     t.check_keys(ctx, &keys);
     refuse_lower::<D>(ctx, &t);
     let origin = t.vector::<D>(ctx, "origin").or([0.0; D]);
@@ -111,6 +111,11 @@ pub(crate) fn cell<const D: usize>(
         mass: mass?,
         loads,
     }))
+}
+
+/// The names of the gradient's `D x D` components, row by row.
+fn component_keys<const D: usize>() -> impl Iterator<Item = &'static str> {
+    (0..D).flat_map(|k| (0..D).map(move |l| COMPONENTS[3 * k + l]))
 }
 
 /// Refuses the components below the diagonal (`yx`, `zx`, `zy`) in `t`.
@@ -181,10 +186,7 @@ pub(crate) fn event_loads<const D: usize>(
         );
         return None;
     };
-    let keys: Vec<&str> = (0..D)
-        .flat_map(|k| (0..D).map(move |l| COMPONENTS[3 * k + l]))
-        .collect();
-    t.check_keys(ctx, &keys);
+    t.check_keys(ctx, &component_keys::<D>().collect::<Vec<_>>());
     refuse_lower::<D>(ctx, &t);
     let mut out = Vec::new();
     for (k, l) in (0..D).flat_map(|k| (k..D).map(move |l| (k, l))) {
