@@ -117,6 +117,12 @@ impl BodySet {
     /// `w . (R I R^T w) / 2` of body `b` (J), with `I` its inertia in its own frame.
     #[inline]
     pub(super) fn rotational_energy(&self, b: usize) -> Real {
+        // A body of finite mass may have an infinite inertia (a half-space wall with a mass,
+        // its rotations imposed): its rotation is not counted, as the motion of a wall of
+        // infinite mass is not.
+        if !self.inertia[b].iter().all(|x| x.is_finite()) {
+            return 0.0;
+        }
         let body_w = self.rotation[b].inverse() * self.angular_velocity[b];
         0.5 * body_w.dot(&(self.inertia[b] * body_w))
     }

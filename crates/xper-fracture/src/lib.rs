@@ -20,6 +20,7 @@ mod interface;
 mod model;
 mod operator;
 mod part;
+mod spec;
 mod step;
 mod update;
 

@@ -25,9 +25,9 @@
 //! which equals the boundary forces times the boundary positions over `V` when the grains are
 //! in equilibrium without body forces: two independent measures of the same stress.
 //!
-//! `V` is the box spanned by the boundary bodies' positions (the centre lines of the walls of
-//! a box: [`VolumeSource::Walls`]) or the bounding box of the grains
-//! ([`VolumeSource::Grains`]).
+//! `V` is the box spanned by the boundary bodies' positions (the centre lines or planes of the
+//! walls of a box, each wall along the axis it faces: [`VolumeSource::Walls`]) or the
+//! bounding box of the grains ([`VolumeSource::Grains`]).
 
 use crate::World;
 use xper_math::{
@@ -37,7 +37,11 @@ use xper_math::{
 /// How the volume `V` of the measures is taken.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum VolumeSource {
-    /// The box spanned by the positions of the boundary bodies (a box's walls).
+    /// The box spanned by the positions of the boundary bodies (a box's walls). A wall (a
+    /// segment in 2D, a plane in 3D) bounds only the axes its bounding box is flat along, the
+    /// one it faces when it lies along the axes: its position along the others (the midpoint
+    /// of a segment, the point given for a plane) says nothing of the box. A wall tilted off
+    /// the axes bounds none.
     Walls,
     /// The bounding box of the grains.
     Grains,
@@ -149,6 +153,11 @@ fn grain_flags(world: &World) -> Vec<bool> {
         .collect()
 }
 
+/// The thickness of a wall's bounding box, relative to its size, below which the wall faces
+/// that axis: an orientation that went through a rotation vector leaves about 1e-16 where the
+/// rotation matrix has zeros.
+const FLAT: Real = 1e-12;
+
 /// The extents of the box whose volume is `V` (m).
 pub fn volume_box(
     world: &World,
@@ -170,6 +179,17 @@ pub fn volume_box(
     );
     for k in (0..b.len()).filter(|&k| grain[k] == (source == VolumeSource::Grains)) {
         let (min, max) = match source {
+            VolumeSource::Walls if b.shape[k].is_wall() => {
+                let bb = b.shape[k].aabb(&b.position[k], b.rotation[k]);
+                // A half-space's bounding box is exactly flat along the axis it faces.
+                let size = b.shape[k].size();
+                let thin = if size.is_finite() { FLAT * size } else { 0.0 };
+                let flat = (bb.max - bb.min).map(|e| e <= thin);
+                let p = b.position[k];
+                let lo = Vector::from_fn(|a, _| if flat[a] { p[a] } else { Real::INFINITY });
+                let hi = Vector::from_fn(|a, _| if flat[a] { p[a] } else { -Real::INFINITY });
+                (lo, hi)
+            }
             VolumeSource::Walls => (b.position[k], b.position[k]),
             VolumeSource::Grains | VolumeSource::Cell => {
                 let bb = b.shape[k].aabb(&b.position[k], b.rotation[k]);

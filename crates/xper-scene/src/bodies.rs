@@ -309,13 +309,13 @@ pub(crate) fn drives_of<const N: usize>(
                 }
                 (Driven::Event, _) => {
                     let why = "an event sets velocity or force drives; give a pressure in the \
-                               wall's own `drive` (2D walls with a `mass`)";
+                               wall's own `drive` (walls with a `mass`)";
                     ctx.err(p.pos, &e.field("pressure"), why);
                     None
                 }
                 _ => {
-                    let why = "a wall is driven by a pressure only when it has a `mass` (kg per \
-                               m of thickness; walls without one have an infinite mass)";
+                    let why = "a wall is driven by a pressure only when it has a `mass` (kg, per \
+                               m of thickness in 2D; walls without one have an infinite mass)";
                     ctx.err(p.pos, &e.field("pressure"), why);
                     None
                 }
@@ -329,7 +329,8 @@ pub(crate) fn drives_of<const N: usize>(
             (Some(v), None) => time_function(ctx, v, &e.field("velocity")).map(Drive::Velocity),
             (None, Some(f)) if driven == Driven::Wall => {
                 let why = "a wall without a `mass` cannot be driven by a force (its mass is \
-                           infinite); give it a `mass` (kg per m of thickness) or use `velocity`";
+                           infinite); give it a `mass` (kg, per m of thickness in 2D) or use \
+                           `velocity`";
                 ctx.err(f.pos, &e.field("force"), why);
                 None
             }

@@ -22,12 +22,15 @@ use crate::tree::Kind;
 use crate::types::{BodyDesc, CellDesc, Drive, EventDesc, LawDesc};
 use crate::types3d::BodyDesc3;
 
-/// What an event needs to know of a body: its group and its mass.
+/// What an event needs to know of a body: its group, its mass, and whether its rotations
+/// have a finite inertia.
 pub(crate) trait EventBody {
     /// Index of the body's group.
     fn group(&self) -> usize;
     /// Mass in kg (kg per m in 2D), infinite for walls without one.
     fn mass(&self) -> f64;
+    /// Whether a torque can turn it (false for walls without a mass, and for half-spaces).
+    fn turns(&self) -> bool;
 }
 
 impl EventBody for BodyDesc {
@@ -37,6 +40,9 @@ impl EventBody for BodyDesc {
     fn mass(&self) -> f64 {
         self.mass
     }
+    fn turns(&self) -> bool {
+        self.inertia.is_finite()
+    }
 }
 
 impl EventBody for BodyDesc3 {
@@ -45,6 +51,9 @@ impl EventBody for BodyDesc3 {
     }
     fn mass(&self) -> f64 {
         self.mass
+    }
+    fn turns(&self) -> bool {
+        self.inertia.iter().flatten().all(|i| i.is_finite())
     }
 }
 
@@ -199,6 +208,17 @@ fn drives<const N: usize, B: EventBody>(
                     let why = format!(
                         "group `{}` holds a wall without a `mass`: a force cannot move it",
                         groups.names[group]
+                    );
+                    ctx.err(e.pos, &e.field("drive"), why);
+                    return None;
+                }
+                // The rotations follow the translations: `x y rotation`, `x y z rx ry rz`.
+                let rotation = dof >= N.div_ceil(2);
+                if matches!(d, Drive::Force(_)) && rotation && !body.turns() {
+                    let why = format!(
+                        "group `{}` holds a body of infinite moment of inertia (a half-space): \
+                         a torque on `{}` cannot turn it",
+                        groups.names[group], dofs[dof]
                     );
                     ctx.err(e.pos, &e.field("drive"), why);
                     return None;

@@ -83,7 +83,7 @@ fn refused_pressures_name_the_field_and_the_reason() {
         &t,
         "walls[2].drive.rotation.pressure",
         "pressure",
-        "not the rotation",
+        "not a rotation",
     );
     let t = with_header(&box_walls("mass = -1.0"));
     expect_error(&t, "walls[2].mass", "mass = -1.0", "must be positive");

@@ -5,6 +5,7 @@
 //! a sphere of radius `r` and density `rho` has `m = rho 4/3 pi r^3`, `I = 2/5 m r^2`.
 
 use crate::bodies::{drives_of, read_bodies, Driven};
+use crate::pressure::{PendingSpan, WallFrame3};
 use crate::read::{as_vec3, choose, ensure, Ctx, Got, Tbl};
 use crate::shared::{Built3, Groups, Materials, Origin, Part};
 use crate::tree::Kind;
@@ -290,10 +291,18 @@ fn mass_inertia(
     Some((m?, inertia.into()))
 }
 
-/// Reads `[[walls]]` (planes) into `built`.
-pub(crate) fn walls(ctx: &mut Ctx, root: &Tbl, groups: &mut Groups, built: &mut Built3) {
+/// Reads `[[walls]]` (planes) into `built`; the groups of pressure drives' `between` are
+/// resolved into `pending` once every body is built ([`crate::pressure::resolve3`]).
+pub(crate) fn walls(
+    ctx: &mut Ctx,
+    root: &Tbl,
+    groups: &mut Groups,
+    built: &mut Built3,
+    pending: &mut Vec<PendingSpan>,
+) {
     for (i, t) in root.tables(ctx, "walls") {
-        t.check_keys(ctx, &["point", "normal", "size", "edge", "group", "drive"]);
+        let keys = ["point", "normal", "size", "edge", "group", "drive", "mass"];
+        t.check_keys(ctx, &keys);
         let point = t.vec3(ctx, "point").req(ctx, &t, "point");
         let normal = t.vec3(ctx, "normal").req(ctx, &t, "normal");
         let normal = normal.and_then(|(n, pos)| {
@@ -310,8 +319,7 @@ pub(crate) fn walls(ctx: &mut Ctx, root: &Tbl, groups: &mut Groups, built: &mut 
         let half = match t.vec2(ctx, "size") {
             Got::Absent => Some([f64::INFINITY; 2]),
             Got::Bad => None,
-            Got::Val(s, pos) if s.iter().all(|&x| x > 0.0 && x.is_finite()) => {
-                let _ = pos;
+            Got::Val(s, _) if s.iter().all(|&x| x > 0.0 && x.is_finite()) => {
                 Some([s[0] / 2.0, s[1] / 2.0])
             }
             Got::Val(s, pos) => {
@@ -325,12 +333,15 @@ pub(crate) fn walls(ctx: &mut Ctx, root: &Tbl, groups: &mut Groups, built: &mut 
             .string(ctx, "group")
             .req(ctx, &t, "group")
             .map(|(g, _)| groups.index(g));
-        let drive = match t.table(ctx, "drive") {
-            Got::Absent => Some(std::array::from_fn(|_| None)),
+        let mass = match t.num(ctx, "mass") {
+            Got::Absent => Some(None),
             Got::Bad => None,
-            Got::Val(d, _) => drives_of(ctx, &d, Driven::Wall, DOFS3, None),
+            Got::Val(m, pos) => {
+                ensure(ctx, Some((m, pos)), &t.field("mass"), |m| m > 0.0, "> 0 kg").map(Some)
+            }
         };
-        let (Some((point, _)), Some(n), Some(half)) = (point, normal, half) else {
+        let (Some((point, _)), Some(n), Some(half), Some(mass)) = (point, normal, half, mass)
+        else {
             continue;
         };
         let e1 = match edge {
@@ -350,10 +361,53 @@ pub(crate) fn walls(ctx: &mut Ctx, root: &Tbl, groups: &mut Groups, built: &mut 
                 along.normalize()
             }
         };
+        let frame = WallFrame3 {
+            body: built.bodies.len(),
+            normal: n.into(),
+            size: half.map(|h| 2.0 * h),
+        };
+        let spans_before = pending.len();
+        let mut read = |ctx: &mut Ctx, dof: usize, e: &Tbl| {
+            crate::pressure::read3(ctx, dof, e, &frame, pending)
+        };
+        let driven = match mass {
+            Some(_) => Driven::MassiveWall,
+            None => Driven::Wall,
+        };
+        let drive = match t.table(ctx, "drive") {
+            Got::Absent => Some(std::array::from_fn(|_| None)),
+            Got::Bad => None,
+            Got::Val(d, pos) => {
+                let drive = drives_of(ctx, &d, driven, DOFS3, Some(&mut read));
+                let turned = |d: &Option<Drive>| matches!(d, Some(Drive::Force(_)));
+                let half_space = half.iter().any(|h| h.is_infinite());
+                if let Some(k) = (drive.iter().flat_map(|d| d[3..].iter()))
+                    .position(turned)
+                    .filter(|_| half_space)
+                {
+                    let why = format!(
+                        "`{}`: a half-space has an infinite moment of inertia, so a force \
+                         cannot turn it; give the wall a `size` or drive the rotation by \
+                         `velocity`",
+                        DOFS3[3 + k]
+                    );
+                    ctx.err(pos, &t.field("drive"), why);
+                    pending.truncate(spans_before);
+                    continue;
+                }
+                drive
+            }
+        };
         let (Some(group), Some(drive)) = (group, drive) else {
+            // Not built: its `between` would name a body that is not this wall.
+            pending.truncate(spans_before);
             continue;
         };
         let mut wall = wall_body(point, n, e1, half, group);
+        if let Some(m) = mass {
+            wall.mass = m;
+            wall.inertia = plate_inertia(m, half);
+        }
         for (slot, d) in wall.drives.iter_mut().zip(drive) {
             if let Some(d) = d {
                 *slot = d;
@@ -367,6 +421,19 @@ pub(crate) fn walls(ctx: &mut Ctx, root: &Tbl, groups: &mut Groups, built: &mut 
         };
         built.push(wall, origin);
     }
+}
+
+/// The inertia tensor (kg m^2, body frame) of a thin rectangular plate of mass `m` (kg) and
+/// half-extents `half` (m) along the body's x and y axes, about its centre:
+/// `diag(m b^2, m a^2, m (a^2 + b^2)) / 12` with `a`, `b` its edge lengths; infinite for a
+/// half-space (its rotations then stay imposed unless driven by a velocity).
+fn plate_inertia(m: f64, half: [f64; 2]) -> [[f64; 3]; 3] {
+    if half.iter().any(|h| h.is_infinite()) {
+        return [[f64::INFINITY; 3]; 3];
+    }
+    let [a, b] = half.map(|h| 2.0 * h);
+    let d = [b * b, a * a, a * a + b * b].map(|x| m * x / 12.0);
+    std::array::from_fn(|r| std::array::from_fn(|c| if r == c { d[r] } else { 0.0 }))
 }
 
 /// A fixed planar wall through `point` with unit `normal`, its first edge along the unit

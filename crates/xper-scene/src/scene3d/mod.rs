@@ -39,8 +39,10 @@ pub(crate) fn rigid_scene3(ctx: &mut Ctx, root: &Tbl, header: Header) -> Option<
     let mut groups = Groups::default();
     let mut built = Built3::default();
     bodies::bodies(ctx, root, &materials, &mut groups, &mut built);
-    bodies::walls(ctx, root, &mut groups, &mut built);
+    let mut spans = Vec::new();
+    bodies::walls(ctx, root, &mut groups, &mut built, &mut spans);
     generators::generators(ctx, root, &materials, &mut groups, &mut built);
+    crate::pressure::resolve3(ctx, &groups, &mut built, spans);
     if ctx.errors.len() == before {
         overlaps::overlaps(ctx, &built);
     }
