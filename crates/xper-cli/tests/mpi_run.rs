@@ -181,6 +181,16 @@ fn what_a_distributed_run_cannot_do_is_refused_on_every_process() {
         &dir,
         "newton.toml: [solver] kind: a distributed run solves by NLGS only",
     );
+    // A 3D servo wall: its area follows walls another process may hold.
+    let walls = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/compaction_walls_3d");
+    let text = std::fs::read_to_string(walls.join("scene.toml")).unwrap();
+    let scene = dir.join("servo3d.toml");
+    std::fs::write(&scene, text.replace("count = 1000", "count = 20")).unwrap();
+    refused_on_two_processes(
+        &scene,
+        &dir,
+        "servo3d.toml: body 1 is driven by a pressure, which runs on one process only for now",
+    );
 }
 
 /// Regression: under `mpirun` a process's stdout is the terminal and its stderr a pipe, and

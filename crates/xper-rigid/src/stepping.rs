@@ -67,7 +67,7 @@ pub fn check_distributable(
     if let Some(k) = (scene.bodies.iter()).position(|b| b.drives.iter().any(pressure)) {
         return Err(RunError::BadInput(format!(
             "{}: body {k} is driven by a pressure, which runs on one process only for now (its \
-             loaded length follows bodies another process may hold)",
+             loaded length or area follows bodies another process may hold)",
             file.display()
         )));
     }
