@@ -5,9 +5,9 @@
 mod common;
 use common::*;
 use std::path::Path;
-use xper_math::{Real, Vector};
-use xper_nscd::micro::{measure, VolumeSource};
-use xper_nscd::{MoreauJean, World};
+use xper_math::Real;
+use xper_nscd::micro::{contact_force, measure, VolumeSource};
+use xper_nscd::MoreauJean;
 use xper_simulation::rigid::build::world_from_scene;
 
 const SCENE: &str = concat!(
@@ -21,21 +21,6 @@ const RIGHT: usize = 1;
 const TOP: usize = 2;
 const LEFT: usize = 3;
 const PRESSURE: Real = 1e3;
-
-/// The mean force the contacts exerted on body `b` over the last step (N per m).
-fn contact_force(world: &World, b: usize) -> Vector {
-    let c = &world.contacts;
-    let mut f = Vector::zeros();
-    for (row, impulse) in c.rows.iter().zip(&c.impulses) {
-        let r = row.world_impulse(*impulse) / world.params.dt;
-        if row.bodies[1] as usize == b {
-            f += r;
-        } else if row.bodies[0] as usize == b {
-            f -= r;
-        }
-    }
-    f
-}
 
 fn relative(a: Real, b: Real) -> Real {
     (a - b).abs() / b.abs()

@@ -6,7 +6,7 @@
 
 use std::path::Path;
 use xper_math3d::{Real, Vector};
-use xper_nscd3d::micro::{measure, VolumeSource};
+use xper_nscd3d::micro::{contact_force, measure, VolumeSource};
 use xper_nscd3d::{MoreauJean, World};
 use xper_scene::{AnyScene, Scene3};
 use xper_simulation::rigid3d::build::world_from_scene;
@@ -31,21 +31,6 @@ fn scene3(text: &str) -> Scene3 {
         Ok(_) => panic!("not a 3D scene"),
         Err(e) => panic!("{e}"),
     }
-}
-
-/// The mean force the contacts exerted on body `b` over the last step (N).
-fn contact_force(world: &World, b: usize) -> Vector {
-    let c = &world.contacts;
-    let mut f = Vector::zeros();
-    for (row, impulse) in c.rows.iter().zip(&c.impulses) {
-        let r = row.world_impulse(*impulse) / world.params.dt;
-        if row.bodies[1] as usize == b {
-            f += r;
-        } else if row.bodies[0] as usize == b {
-            f -= r;
-        }
-    }
-    f
 }
 
 fn relative(a: Real, b: Real) -> Real {

@@ -206,6 +206,22 @@ pub fn volume_box(
     }
 }
 
+/// The mean force the contacts exerted on body `b` over the last step (N per m in 2D, N in
+/// 3D): the sum of their impulses on it over the time step, e.g. the load a wall bears.
+pub fn contact_force(world: &World, b: usize) -> Vector {
+    let c = &world.contacts;
+    let mut f = Vector::zeros();
+    for (row, impulse) in c.rows.iter().zip(&c.impulses) {
+        let r = row.world_impulse(*impulse) / world.params.dt;
+        if row.bodies[1] as usize == b {
+            f += r;
+        } else if row.bodies[0] as usize == b {
+            f -= r;
+        }
+    }
+    f
+}
+
 /// A force-bearing contact touching a grain: its bodies, whether each is a grain, its force
 /// on the second body (N per m in 2D, N in 3D), normal force and branch vector `l`.
 struct Bearing {
