@@ -3,11 +3,11 @@
 
 mod common;
 
-use common::find_error;
+use common::{expect_error_any, find_error, ok3_text, parse3};
 use std::f64::consts::PI;
 use std::path::Path;
 use xper_math3d::{Rotation, Vector};
-use xper_scene::{parse_any_scene, AnyScene, Scene3, SceneErrors, ShapeDesc3};
+use xper_scene::{parse_any_scene, Scene3, SceneErrors, ShapeDesc3};
 
 const HEADER3: &str = r#"[scene]
 name = "t"
@@ -20,26 +20,13 @@ name = "glass"
 density = 2500.0
 "#;
 
-fn parse3(text: &str) -> Result<Scene3, SceneErrors> {
-    match parse_any_scene(text, Path::new("test.toml"))? {
-        AnyScene::Rigid3(s) => Ok(s),
-        _ => panic!("not read as a 3D scene"),
-    }
-}
-
 fn ok3(rest: &str) -> Scene3 {
-    let text = format!("{HEADER3}\n{rest}");
-    parse3(&text).unwrap_or_else(|e| panic!("unexpected errors:\n{e}\n--- in:\n{text}"))
+    ok3_text(&format!("{HEADER3}\n{rest}"))
 }
 
 /// Asserts an error on `field` at the line holding `marker` whose message has `needle`.
 fn error3(rest: &str, field: &str, marker: &str, needle: &str) {
-    let text = format!("{HEADER3}\n{rest}");
-    let errors = match parse_any_scene(&text, Path::new("test.toml")) {
-        Ok(_) => panic!("expected errors in:\n{text}"),
-        Err(e) => e,
-    };
-    find_error(&errors, &text, field, marker, needle);
+    expect_error_any(&format!("{HEADER3}\n{rest}"), field, marker, needle);
 }
 
 /// The shipped box3d10k scene follows ../shared/bench/box3d10k.md: sphere `n = 400 k + 20 j +

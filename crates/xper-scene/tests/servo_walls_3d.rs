@@ -4,9 +4,8 @@
 
 mod common;
 
-use common::find_error;
-use std::path::Path;
-use xper_scene::{parse_any_scene, AnyScene, Drive, ExtentDesc, Scene3, TimeFunction};
+use common::{expect_error_any, ok3_text};
+use xper_scene::{Drive, ExtentDesc, TimeFunction};
 
 const HEADER3: &str = r#"[scene]
 name = "t"
@@ -39,26 +38,9 @@ fn cube(driven: &str, extra: &str) -> String {
     text
 }
 
-fn parse3(text: &str) -> Scene3 {
-    match parse_any_scene(text, Path::new("test.toml")) {
-        Ok(AnyScene::Rigid3(s)) => s,
-        Ok(_) => panic!("not read as a 3D scene"),
-        Err(e) => panic!("unexpected errors:\n{e}\n--- in:\n{text}"),
-    }
-}
-
-/// Asserts an error on `field` at the line holding `marker` whose message has `needle`.
-fn error3(text: &str, field: &str, marker: &str, needle: &str) {
-    let errors = match parse_any_scene(text, Path::new("test.toml")) {
-        Ok(_) => panic!("expected errors in:\n{text}"),
-        Err(e) => e,
-    };
-    find_error(&errors, text, field, marker, needle);
-}
-
 #[test]
 fn a_pressure_acts_on_the_cross_section_between_two_pairs_of_walls() {
-    let s = parse3(&cube(
+    let s = ok3_text(&cube(
         "xmax",
         "mass = 0.5\ndrive = { x = { pressure = 1e4, between = [[\"ymin\", \"ymax\"], [\"top\", \"bottom\"]] } }",
     ));
@@ -88,7 +70,7 @@ fn a_pressure_acts_on_the_cross_section_between_two_pairs_of_walls() {
     }
     // A finite wall without `between`: its own area, and a plate's inertia
     // diag(m b^2, m a^2, m (a^2 + b^2)) / 12 along its edges.
-    let s = parse3(&cube(
+    let s = ok3_text(&cube(
         "top",
         "size = [2.0, 3.0]\nedge = [1.0, 0.0, 0.0]\nmass = 1.2\ndrive = { z = { pressure = 5e3 }, rz = { force = 1.0 } }",
     ));
@@ -122,35 +104,35 @@ fn refused_3d_pressures_name_the_field_and_the_reason() {
         "xmax",
         &format!("drive = {{ x = {{ pressure = 1e4, {between} }} }}"),
     );
-    error3(
+    expect_error_any(
         &text,
         "walls[3].drive.x.pressure",
         "pressure",
         "only when it has a `mass`",
     );
     let text = cube("xmax", &pressure("x", ""));
-    error3(
+    expect_error_any(
         &text,
         "walls[3].drive.x.between",
         "pressure",
         "a half-space has no area",
     );
     let text = cube("xmax", &pressure("x", ", between = [\"ymin\", \"ymax\"]"));
-    error3(
+    expect_error_any(
         &text,
         "walls[3].drive.x.between",
         "pressure",
         "two pairs of group names",
     );
     let text = cube("xmax", &pressure("y", &format!(", {between}")));
-    error3(
+    expect_error_any(
         &text,
         "walls[3].drive.y.pressure",
         "pressure",
         "no component along",
     );
     let text = cube("xmax", &pressure("rz", &format!(", {between}")));
-    error3(
+    expect_error_any(
         &text,
         "walls[3].drive.rz.pressure",
         "pressure",
@@ -160,7 +142,7 @@ fn refused_3d_pressures_name_the_field_and_the_reason() {
     // not one wall each.
     let across = ", between = [[\"xmin\", \"xmax\"], [\"bottom\", \"top\"]]";
     let text = cube("xmax", &pressure("x", across));
-    error3(
+    expect_error_any(
         &text,
         "walls[3].drive.x.between",
         "pressure",
@@ -168,7 +150,7 @@ fn refused_3d_pressures_name_the_field_and_the_reason() {
     );
     let same = ", between = [[\"ymin\", \"ymax\"], [\"ymax\", \"ymin\"]]";
     let text = cube("xmax", &pressure("x", same));
-    error3(
+    expect_error_any(
         &text,
         "walls[3].drive.x.between",
         "pressure",
@@ -176,7 +158,7 @@ fn refused_3d_pressures_name_the_field_and_the_reason() {
     );
     let unknown = ", between = [[\"ymin\", \"nowhere\"], [\"bottom\", \"top\"]]";
     let text = cube("xmax", &pressure("x", unknown));
-    error3(
+    expect_error_any(
         &text,
         "walls[3].drive.x.between",
         "pressure",
@@ -185,7 +167,7 @@ fn refused_3d_pressures_name_the_field_and_the_reason() {
     let sphere = "\n[[bodies]]\nshape = \"sphere\"\ncenter = [0.5, 0.5, 0.5]\nradius = 0.1\nmass = 1.0\ninertia = [1.0, 1.0, 1.0]\ngroup = \"ball\"\n";
     let ball = ", between = [[\"ball\", \"ymax\"], [\"bottom\", \"top\"]]";
     let text = cube("xmax", &pressure("x", ball)) + sphere;
-    error3(
+    expect_error_any(
         &text,
         "walls[3].drive.x.between",
         "pressure",
@@ -193,7 +175,7 @@ fn refused_3d_pressures_name_the_field_and_the_reason() {
     );
     let twice = cube("xmax", &pressure("x", &format!(", {between}")))
         + "\n[[walls]]\npoint = [0.5, 0.0, 0.5]\nnormal = [0.0, 1.0, 0.0]\ngroup = \"ymin\"\n";
-    error3(
+    expect_error_any(
         &twice,
         "walls[3].drive.x.between",
         "pressure",
@@ -202,19 +184,19 @@ fn refused_3d_pressures_name_the_field_and_the_reason() {
     // Walls apart by 0 along the pair's axis.
     let flat = cube("xmax", &pressure("x", &format!(", {between}")))
         .replace("point = [0.5, 1.0, 0.5]", "point = [0.5, 0.0, 0.5]");
-    error3(&flat, "walls[3].drive.x.between", "pressure", "0 m apart");
+    expect_error_any(&flat, "walls[3].drive.x.between", "pressure", "0 m apart");
     // Masses, forces and rotations.
     let text = cube("xmax", "mass = -1.0");
-    error3(&text, "walls[3].mass", "mass = -1.0", "> 0 kg");
+    expect_error_any(&text, "walls[3].mass", "mass = -1.0", "> 0 kg");
     let text = cube("xmax", "drive = { x = { force = 1.0 } }");
-    error3(
+    expect_error_any(
         &text,
         "walls[3].drive.x.force",
         "force",
         "cannot be driven by a force",
     );
     let text = cube("xmax", "mass = 1.0\ndrive = { ry = { force = 1.0 } }");
-    error3(
+    expect_error_any(
         &text,
         "walls[3].drive",
         "drive",
@@ -226,14 +208,14 @@ fn refused_3d_pressures_name_the_field_and_the_reason() {
         cube("xmax", "mass = 1.0")
             + &format!("\n[[events]]\ntime = 0.1\ndrives = [{{ group = \"xmax\", drive = {{ {drive} }} }}]\n")
     };
-    let s = parse3(&event("x = { force = -2.0 }"));
+    let s = ok3_text(&event("x = { force = -2.0 }"));
     assert_eq!(
         s.events[0].drives,
         vec![(3, 0, Drive::Force(TimeFunction::Constant(-2.0)))]
     );
     let text = event("rx = { force = 1.0 }");
     let field = "events[0].drives[0].drive";
-    error3(
+    expect_error_any(
         &text,
         field,
         "drives",

@@ -5,7 +5,7 @@ pub mod fracture;
 
 use std::path::Path;
 
-use xper_scene::{parse_scene, Scene, SceneError, SceneErrors};
+use xper_scene::{parse_any_scene, parse_scene, AnyScene, Scene, Scene3, SceneError, SceneErrors};
 
 /// A valid header: scene, one material `glass` (2500 kg/m^3).
 pub const HEADER: &str = r#"[scene]
@@ -73,4 +73,27 @@ pub fn find_error(
         }
         None => panic!("no error on `{field}` at line {line} containing {needle:?}; got:\n{e}"),
     }
+}
+
+/// A 3D scene read from `text` (in `test.toml`), or its errors; panics on a 2D scene.
+pub fn parse3(text: &str) -> Result<Scene3, SceneErrors> {
+    match parse_any_scene(text, Path::new("test.toml"))? {
+        AnyScene::Rigid3(s) => Ok(s),
+        _ => panic!("not read as a 3D scene"),
+    }
+}
+
+/// The 3D scene of `text`, panicking with its errors if it has any.
+pub fn ok3_text(text: &str) -> Scene3 {
+    parse3(text).unwrap_or_else(|e| panic!("unexpected errors:\n{e}\n--- in:\n{text}"))
+}
+
+/// Asserts that `text`, read as any scene, has an error on `field` at the line holding
+/// `marker` whose message has `needle`.
+pub fn expect_error_any(text: &str, field: &str, marker: &str, needle: &str) {
+    let errors = match parse_any_scene(text, Path::new("test.toml")) {
+        Ok(_) => panic!("expected errors in:\n{text}"),
+        Err(e) => e,
+    };
+    find_error(&errors, text, field, marker, needle);
 }
